@@ -1,0 +1,40 @@
+#pragma once
+/// Particle snapshots: one HDF5 file per snapshot written collectively through the MPI-IO
+/// driver (each rank writes its slice at an MPI_Exscan offset), plus one XDMF temporal
+/// collection (`<basename>.xmf`) rewritten after every snapshot so ParaView can open the run
+/// at any time.
+#include <mpi.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/ParticleStore.hpp"
+
+namespace gpudem {
+
+class SnapshotWriter {
+ public:
+  /// `dir` must exist. Files are `<dir>/<basename>_<index, 6 digits>.h5` and `<dir>/<basename>.xmf`.
+  SnapshotWriter(MPI_Comm comm, std::string dir, std::string basename = "particles");
+
+  /// Writes this rank's particles [0, particles.size()) as the next snapshot: datasets
+  /// position (N×3), radius (N), velocity (N×3), angular_velocity (N×3), force (N×3),
+  /// material (N, uint32), id (N, uint64); attributes time and step. Collective.
+  void write(const ParticleStore& particles, double time, std::uint64_t step);
+
+  const std::string& xmf_path() const { return xmf_path_; }
+  /// Paths of the snapshot files written so far.
+  const std::vector<std::string>& files() const { return files_; }
+
+ private:
+  MPI_Comm comm_;
+  std::string dir_;
+  std::string basename_;
+  std::string xmf_path_;
+  std::vector<std::string> files_;
+  std::vector<double> times_;
+  std::vector<std::uint64_t> counts_;
+};
+
+}  // namespace gpudem

@@ -1,0 +1,8 @@
+add_library(gpudem_comm STATIC
+  comm/MpiContext.cpp
+  comm/OutputDirectory.cpp
+  comm/SnapshotWriter.cpp
+  comm/TimeSeriesWriter.cpp)
+target_include_directories(gpudem_comm PUBLIC ${HDF5_INCLUDE_DIRS})
+target_compile_definitions(gpudem_comm PUBLIC ${HDF5_DEFINITIONS})
+target_link_libraries(gpudem_comm PUBLIC gpudem_base MPI::MPI_CXX ${HDF5_C_LIBRARIES})

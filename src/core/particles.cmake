@@ -1,0 +1,2 @@
+add_library(gpudem_particles STATIC core/ParticleSources.cpp)
+target_link_libraries(gpudem_particles PUBLIC gpudem_base)

@@ -1,0 +1,2 @@
+add_library(gpudem_scene STATIC core/SceneLoader.cpp)
+target_link_libraries(gpudem_scene PUBLIC gpudem_base toml11::toml11)

@@ -1,0 +1,27 @@
+/// CudaMemory.hpp for builds without the CUDA backend: no device, and any allocation is a
+/// programming error (the backend selection refuses "cuda" before it gets here).
+#include <stdexcept>
+
+#include "kernels/CudaMemory.hpp"
+
+namespace gpudem::cuda {
+
+namespace {
+[[noreturn]] void unavailable() {
+  throw std::logic_error("this gpudem-mpi was built without the CUDA backend");
+}
+}  // namespace
+
+bool compiled_in() { return false; }
+int device_count() { return 0; }
+std::string device_description() { return "none"; }
+void* allocate(std::size_t) { unavailable(); }
+void release(void* ptr) {
+  if (ptr) unavailable();
+}
+void copy_to_device(void*, const void*, std::size_t) { unavailable(); }
+void copy_to_host(void*, const void*, std::size_t) { unavailable(); }
+void copy_on_device(void*, const void*, std::size_t) { unavailable(); }
+void synchronize() {}
+
+}  // namespace gpudem::cuda

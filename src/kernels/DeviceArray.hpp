@@ -1,0 +1,86 @@
+#pragma once
+/// A typed buffer in one memory space. Copies between spaces are explicit calls
+/// (`upload`, `download`); nothing syncs behind the caller's back (DESIGN §2, rule 7).
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "kernels/CudaMemory.hpp"
+#include "kernels/ExecutionSpace.hpp"
+
+namespace gpudem {
+
+template <class T, class Space>
+class DeviceArray;
+
+/// Host buffer: a std::vector.
+template <class T>
+class DeviceArray<T, HostSpace> {
+ public:
+  DeviceArray() = default;
+  explicit DeviceArray(std::size_t n) : data_(n) {}
+  T* data() { return data_.data(); }
+  const T* data() const { return data_.data(); }
+  std::size_t size() const { return data_.size(); }
+  /// Resizes keeping the first min(old, new) elements.
+  void resize(std::size_t n) { data_.resize(n); }
+  void upload(const std::vector<T>& host) { data_ = host; }
+  void download(std::vector<T>& host) const { host = data_; }
+  void swap(DeviceArray& other) { data_.swap(other.data_); }
+  std::size_t bytes() const { return data_.capacity() * sizeof(T); }
+
+ private:
+  std::vector<T> data_;
+};
+
+/// CUDA device buffer; grows geometrically, keeps its contents on resize.
+template <class T>
+class DeviceArray<T, CudaSpace> {
+ public:
+  DeviceArray() = default;
+  explicit DeviceArray(std::size_t n) { resize(n); }
+  DeviceArray(const DeviceArray&) = delete;
+  DeviceArray& operator=(const DeviceArray&) = delete;
+  DeviceArray(DeviceArray&& o) noexcept { swap(o); }
+  DeviceArray& operator=(DeviceArray&& o) noexcept {
+    swap(o);
+    return *this;
+  }
+  ~DeviceArray() { cuda::release(ptr_); }
+
+  T* data() { return ptr_; }
+  const T* data() const { return ptr_; }
+  std::size_t size() const { return size_; }
+  void resize(std::size_t n) {
+    if (n > capacity_) {
+      std::size_t cap = n + n / 4;
+      T* fresh = static_cast<T*>(cuda::allocate(cap * sizeof(T)));
+      if (size_ > 0) cuda::copy_on_device(fresh, ptr_, size_ * sizeof(T));
+      cuda::release(ptr_);
+      ptr_ = fresh;
+      capacity_ = cap;
+    }
+    size_ = n;
+  }
+  void upload(const std::vector<T>& host) {
+    resize(host.size());
+    if (!host.empty()) cuda::copy_to_device(ptr_, host.data(), host.size() * sizeof(T));
+  }
+  void download(std::vector<T>& host) const {
+    host.resize(size_);
+    if (size_ > 0) cuda::copy_to_host(host.data(), ptr_, size_ * sizeof(T));
+  }
+  void swap(DeviceArray& o) {
+    std::swap(ptr_, o.ptr_);
+    std::swap(size_, o.size_);
+    std::swap(capacity_, o.capacity_);
+  }
+  std::size_t bytes() const { return capacity_ * sizeof(T); }
+
+ private:
+  T* ptr_ = nullptr;
+  std::size_t size_ = 0;
+  std::size_t capacity_ = 0;
+};
+
+}  // namespace gpudem

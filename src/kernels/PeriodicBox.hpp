@@ -1,0 +1,47 @@
+#pragma once
+/// The global simulation box and its periodic axes: minimum-image displacements and wrapping.
+#include <cmath>
+
+#include "core/Config.hpp"
+#include "core/Vec3.hpp"
+
+namespace gpudem {
+
+struct PeriodicBox {
+  Vec3 lo;                           ///< [m] lower corner
+  Vec3 length;                       ///< [m] edge lengths
+  bool periodic[3] = {false, false, false};
+
+  /// Displacement d reduced to its nearest periodic image on each periodic axis.
+  GPUDEM_HD Vec3 minimum_image(Vec3 d) const {
+    for (int k = 0; k < 3; ++k)
+      if (periodic[k]) {
+        const Real L = axis(length, k);
+        axis(d, k) -= L * floor(axis(d, k) / L + Real(0.5));
+      }
+    return d;
+  }
+
+  /// Position mapped back into [lo, lo + length) on each periodic axis.
+  GPUDEM_HD Vec3 wrap(Vec3 p) const {
+    for (int k = 0; k < 3; ++k)
+      if (periodic[k]) {
+        const Real L = axis(length, k);
+        Real s = axis(p, k) - axis(lo, k);
+        s -= L * floor(s / L);
+        if (s >= L) s -= L;  // floor rounding at the upper edge
+        axis(p, k) = axis(lo, k) + s;
+      }
+    return p;
+  }
+
+  /// True when p lies outside the box along a non-periodic axis.
+  GPUDEM_HD bool outside(Vec3 p) const {
+    for (int k = 0; k < 3; ++k)
+      if (!periodic[k] && (axis(p, k) < axis(lo, k) || axis(p, k) > axis(lo, k) + axis(length, k)))
+        return true;
+    return false;
+  }
+};
+
+}  // namespace gpudem

@@ -1,0 +1,12 @@
+# The step engine, instantiated once per backend from the same template (StepEngineImpl.hpp).
+add_library(gpudem_kernels STATIC kernels/StepEngineHost.cpp)
+target_link_libraries(gpudem_kernels PUBLIC gpudem_base)
+if(GPUDEM_HAVE_CUDA)
+  target_sources(gpudem_kernels PRIVATE kernels/CudaMemory.cu kernels/StepEngineCuda.cu)
+  set_target_properties(gpudem_kernels PROPERTIES CUDA_SEPARABLE_COMPILATION OFF)
+  target_compile_options(gpudem_kernels PRIVATE $<$<COMPILE_LANGUAGE:CUDA>:--extended-lambda>)
+  find_package(CUDAToolkit REQUIRED)
+  target_link_libraries(gpudem_kernels PUBLIC CUDA::cudart)
+else()
+  target_sources(gpudem_kernels PRIVATE kernels/CudaMemoryStub.cpp)
+endif()
