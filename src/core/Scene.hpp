@@ -20,6 +20,7 @@ struct SimulationSettings {
   double end_time = 0;          ///< [s] simulated time to reach (required)
   IntegratorKind integrator = IntegratorKind::VelocityVerlet;
   std::uint64_t seed = 1;       ///< random seed for particle insertion
+  Vec3 gravity{0, 0, -9.81};    ///< [m/s^2]
 };
 
 struct DomainSettings {
@@ -90,17 +91,21 @@ struct OutputSettings {
   double timeseries_every = 0;      ///< [s] time-series interval; 0 = every/10 (or 100 rows)
 };
 
+struct CheckpointSettings {
+  double every = 0;                 ///< [s] checkpoint interval; 0 = no checkpoints
+};
+
 struct Scene {
   std::string file;                 ///< path of the scene file as given
   SimulationSettings simulation;
   DomainSettings domain;
-  Vec3 gravity{0, 0, -9.81};        ///< [m/s^2]
   std::vector<Material> materials;
   ContactSettings contact;
   NeighborSettings neighbor;
   std::vector<WallSettings> walls;
   std::vector<ParticleSource> sources;
   OutputSettings output;
+  CheckpointSettings checkpoint;
 };
 
 }  // namespace gpudem
