@@ -1,1 +1,65 @@
-int main() { return 0; }
+// gpudem-mpi: command line entry point (CLI11). Thin: parse, run, map errors to exit codes.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <map>
+
+#include "app/Runner.hpp"
+#include "comm/MpiContext.hpp"
+#include "core/InputError.hpp"
+
+namespace {
+
+void print_error(const gpudem::MpiContext& mpi, const std::string& message) {
+  if (mpi.is_root()) std::fprintf(stderr, "gpudem-mpi: error: %s\n", message.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  gpudem::MpiContext mpi(argc, argv);
+  gpudem::RunOptions options;
+
+  CLI::App app{"gpudem-mpi: GPU discrete element solver for granular media (one MPI rank per GPU)"};
+  app.set_version_flag("--version", std::string("gpudem-mpi ") + GPUDEM_VERSION);
+  app.add_option("scene", options.scene_file, "scene file (TOML)")->required();
+  app.add_flag("--check", options.check_only, "validate the scene and exit");
+  app.add_option("--set", options.overrides,
+                 "override a scene key, e.g. --set simulation.end_time=0.5 (repeatable)")
+      ->type_name("KEY=VALUE");
+  app.add_option("--output-dir", options.output_dir, "output directory (overrides output.dir)");
+  const std::map<std::string, gpudem::BackendChoice> backends{
+      {"auto", gpudem::BackendChoice::Auto},
+      {"host", gpudem::BackendChoice::Host},
+      {"cuda", gpudem::BackendChoice::Cuda}};
+  app.add_option("--backend", options.backend, "compute backend: host, cuda or auto")
+      ->transform(CLI::CheckedTransformer(backends, CLI::ignore_case));
+  app.add_flag("--quiet", options.quiet, "no banner and no progress lines");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return mpi.is_root() ? app.exit(e) : 0;
+  } catch (const CLI::CallForVersion& e) {
+    return mpi.is_root() ? app.exit(e) : 0;
+  } catch (const CLI::ParseError& e) {
+    print_error(mpi, std::string(e.what()) + " (see --help)");
+    return gpudem::kExitBadInput;
+  }
+
+  if (mpi.size() > 1) {
+    print_error(mpi, "this version runs on one MPI rank (the domain is not decomposed yet); "
+                     "start it with mpirun -np 1");
+    return gpudem::kExitBadInput;
+  }
+  try {
+    return gpudem::run_scene(options, mpi);
+  } catch (const gpudem::InputError& e) {
+    print_error(mpi, e.what());
+    return gpudem::kExitBadInput;
+  } catch (const std::exception& e) {
+    print_error(mpi, e.what());
+    return gpudem::kExitFailure;
+  }
+}

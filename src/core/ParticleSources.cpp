@@ -1,1 +1,324 @@
-// to be written
+#include "core/ParticleSources.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numeric>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "core/CsvReader.hpp"
+#include "core/InputError.hpp"
+#include "core/SphereHash.hpp"
+
+namespace gpudem {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+/// Random positions tried for one sphere before the region counts as full.
+constexpr int max_attempts_per_particle = 1000;
+/// Redraws of a truncated normal are bounded by refusing bounds this improbable.
+constexpr double min_truncated_normal_mass = 1e-6;
+
+double sphere_volume(double r) { return 4.0 / 3.0 * pi * r * r * r; }
+
+/// Uniform on [0, 1) from the top 53 bits (identical on every standard library).
+double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+/// Standard normal deviate by the Box–Muller transform (Box & Muller 1958).
+double standard_normal(std::mt19937_64& rng) {
+  const double u1 = 1.0 - uniform01(rng);  // in (0, 1]: the logarithm stays finite
+  const double u2 = uniform01(rng);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * pi * u2);
+}
+
+/// Standard normal cumulative distribution Φ(x) = erfc(-x/√2)/2.
+double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+
+/// Probability that normal(mean, stddev) falls in [min, max].
+double truncated_normal_mass(const RadiusDistribution& d) {
+  if (d.stddev <= 0) return d.min <= d.mean && d.mean <= d.max ? 1.0 : 0.0;
+  return normal_cdf((d.max - d.mean) / d.stddev) - normal_cdf((d.min - d.mean) / d.stddev);
+}
+
+/// Weights of a discrete distribution; none given means equally likely values.
+std::vector<double> discrete_weights(const RadiusDistribution& d) {
+  if (d.weights.empty()) return std::vector<double>(d.values.size(), 1.0);
+  return d.weights;
+}
+
+/// Radii a discrete distribution can produce: the values of positive weight.
+std::vector<double> discrete_support(const RadiusDistribution& d) {
+  const std::vector<double> w = discrete_weights(d);
+  std::vector<double> support;
+  for (std::size_t k = 0; k < d.values.size() && k < w.size(); ++k)
+    if (w[k] > 0) support.push_back(d.values[k]);
+  return support;
+}
+
+std::mt19937_64 source_rng(std::uint64_t seed, std::size_t source_index) {
+  std::seed_seq seq{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
+                    static_cast<std::uint32_t>(source_index)};
+  return std::mt19937_64(seq);
+}
+
+std::string source_key(std::size_t i) { return "insert[" + std::to_string(i) + "]"; }
+
+std::string format_number(double x) {
+  std::ostringstream s;
+  s.precision(4);
+  s << x;
+  return s.str();
+}
+
+double box_volume(Vec3 lo, Vec3 hi) { return (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z); }
+
+/// Refuses distributions that would produce radii <= 0 or never end redrawing.
+void check_distribution(const Scene& scene, std::size_t i) {
+  const RadiusDistribution& d = scene.sources[i].radius;
+  const std::string key = source_key(i) + ".radius";
+  if (d.kind == RadiusDistributionKind::Discrete && discrete_support(d).empty())
+    throw InputError(scene.file, 0, key, "discrete distribution has no value of positive weight");
+  if (!(min_radius(d) > 0))
+    throw InputError(scene.file, 0, key, "the distribution can produce radii <= 0");
+  if (d.kind == RadiusDistributionKind::TruncatedNormal &&
+      !(truncated_normal_mass(d) >= min_truncated_normal_mass))
+    throw InputError(scene.file, 0, key,
+                     "[min, max] holds almost none of the normal(mean, stddev) distribution");
+}
+
+void check_material(const Scene& scene, std::size_t i) {
+  if (scene.sources[i].material >= scene.materials.size())
+    throw InputError(scene.file, 0, source_key(i) + ".material", "no such material");
+}
+
+/// Radii of a box source, largest first: `count` of them, or enough that their volume
+/// reaches volume_fraction × region volume.
+std::vector<double> box_radii(const Scene& scene, std::size_t i, std::mt19937_64& rng) {
+  const ParticleSource& src = scene.sources[i];
+  const std::string key = source_key(i);
+  std::vector<double> radii;
+  if (src.count > 0) {
+    if (src.count > SphereHash::max_size)
+      throw InputError(scene.file, 0, key + ".count", "too many particles for one source");
+    radii = sample_radii(src.radius, src.count, rng);
+  } else {
+    if (!(src.volume_fraction > 0 && src.volume_fraction < 1))
+      throw InputError(scene.file, 0, key, "needs count > 0 or volume_fraction in (0, 1)");
+    const double target = src.volume_fraction * box_volume(src.region_min, src.region_max);
+    if (target / sphere_volume(max_radius(src.radius)) > static_cast<double>(SphereHash::max_size))
+      throw InputError(scene.file, 0, key + ".volume_fraction", "too many particles for one source");
+    double volume = 0;
+    while (volume < target) {
+      if (radii.size() >= SphereHash::max_size)
+        throw InputError(scene.file, 0, key + ".volume_fraction", "too many particles for one source");
+      radii.push_back(sample_radii(src.radius, 1, rng).front());
+      volume += sphere_volume(radii.back());
+    }
+  }
+  std::sort(radii.begin(), radii.end(), std::greater<double>());
+  return radii;
+}
+
+/// Hash of the particles already in `store` that reach into the region [lo, hi].
+SphereHash existing_spheres(const ParticleStore& store, Vec3 lo, Vec3 hi, double min_radius,
+                            std::size_t extra) {
+  std::vector<std::size_t> inside;
+  for (std::size_t n = 0; n < store.size(); ++n) {
+    const Real4& p = store.position_radius[n];
+    if (p.x + p.w > lo.x && p.x - p.w < hi.x && p.y + p.w > lo.y && p.y - p.w < hi.y &&
+        p.z + p.w > lo.z && p.z - p.w < hi.z)
+      inside.push_back(n);
+  }
+  SphereHash hash(min_radius, inside.size() + extra);
+  for (std::size_t n : inside) hash.insert(xyz(store.position_radius[n]), store.position_radius[n].w);
+  return hash;
+}
+
+/// A random centre keeping the sphere inside [lo, hi] and off every stored sphere.
+std::optional<Vec3> free_spot(Vec3 lo, Vec3 hi, double r, const SphereHash& hash,
+                              std::mt19937_64& rng) {
+  for (int k = 0; k < 3; ++k)
+    if (axis(hi, k) - axis(lo, k) < 2 * r) return std::nullopt;
+  for (int attempt = 0; attempt < max_attempts_per_particle; ++attempt) {
+    Vec3 c;
+    for (int k = 0; k < 3; ++k)
+      axis(c, k) = axis(lo, k) + r + (axis(hi, k) - axis(lo, k) - 2 * r) * uniform01(rng);
+    if (!hash.overlaps(c, r)) return c;
+  }
+  return std::nullopt;
+}
+
+void insert_box(const Scene& scene, std::size_t i, ParticleStore& store) {
+  const ParticleSource& src = scene.sources[i];
+  check_material(scene, i);
+  check_distribution(scene, i);
+  std::mt19937_64 rng = source_rng(scene.simulation.seed, i);
+  const std::vector<double> radii = box_radii(scene, i, rng);
+  if (radii.empty()) return;
+  SphereHash hash = existing_spheres(store, src.region_min, src.region_max, radii.back(),
+                                     radii.size());
+  const double density = scene.materials[src.material].density;
+  const double region_volume = box_volume(src.region_min, src.region_max);
+  double placed_volume = 0;
+  for (std::size_t n = 0; n < radii.size(); ++n) {
+    const double r = radii[n];
+    const std::optional<Vec3> c = free_spot(src.region_min, src.region_max, r, hash, rng);
+    if (!c)
+      throw InputError(scene.file, 0, source_key(i),
+                       "could only place " + std::to_string(n) + " of " +
+                           std::to_string(radii.size()) + " particles (solid fraction " +
+                           format_number(placed_volume / region_volume) +
+                           ") in the region; enlarge the region or lower count/volume_fraction");
+    hash.insert(*c, r);
+    placed_volume += sphere_volume(r);
+    store.add(store.size(), *c, r, src.material, src.velocity, 1.0 / sphere_mass(density, r));
+  }
+}
+
+/// Positions in the header of the columns a particle CSV file may have.
+struct CsvColumns {
+  int x = -1, y = -1, z = -1, r = -1, material = -1, vx = -1, vy = -1, vz = -1;
+};
+
+CsvColumns csv_columns(const CsvReader& csv) {
+  CsvColumns c;
+  const std::pair<const char*, int*> known[] = {{"x", &c.x},   {"y", &c.y},
+                                                {"z", &c.z},   {"r", &c.r},
+                                                {"material", &c.material},
+                                                {"vx", &c.vx}, {"vy", &c.vy},
+                                                {"vz", &c.vz}};
+  const std::vector<std::string>& header = csv.header();
+  for (std::size_t k = 0; k < header.size(); ++k) {
+    const auto match = std::find_if(std::begin(known), std::end(known),
+                                    [&](const auto& kc) { return header[k] == kc.first; });
+    if (match == std::end(known))
+      throw InputError(csv.path(), 1, header[k],
+                       "unknown column '" + header[k] +
+                           "'; expected x, y, z, r and optionally material, vx, vy, vz");
+    if (*match->second >= 0)
+      throw InputError(csv.path(), 1, header[k], "column '" + header[k] + "' appears twice");
+    *match->second = static_cast<int>(k);
+  }
+  for (const char* required : {"x", "y", "z", "r"})
+    if (*std::find_if(std::begin(known), std::end(known), [&](const auto& kc) {
+          return std::string(kc.first) == required;
+        })->second < 0)
+      throw InputError(csv.path(), 1, required,
+                       std::string("missing required column '") + required + "'");
+  return c;
+}
+
+/// A material given by name, or else by 0-based index.
+MaterialId csv_material(const Scene& scene, const CsvReader& csv, const std::string& field) {
+  for (std::size_t m = 0; m < scene.materials.size(); ++m)
+    if (scene.materials[m].name == field) return static_cast<MaterialId>(m);
+  const bool digits = !field.empty() && field.find_first_not_of("0123456789") == std::string::npos;
+  if (digits && field.size() < 10 && std::stoul(field) < scene.materials.size())
+    return static_cast<MaterialId>(std::stoul(field));
+  throw InputError(csv.path(), csv.line(), "material",
+                   "unknown material '" + field + "' (neither a material name nor an index)");
+}
+
+/// Rejects a centre outside the domain along a non-periodic axis.
+void check_in_domain(const Scene& scene, const CsvReader& csv, Vec3 centre) {
+  const char* names[] = {"x", "y", "z"};
+  for (int k = 0; k < 3; ++k) {
+    const double lo = axis(scene.domain.min, k), hi = axis(scene.domain.max, k);
+    const double c = axis(centre, k);
+    if (!scene.domain.periodic[k] && (c < lo || c > hi))
+      throw InputError(csv.path(), csv.line(), names[k],
+                       "centre " + std::string(names[k]) + " = " + format_number(c) +
+                           " lies outside the domain [" + format_number(lo) + ", " +
+                           format_number(hi) + "]");
+  }
+}
+
+void import_csv(const Scene& scene, std::size_t i, ParticleStore& store) {
+  const ParticleSource& src = scene.sources[i];
+  CsvReader csv(src.csv_file);
+  const CsvColumns col = csv_columns(csv);
+  std::vector<std::string> f;
+  while (csv.next(f)) {
+    const auto value = [&](int k, const char* name, double fallback) {
+      return k < 0 ? fallback : csv.number(f[k], name);
+    };
+    const Vec3 centre{value(col.x, "x", 0), value(col.y, "y", 0), value(col.z, "z", 0)};
+    const double r = value(col.r, "r", 0);
+    if (!(r > 0))
+      throw InputError(csv.path(), csv.line(), "r", "radius must be > 0, got " + f[col.r]);
+    const MaterialId mat = col.material < 0 ? src.material : csv_material(scene, csv, f[col.material]);
+    if (mat >= scene.materials.size())
+      throw InputError(scene.file, 0, source_key(i) + ".material", "no such material");
+    check_in_domain(scene, csv, centre);
+    const Vec3 v{value(col.vx, "vx", src.velocity.x), value(col.vy, "vy", src.velocity.y),
+                 value(col.vz, "vz", src.velocity.z)};
+    store.add(store.size(), centre, r, mat, v, 1.0 / sphere_mass(scene.materials[mat].density, r));
+  }
+}
+
+}  // namespace
+
+void create_particles(const Scene& scene, ParticleStore& store) {
+  for (std::size_t i = 0; i < scene.sources.size(); ++i) {
+    if (scene.sources[i].kind == SourceKind::Box)
+      insert_box(scene, i, store);
+    else
+      import_csv(scene, i, store);
+  }
+}
+
+std::vector<double> sample_radii(const RadiusDistribution& dist, std::size_t count,
+                                 std::mt19937_64& rng) {
+  std::vector<double> radii(count);
+  switch (dist.kind) {
+    case RadiusDistributionKind::Uniform:
+      for (double& r : radii) r = dist.mean - dist.spread + 2 * dist.spread * uniform01(rng);
+      break;
+    case RadiusDistributionKind::TruncatedNormal:
+      for (double& r : radii) {
+        do r = dist.mean + dist.stddev * standard_normal(rng);
+        while (r < dist.min || r > dist.max);
+      }
+      break;
+    case RadiusDistributionKind::Discrete: {
+      std::vector<double> cumulative = discrete_weights(dist);
+      cumulative.resize(dist.values.size(), 0.0);
+      std::partial_sum(cumulative.begin(), cumulative.end(), cumulative.begin());
+      for (double& r : radii) {
+        const double u = uniform01(rng) * cumulative.back();
+        const auto k = std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin();
+        r = dist.values[static_cast<std::size_t>(k)];
+      }
+      break;
+    }
+  }
+  return radii;
+}
+
+double min_radius(const RadiusDistribution& dist) {
+  switch (dist.kind) {
+    case RadiusDistributionKind::Uniform: return dist.mean - dist.spread;
+    case RadiusDistributionKind::TruncatedNormal: return dist.min;
+    case RadiusDistributionKind::Discrete: {
+      const std::vector<double> s = discrete_support(dist);
+      return s.empty() ? 0.0 : *std::min_element(s.begin(), s.end());
+    }
+  }
+  return 0.0;
+}
+
+double max_radius(const RadiusDistribution& dist) {
+  switch (dist.kind) {
+    case RadiusDistributionKind::Uniform: return dist.mean + dist.spread;
+    case RadiusDistributionKind::TruncatedNormal: return dist.max;
+    case RadiusDistributionKind::Discrete: {
+      const std::vector<double> s = discrete_support(dist);
+      return s.empty() ? 0.0 : *std::max_element(s.begin(), s.end());
+    }
+  }
+  return 0.0;
+}
+
+}  // namespace gpudem

@@ -1,2 +1,2 @@
-add_library(gpudem_sim STATIC core/Simulation.cpp)
-target_link_libraries(gpudem_sim PUBLIC gpudem_scene gpudem_particles gpudem_kernels gpudem_comm)
+add_library(gpudem_sim STATIC core/SceneSetup.cpp)
+target_link_libraries(gpudem_sim PUBLIC gpudem_scene gpudem_particles gpudem_kernels)

@@ -1,0 +1,19 @@
+#pragma once
+/// What the command line asks of a run.
+#include <string>
+#include <vector>
+
+namespace gpudem {
+
+enum class BackendChoice { Auto, Host, Cuda };
+
+struct RunOptions {
+  std::string scene_file;
+  std::vector<std::string> overrides;  ///< --set key=value, in order
+  std::string output_dir;              ///< --output-dir (empty: the scene's output.dir)
+  BackendChoice backend = BackendChoice::Auto;
+  bool check_only = false;             ///< --check
+  bool quiet = false;                  ///< --quiet
+};
+
+}  // namespace gpudem

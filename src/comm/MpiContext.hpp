@@ -1,0 +1,24 @@
+#pragma once
+/// MPI for the lifetime of the program: initialised on construction, finalised on destruction.
+#include <mpi.h>
+
+namespace gpudem {
+
+class MpiContext {
+ public:
+  MpiContext(int& argc, char**& argv);
+  ~MpiContext();
+  MpiContext(const MpiContext&) = delete;
+  MpiContext& operator=(const MpiContext&) = delete;
+
+  MPI_Comm comm() const { return MPI_COMM_WORLD; }
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool is_root() const { return rank_ == 0; }
+
+ private:
+  int rank_ = 0;
+  int size_ = 1;
+};
+
+}  // namespace gpudem

@@ -1,0 +1,111 @@
+#pragma once
+/// XDMF 3 description of particle snapshots: one temporal collection holding, per snapshot, a
+/// Polyvertex grid whose heavy data are the datasets SnapshotWriter puts at the root of that
+/// snapshot's HDF5 file. Files are named relative to the .xmf, so an output folder can be moved
+/// as a whole. Keys are the ones both ParaView readers accept (Xdmf3 and the legacy Xdmf2).
+#include <charconv>
+#include <cstdint>
+#include <string>
+#include <system_error>
+#include <vector>
+
+namespace gpudem {
+
+/// One snapshot as the XDMF document lists it.
+struct XdmfSnapshot {
+  std::string h5_file;  ///< HDF5 file name relative to the .xmf
+  double time = 0;      ///< simulated time [s]
+  std::uint64_t count = 0;  ///< number of particles (all ranks)
+};
+
+/// A per-particle dataset shown as an XDMF attribute.
+struct XdmfField {
+  const char* name;            ///< dataset name at the file root, also the attribute name
+  const char* attribute_type;  ///< "Scalar" or "Vector"
+  const char* number_type;     ///< "Float" or "UInt"
+  int precision;               ///< bytes per value
+  int components;              ///< values per particle
+};
+
+/// The particle attributes of a snapshot, in the order they are listed. Positions are the
+/// geometry (dataset "position", N×3 float64) and not repeated here.
+inline const std::vector<XdmfField>& xdmf_particle_fields() {
+  static const std::vector<XdmfField> fields = {
+      {"radius", "Scalar", "Float", 8, 1},   {"velocity", "Vector", "Float", 8, 3},
+      {"angular_velocity", "Vector", "Float", 8, 3}, {"force", "Vector", "Float", 8, 3},
+      {"material", "Scalar", "UInt", 4, 1},  {"id", "Scalar", "UInt", 8, 1}};
+  return fields;
+}
+
+namespace xdmf_detail {
+
+/// Text safe inside an XML attribute value or element.
+inline std::string escape(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+/// Shortest decimal text that reads back to exactly `value`.
+inline std::string exact_decimal(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  if (result.ec != std::errc()) return std::to_string(value);
+  return std::string(buffer, result.ptr);
+}
+
+inline std::string dimensions(std::uint64_t count, int components) {
+  return std::to_string(count) + (components > 1 ? " " + std::to_string(components) : "");
+}
+
+inline std::string data_item(const XdmfSnapshot& snapshot, const char* dataset,
+                             const char* number_type, int precision, int components) {
+  return std::string("<DataItem Format=\"HDF\" NumberType=\"") + number_type +
+         "\" Precision=\"" + std::to_string(precision) + "\" Dimensions=\"" +
+         dimensions(snapshot.count, components) + "\">" + escape(snapshot.h5_file) + ":/" +
+         dataset + "</DataItem>";
+}
+
+inline std::string uniform_grid(const std::string& name, const XdmfSnapshot& snapshot) {
+  const std::string n = std::to_string(snapshot.count);
+  std::string grid = "      <Grid Name=\"" + escape(name) + "\" GridType=\"Uniform\">\n";
+  grid += "        <Time Value=\"" + exact_decimal(snapshot.time) + "\"/>\n";
+  grid += "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + n +
+          "\" NodesPerElement=\"1\"/>\n";
+  grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
+          data_item(snapshot, "position", "Float", 8, 3) + "\n        </Geometry>\n";
+  for (const XdmfField& field : xdmf_particle_fields()) {
+    grid += std::string("        <Attribute Name=\"") + field.name + "\" AttributeType=\"" +
+            field.attribute_type + "\" Center=\"Node\">\n          " +
+            data_item(snapshot, field.name, field.number_type, field.precision,
+                      field.components) +
+            "\n        </Attribute>\n";
+  }
+  return grid + "      </Grid>\n";
+}
+
+}  // namespace xdmf_detail
+
+/// The whole .xmf text: a temporal collection named `name` with one uniform grid per snapshot,
+/// in the order given; grid k is named "<name>_<k>".
+inline std::string particle_xdmf(const std::string& name,
+                                 const std::vector<XdmfSnapshot>& snapshots) {
+  std::string text = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n";
+  text += "<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n  <Domain>\n";
+  text += "    <Grid Name=\"" + xdmf_detail::escape(name) +
+          "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (std::size_t k = 0; k < snapshots.size(); ++k)
+    text += xdmf_detail::uniform_grid(name + "_" + std::to_string(k), snapshots[k]);
+  return text + "    </Grid>\n  </Domain>\n</Xdmf>\n";
+}
+
+}  // namespace gpudem

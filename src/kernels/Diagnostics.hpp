@@ -1,0 +1,106 @@
+#pragma once
+/// Per-particle terms of the global diagnostics (energies, contacts, wall forces); the engine
+/// sums them with reduce_sum / reduce_max.
+#include <cmath>
+
+#include "kernels/ContactVisitor.hpp"
+
+namespace gpudem {
+
+/// ½ m v² of particle i [J].
+struct TranslationalEnergy {
+  const Real4* velocity_inv_mass;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    const Real4 v = velocity_inv_mass[i];
+    return Real(0.5) * (v.x * v.x + v.y * v.y + v.z * v.z) / v.w;
+  }
+};
+
+/// ½ I ω² of sphere i, I = 2/5 m r² [J].
+struct RotationalEnergy {
+  const Real4* velocity_inv_mass;
+  const Real4* position_radius;
+  const Vec3* angular_velocity;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    const Real r = position_radius[i].w;
+    return Real(0.2) * r * r / velocity_inv_mass[i].w * norm2(angular_velocity[i]);
+  }
+};
+
+/// −m g·x of particle i [J] (zero at the origin).
+struct GravityEnergy {
+  const Real4* velocity_inv_mass;
+  const Real4* position_radius;
+  Vec3 gravity;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    return -dot(gravity, xyz(position_radius[i])) / velocity_inv_mass[i].w;
+  }
+};
+
+/// Contact count and elastic energy; a particle pair is seen from both sides, so it adds ½.
+struct ContactTally {
+  Real contacts = 0;
+  Real elastic_energy = 0;
+  GPUDEM_HD void operator()(const ContactSample& c) {
+    const Real share = c.wall < 0 ? Real(0.5) : Real(1);
+    contacts += share;
+    elastic_energy += share * linear_contact_energy(*c.params, c.kinematics.overlap);
+  }
+};
+
+struct ContactCount {
+  ParticleView particles;
+  ContactScene scene;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    ContactTally t;
+    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, t);
+    return t.contacts;
+  }
+};
+
+struct ElasticEnergy {
+  ParticleView particles;
+  ContactScene scene;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    ContactTally t;
+    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, t);
+    return t.elastic_energy;
+  }
+};
+
+/// Component `axis` of the force particle i exerts on wall `wall` [N].
+struct WallForceComponent {
+  ParticleView particles;
+  ContactScene scene;
+  std::int32_t wall;
+  int component;
+  struct Pick {
+    std::int32_t wall;
+    Vec3 force;
+    GPUDEM_HD void operator()(const ContactSample& c) {
+      if (c.wall == wall) force -= linear_contact_force(*c.params, c.kinematics);
+    }
+  };
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    Pick pick{wall, Vec3{}};
+    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, pick);
+    return axis(pick.force, component);
+  }
+};
+
+/// A number that flags particle i for the health check: its worst overlap ratio, or a huge
+/// value when its position or velocity is not finite.
+struct HealthScore {
+  const Real4* position_radius;
+  const Real4* velocity_inv_mass;
+  const Real* overlap_ratio;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    const Real4 x = position_radius[i];
+    const Real4 v = velocity_inv_mass[i];
+    const bool finite = isfinite(x.x) && isfinite(x.y) && isfinite(x.z) && isfinite(v.x) &&
+                        isfinite(v.y) && isfinite(v.z) && isfinite(overlap_ratio[i]);
+    return finite ? overlap_ratio[i] : Real(1e300);
+  }
+};
+
+}  // namespace gpudem

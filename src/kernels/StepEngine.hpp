@@ -1,0 +1,84 @@
+#pragma once
+/// The time-step engine: owns the particle state in one memory space and advances it.
+/// Host code talks to it through this interface only; the implementation is one template
+/// (StepEngineImpl.hpp) instantiated for the host backend (StepEngineHost.cpp) and the CUDA
+/// backend (StepEngineCuda.cu). This header includes no CUDA headers.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/ParticleStore.hpp"
+#include "core/Scene.hpp"
+#include "kernels/LinearContact.hpp"
+#include "kernels/PeriodicBox.hpp"
+#include "kernels/PlaneWall.hpp"
+
+namespace gpudem {
+
+/// Everything the engine needs, in plain data resolved from the scene on the host.
+struct EngineSetup {
+  PeriodicBox box;
+  Vec3 gravity;
+  Real dt = 0;
+  IntegratorKind integrator = IntegratorKind::VelocityVerlet;
+  Real skin = 0;                              ///< Verlet skin [m]
+  std::uint32_t material_count = 0;
+  std::vector<LinearPairParams> pair_params;  ///< material_count² entries, row-major
+  std::vector<PlaneWall> walls;
+};
+
+/// Global quantities reduced over all particles; walls' forces are the forces the
+/// particles exert on each wall [N].
+struct Diagnostics {
+  std::uint64_t particle_count = 0;
+  std::uint64_t contact_count = 0;  ///< particle–particle plus particle–wall contacts
+  double kinetic_translational = 0;  ///< Σ ½ m v² [J]
+  double kinetic_rotational = 0;     ///< Σ ½ I ω² [J]
+  double potential_gravity = 0;      ///< Σ −m g·x [J]
+  double potential_elastic = 0;      ///< Σ contact spring energy [J]
+  double max_overlap_ratio = 0;      ///< max over contacts of δ / min(r_i, r_j)
+  std::vector<Vec3> wall_force;
+};
+
+/// A particle the health check rejected: non-finite state or an overlap beyond the limit.
+struct HealthFailure {
+  ParticleId id = 0;
+  Vec3 position;
+  double overlap_ratio = 0;
+  bool non_finite = false;
+};
+
+class StepEngine {
+ public:
+  virtual ~StepEngine() = default;
+
+  /// Replaces the engine's particles with `particles` (copied into the engine's space) and
+  /// evaluates the initial forces.
+  virtual void set_particles(const ParticleStore& particles) = 0;
+  /// Copies the current particle state back to the host.
+  virtual void get_particles(ParticleStore& particles) const = 0;
+  virtual std::size_t particle_count() const = 0;
+
+  /// Advances one time step dt.
+  virtual void step() = 0;
+
+  /// Checks every particle for non-finite state and for an overlap above `max_overlap_ratio`
+  /// of the smaller radius; returns the first offender's details (false when healthy).
+  virtual bool find_unhealthy(double max_overlap_ratio, HealthFailure& failure) const = 0;
+
+  virtual Diagnostics diagnostics() const = 0;
+
+  /// Particles removed so far for leaving the non-periodic domain.
+  virtual std::uint64_t removed_count() const = 0;
+  virtual std::uint64_t rebuild_count() const = 0;
+  /// Bytes held in the engine's memory space.
+  virtual std::size_t memory_bytes() const = 0;
+  virtual std::string backend_name() const = 0;
+};
+
+std::unique_ptr<StepEngine> make_host_engine(const EngineSetup& setup);
+/// Throws std::runtime_error when the CUDA backend is not compiled in or no device exists.
+std::unique_ptr<StepEngine> make_cuda_engine(const EngineSetup& setup);
+
+}  // namespace gpudem

@@ -1,0 +1,290 @@
+#pragma once
+/// The step engine for one execution space (DESIGN §4 on one rank): the same code is
+/// instantiated for HostSpace and CudaSpace. Include the backend's ParallelFor header first.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "kernels/CellList.hpp"
+#include "kernels/ContactForces.hpp"
+#include "kernels/DeviceArray.hpp"
+#include "kernels/Diagnostics.hpp"
+#include "kernels/Integrators.hpp"
+#include "kernels/NeighborList.hpp"
+#include "kernels/StepEngine.hpp"
+
+namespace gpudem {
+
+/// 1 for particles outside the non-periodic box, else 0 (sort key that moves leavers last).
+struct LeaverKey {
+  const Real4* position_radius;
+  PeriodicBox box;
+  std::uint64_t* key;
+  std::uint32_t* index;
+  GPUDEM_HD void operator()(std::size_t i) const {
+    key[i] = box.outside(xyz(position_radius[i])) ? 1 : 0;
+    index[i] = static_cast<std::uint32_t>(i);
+  }
+};
+
+struct IsLeaver {
+  const Real4* position_radius;
+  PeriodicBox box;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    return box.outside(xyz(position_radius[i])) ? Real(1) : Real(0);
+  }
+};
+
+/// Maps positions into the box along periodic axes.
+struct WrapPositions {
+  Real4* position_radius;
+  PeriodicBox box;
+  GPUDEM_HD void operator()(std::size_t i) const {
+    const Vec3 p = box.wrap(xyz(position_radius[i]));
+    position_radius[i].x = p.x;
+    position_radius[i].y = p.y;
+    position_radius[i].z = p.z;
+  }
+};
+
+/// out[k] = in[order[k]].
+template <class T>
+struct Gather {
+  const std::uint32_t* order;
+  const T* in;
+  T* out;
+  GPUDEM_HD void operator()(std::size_t k) const { out[k] = in[order[k]]; }
+};
+
+struct ReadValue {
+  const Real* value;
+  GPUDEM_HD Real operator()(std::size_t i) const { return value[i]; }
+};
+
+template <class T>
+struct CopyArray {
+  const T* in;
+  T* out;
+  GPUDEM_HD void operator()(std::size_t k) const { out[k] = in[k]; }
+};
+
+template <class Space>
+class StepEngineImpl final : public StepEngine {
+ public:
+  explicit StepEngineImpl(const EngineSetup& setup) : setup_(setup) {
+    pair_params_.upload(setup.pair_params);
+    walls_.upload(setup.walls);
+  }
+
+  void set_particles(const ParticleStore& p) override {
+    position_radius_.upload(p.position_radius);
+    velocity_inv_mass_.upload(p.velocity_inv_mass);
+    angular_velocity_.upload(p.angular_velocity);
+    id_.upload(p.id);
+    material_.upload(p.material);
+    const std::size_t n = p.size();
+    force_.resize(n);
+    torque_.resize(n);
+    overlap_ratio_.resize(n);
+    rebuild();
+    compute_forces();
+  }
+
+  void get_particles(ParticleStore& p) const override {
+    position_radius_.download(p.position_radius);
+    velocity_inv_mass_.download(p.velocity_inv_mass);
+    angular_velocity_.download(p.angular_velocity);
+    force_.download(p.force);
+    torque_.download(p.torque);
+    id_.download(p.id);
+    material_.download(p.material);
+  }
+
+  std::size_t particle_count() const override { return id_.size(); }
+
+  void step() override {
+    const Real dt = setup_.dt;
+    const bool verlet = setup_.integrator == IntegratorKind::VelocityVerlet;
+    kick(verlet ? Real(0.5) * dt : dt);
+    parallel_for(Space{}, size(), Drift{position_radius_.data(), velocity_inv_mass_.data(), dt});
+    if (needs_rebuild()) rebuild();
+    compute_forces();
+    if (verlet) kick(Real(0.5) * dt);
+  }
+
+  bool find_unhealthy(double limit, HealthFailure& failure) const override {
+    const HealthScore score{position_radius_.data(), velocity_inv_mass_.data(),
+                            overlap_ratio_.data()};
+    if (reduce_max(Space{}, size(), Real(0), score) <= limit) return false;
+    ParticleStore host;
+    get_particles(host);
+    std::vector<Real> ratio;
+    overlap_ratio_.download(ratio);
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      const Real4 x = host.position_radius[i];
+      const Real4 v = host.velocity_inv_mass[i];
+      const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) &&
+                          std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) &&
+                          std::isfinite(ratio[i]);
+      if (finite && ratio[i] <= limit) continue;
+      failure = HealthFailure{host.id[i], xyz(x), ratio[i], !finite};
+      return true;
+    }
+    return false;
+  }
+
+  Diagnostics diagnostics() const override {
+    Diagnostics d;
+    const std::size_t n = size();
+    const ParticleView view = particle_view();
+    const ContactScene scene = contact_scene();
+    d.particle_count = n;
+    d.kinetic_translational = reduce_sum(Space{}, n, TranslationalEnergy{velocity_inv_mass_.data()});
+    d.kinetic_rotational = reduce_sum(
+        Space{}, n,
+        RotationalEnergy{velocity_inv_mass_.data(), position_radius_.data(), angular_velocity_.data()});
+    d.potential_gravity = reduce_sum(
+        Space{}, n, GravityEnergy{velocity_inv_mass_.data(), position_radius_.data(), setup_.gravity});
+    d.potential_elastic = reduce_sum(Space{}, n, ElasticEnergy{view, scene});
+    d.contact_count =
+        static_cast<std::uint64_t>(std::llround(reduce_sum(Space{}, n, ContactCount{view, scene})));
+    d.max_overlap_ratio = reduce_max(Space{}, n, Real(0), ReadValue{overlap_ratio_.data()});
+    for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
+      Vec3 f;
+      for (int k = 0; k < 3; ++k)
+        axis(f, k) = reduce_sum(Space{}, n,
+                                WallForceComponent{view, scene, static_cast<std::int32_t>(w), k});
+      d.wall_force.push_back(f);
+    }
+    return d;
+  }
+
+  std::uint64_t removed_count() const override { return removed_; }
+  std::uint64_t rebuild_count() const override { return rebuilds_; }
+
+  std::size_t memory_bytes() const override {
+    return position_radius_.bytes() + velocity_inv_mass_.bytes() + angular_velocity_.bytes() +
+           force_.bytes() + torque_.bytes() + id_.bytes() + material_.bytes() +
+           overlap_ratio_.bytes() + position_at_build_.bytes() + scratch_bytes() +
+           cells_.memory_bytes() + neighbors_.memory_bytes();
+  }
+
+  std::string backend_name() const override { return Space::name; }
+
+ private:
+  std::size_t size() const { return id_.size(); }
+
+  ParticleView particle_view() const {
+    return ParticleView{position_radius_.data(), velocity_inv_mass_.data(),
+                        angular_velocity_.data(), material_.data()};
+  }
+
+  ContactScene contact_scene() const {
+    return ContactScene{neighbors_.offsets(),  neighbors_.neighbors(),
+                        pair_params_.data(),   setup_.material_count,
+                        walls_.data(),         static_cast<std::uint32_t>(walls_.size()),
+                        setup_.box};
+  }
+
+  void kick(Real h) {
+    parallel_for(Space{}, size(),
+                 Kick{velocity_inv_mass_.data(), angular_velocity_.data(), force_.data(),
+                      torque_.data(), position_radius_.data(), h});
+  }
+
+  void compute_forces() {
+    parallel_for(Space{}, size(),
+                 ComputeForces{particle_view(), contact_scene(), setup_.gravity, force_.data(),
+                               torque_.data(), overlap_ratio_.data()});
+  }
+
+  /// The Verlet list stays valid while no particle moved more than skin/2.
+  bool needs_rebuild() const {
+    const Real moved2 = reduce_max(Space{}, size(), Real(0),
+                                   DisplacementSquared{position_radius_.data(),
+                                                       position_at_build_.data()});
+    const Real half_skin = Real(0.5) * setup_.skin;
+    return moved2 > half_skin * half_skin;
+  }
+
+  /// Wraps periodic images, removes particles that left the box, sorts by cell and rebuilds
+  /// the neighbour list.
+  void rebuild() {
+    parallel_for(Space{}, size(), WrapPositions{position_radius_.data(), setup_.box});
+    remove_leavers();
+    const std::size_t n = size();
+    cells_.bin(position_radius_.data(), n, setup_.box, setup_.skin);
+    reorder(cells_.order(), n);
+    neighbors_.build(cells_, position_radius_.data(), n, setup_.box, setup_.skin);
+    position_at_build_.resize(n);
+    parallel_for(Space{}, n, CopyArray<Real4>{position_radius_.data(), position_at_build_.data()});
+    ++rebuilds_;
+  }
+
+  void remove_leavers() {
+    const std::size_t n = size();
+    const auto leavers = static_cast<std::size_t>(
+        std::llround(reduce_sum(Space{}, n, IsLeaver{position_radius_.data(), setup_.box})));
+    if (leavers == 0) return;
+    sort_key_.resize(n);
+    sort_index_.resize(n);
+    parallel_for(Space{}, n,
+                 LeaverKey{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
+    sort_by_key(Space{}, sort_key_.data(), sort_index_.data(), n);
+    reorder(sort_index_.data(), n);
+    resize(n - leavers);
+    removed_ += leavers;
+  }
+
+  /// Applies the permutation `order` (slot k takes particle order[k]) to every per-particle
+  /// array whose value must survive a rebuild (forces are recomputed right after).
+  void reorder(const std::uint32_t* order, std::size_t n) {
+    permute(order, n, position_radius_);
+    permute(order, n, velocity_inv_mass_);
+    permute(order, n, angular_velocity_);
+    permute(order, n, id_);
+    permute(order, n, material_);
+  }
+
+  template <class T>
+  void permute(const std::uint32_t* order, std::size_t n, DeviceArray<T, Space>& a) {
+    DeviceArray<T, Space> out(n);
+    parallel_for(Space{}, n, Gather<T>{order, a.data(), out.data()});
+    a.swap(out);
+  }
+
+  void resize(std::size_t n) {
+    position_radius_.resize(n);
+    velocity_inv_mass_.resize(n);
+    angular_velocity_.resize(n);
+    id_.resize(n);
+    material_.resize(n);
+    force_.resize(n);
+    torque_.resize(n);
+    overlap_ratio_.resize(n);
+  }
+
+  std::size_t scratch_bytes() const { return sort_key_.bytes() + sort_index_.bytes(); }
+
+  EngineSetup setup_;
+  DeviceArray<LinearPairParams, Space> pair_params_;
+  DeviceArray<PlaneWall, Space> walls_;
+  DeviceArray<Real4, Space> position_radius_;
+  DeviceArray<Real4, Space> velocity_inv_mass_;
+  DeviceArray<Vec3, Space> angular_velocity_;
+  DeviceArray<Vec3, Space> force_;
+  DeviceArray<Vec3, Space> torque_;
+  DeviceArray<ParticleId, Space> id_;
+  DeviceArray<MaterialId, Space> material_;
+  DeviceArray<Real, Space> overlap_ratio_;
+  DeviceArray<Real4, Space> position_at_build_;
+  DeviceArray<std::uint64_t, Space> sort_key_;
+  DeviceArray<std::uint32_t, Space> sort_index_;
+  CellList<Space> cells_;
+  NeighborList<Space> neighbors_;
+  std::uint64_t removed_ = 0;
+  std::uint64_t rebuilds_ = 0;
+};
+
+}  // namespace gpudem
