@@ -28,6 +28,10 @@ class SnapshotWriter {
   const std::vector<std::string>& files() const { return files_; }
 
  private:
+  /// Rank 0 rewrites the .xmf (temporary file, then rename) listing every snapshot so far;
+  /// every rank throws if that failed. Collective.
+  void publish_xmf() const;
+
   MPI_Comm comm_;
   std::string dir_;
   std::string basename_;

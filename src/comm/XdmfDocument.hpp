@@ -13,8 +13,8 @@ namespace gpudem {
 
 /// One snapshot as the XDMF document lists it.
 struct XdmfSnapshot {
-  std::string h5_file;  ///< HDF5 file name relative to the .xmf
-  double time = 0;      ///< simulated time [s]
+  std::string h5_file;      ///< HDF5 file name relative to the .xmf
+  double time = 0;          ///< simulated time [s]
   std::uint64_t count = 0;  ///< number of particles (all ranks)
 };
 
@@ -31,9 +31,13 @@ struct XdmfField {
 /// geometry (dataset "position", N×3 float64) and not repeated here.
 inline const std::vector<XdmfField>& xdmf_particle_fields() {
   static const std::vector<XdmfField> fields = {
-      {"radius", "Scalar", "Float", 8, 1},   {"velocity", "Vector", "Float", 8, 3},
-      {"angular_velocity", "Vector", "Float", 8, 3}, {"force", "Vector", "Float", 8, 3},
-      {"material", "Scalar", "UInt", 4, 1},  {"id", "Scalar", "UInt", 8, 1}};
+      {"radius", "Scalar", "Float", 8, 1},
+      {"velocity", "Vector", "Float", 8, 3},
+      {"angular_velocity", "Vector", "Float", 8, 3},
+      {"force", "Vector", "Float", 8, 3},
+      {"material", "Scalar", "UInt", 4, 1},
+      {"id", "Scalar", "UInt", 8, 1},
+  };
   return fields;
 }
 
@@ -43,14 +47,18 @@ namespace xdmf_detail {
 inline std::string escape(const std::string& text) {
   std::string out;
   for (const char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
+    if (c == '&')
+      out += "&amp;";
+    else if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '"')
+      out += "&quot;";
+    else if (c == '\'')
+      out += "&apos;";
+    else
+      out += c;
   }
   return out;
 }
@@ -69,15 +77,18 @@ inline std::string dimensions(std::uint64_t count, int components) {
 
 inline std::string data_item(const XdmfSnapshot& snapshot, const char* dataset,
                              const char* number_type, int precision, int components) {
-  return std::string("<DataItem Format=\"HDF\" NumberType=\"") + number_type +
-         "\" Precision=\"" + std::to_string(precision) + "\" Dimensions=\"" +
-         dimensions(snapshot.count, components) + "\">" + escape(snapshot.h5_file) + ":/" +
-         dataset + "</DataItem>";
+  return std::string("<DataItem Format=\"HDF\" NumberType=\"") + number_type + "\" Precision=\"" +
+         std::to_string(precision) + "\" Dimensions=\"" + dimensions(snapshot.count, components) +
+         "\">" + escape(snapshot.h5_file) + ":/" + dataset + "</DataItem>";
 }
 
-inline std::string uniform_grid(const std::string& name, const XdmfSnapshot& snapshot) {
+/// The file name without its extension: the name of that snapshot's grid.
+inline std::string stem(const std::string& file) { return file.substr(0, file.rfind('.')); }
+
+inline std::string uniform_grid(const XdmfSnapshot& snapshot) {
   const std::string n = std::to_string(snapshot.count);
-  std::string grid = "      <Grid Name=\"" + escape(name) + "\" GridType=\"Uniform\">\n";
+  std::string grid =
+      "      <Grid Name=\"" + escape(stem(snapshot.h5_file)) + "\" GridType=\"Uniform\">\n";
   grid += "        <Time Value=\"" + exact_decimal(snapshot.time) + "\"/>\n";
   grid += "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + n +
           "\" NodesPerElement=\"1\"/>\n";
@@ -86,8 +97,7 @@ inline std::string uniform_grid(const std::string& name, const XdmfSnapshot& sna
   for (const XdmfField& field : xdmf_particle_fields()) {
     grid += std::string("        <Attribute Name=\"") + field.name + "\" AttributeType=\"" +
             field.attribute_type + "\" Center=\"Node\">\n          " +
-            data_item(snapshot, field.name, field.number_type, field.precision,
-                      field.components) +
+            data_item(snapshot, field.name, field.number_type, field.precision, field.components) +
             "\n        </Attribute>\n";
   }
   return grid + "      </Grid>\n";
@@ -96,15 +106,14 @@ inline std::string uniform_grid(const std::string& name, const XdmfSnapshot& sna
 }  // namespace xdmf_detail
 
 /// The whole .xmf text: a temporal collection named `name` with one uniform grid per snapshot,
-/// in the order given; grid k is named "<name>_<k>".
+/// in the order given, each named after its file.
 inline std::string particle_xdmf(const std::string& name,
                                  const std::vector<XdmfSnapshot>& snapshots) {
   std::string text = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n";
   text += "<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n  <Domain>\n";
   text += "    <Grid Name=\"" + xdmf_detail::escape(name) +
           "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (std::size_t k = 0; k < snapshots.size(); ++k)
-    text += xdmf_detail::uniform_grid(name + "_" + std::to_string(k), snapshots[k]);
+  for (const XdmfSnapshot& snapshot : snapshots) text += xdmf_detail::uniform_grid(snapshot);
   return text + "    </Grid>\n  </Domain>\n</Xdmf>\n";
 }
 

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/InputError.hpp"
@@ -39,8 +40,9 @@ class CsvReader {
     fields = split(text);
     if (fields.size() != header_.size())
       throw InputError(path_, line_, "",
-                       "row has " + std::to_string(fields.size()) + " fields but the header names " +
-                           std::to_string(header_.size()) + " columns");
+                       "row has " + std::to_string(fields.size()) +
+                           " fields but the header names " + std::to_string(header_.size()) +
+                           " columns");
     return true;
   }
 

@@ -6,7 +6,10 @@
 #include <numeric>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/CsvReader.hpp"
 #include "core/InputError.hpp"
@@ -20,6 +23,8 @@ constexpr double pi = 3.14159265358979323846;
 constexpr int max_attempts_per_particle = 1000;
 /// Redraws of a truncated normal are bounded by refusing bounds this improbable.
 constexpr double min_truncated_normal_mass = 1e-6;
+/// Radii drawn at a time while filling a volume fraction (the unused rest is dropped).
+constexpr std::size_t radius_batch = 4096;
 
 double sphere_volume(double r) { return 4.0 / 3.0 * pi * r * r * r; }
 
@@ -44,17 +49,25 @@ double truncated_normal_mass(const RadiusDistribution& d) {
 
 /// Weights of a discrete distribution; none given means equally likely values.
 std::vector<double> discrete_weights(const RadiusDistribution& d) {
-  if (d.weights.empty()) return std::vector<double>(d.values.size(), 1.0);
-  return d.weights;
+  std::vector<double> w = d.weights.empty() ? std::vector<double>(d.values.size(), 1.0) : d.weights;
+  w.resize(d.values.size(), 0.0);
+  return w;
 }
 
 /// Radii a discrete distribution can produce: the values of positive weight.
 std::vector<double> discrete_support(const RadiusDistribution& d) {
   const std::vector<double> w = discrete_weights(d);
   std::vector<double> support;
-  for (std::size_t k = 0; k < d.values.size() && k < w.size(); ++k)
+  for (std::size_t k = 0; k < w.size(); ++k)
     if (w[k] > 0) support.push_back(d.values[k]);
   return support;
+}
+
+/// The positive weights, in the order of discrete_support().
+std::vector<double> positive_weights(const RadiusDistribution& d) {
+  std::vector<double> w = discrete_weights(d);
+  w.erase(std::remove_if(w.begin(), w.end(), [](double x) { return !(x > 0); }), w.end());
+  return w;
 }
 
 std::mt19937_64 source_rng(std::uint64_t seed, std::size_t source_index) {
@@ -74,18 +87,24 @@ std::string format_number(double x) {
 
 double box_volume(Vec3 lo, Vec3 hi) { return (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z); }
 
-/// Refuses distributions that would produce radii <= 0 or never end redrawing.
+/// Why `dist` cannot be sampled, or empty when it can.
+std::string sampling_problem(const RadiusDistribution& d) {
+  if (d.kind == RadiusDistributionKind::Discrete && discrete_support(d).empty())
+    return "discrete distribution has no value of positive weight";
+  if (d.kind == RadiusDistributionKind::TruncatedNormal &&
+      !(truncated_normal_mass(d) >= min_truncated_normal_mass))
+    return "[min, max] holds almost none of the normal(mean, stddev) distribution";
+  return {};
+}
+
+/// Refuses distributions that cannot be sampled or could produce radii <= 0.
 void check_distribution(const Scene& scene, std::size_t i) {
   const RadiusDistribution& d = scene.sources[i].radius;
   const std::string key = source_key(i) + ".radius";
-  if (d.kind == RadiusDistributionKind::Discrete && discrete_support(d).empty())
-    throw InputError(scene.file, 0, key, "discrete distribution has no value of positive weight");
+  const std::string problem = sampling_problem(d);
+  if (!problem.empty()) throw InputError(scene.file, 0, key, problem);
   if (!(min_radius(d) > 0))
     throw InputError(scene.file, 0, key, "the distribution can produce radii <= 0");
-  if (d.kind == RadiusDistributionKind::TruncatedNormal &&
-      !(truncated_normal_mass(d) >= min_truncated_normal_mass))
-    throw InputError(scene.file, 0, key,
-                     "[min, max] holds almost none of the normal(mean, stddev) distribution");
 }
 
 void check_material(const Scene& scene, std::size_t i) {
@@ -108,13 +127,18 @@ std::vector<double> box_radii(const Scene& scene, std::size_t i, std::mt19937_64
       throw InputError(scene.file, 0, key, "needs count > 0 or volume_fraction in (0, 1)");
     const double target = src.volume_fraction * box_volume(src.region_min, src.region_max);
     if (target / sphere_volume(max_radius(src.radius)) > static_cast<double>(SphereHash::max_size))
-      throw InputError(scene.file, 0, key + ".volume_fraction", "too many particles for one source");
+      throw InputError(scene.file, 0, key + ".volume_fraction",
+                       "too many particles for one source");
     double volume = 0;
     while (volume < target) {
       if (radii.size() >= SphereHash::max_size)
-        throw InputError(scene.file, 0, key + ".volume_fraction", "too many particles for one source");
-      radii.push_back(sample_radii(src.radius, 1, rng).front());
-      volume += sphere_volume(radii.back());
+        throw InputError(scene.file, 0, key + ".volume_fraction",
+                         "too many particles for one source");
+      for (double r : sample_radii(src.radius, radius_batch, rng)) {
+        if (volume >= target) break;
+        radii.push_back(r);
+        volume += sphere_volume(r);
+      }
     }
   }
   std::sort(radii.begin(), radii.end(), std::greater<double>());
@@ -132,7 +156,8 @@ SphereHash existing_spheres(const ParticleStore& store, Vec3 lo, Vec3 hi, double
       inside.push_back(n);
   }
   SphereHash hash(min_radius, inside.size() + extra);
-  for (std::size_t n : inside) hash.insert(xyz(store.position_radius[n]), store.position_radius[n].w);
+  for (std::size_t n : inside)
+    hash.insert(xyz(store.position_radius[n]), store.position_radius[n].w);
   return hash;
 }
 
@@ -157,8 +182,10 @@ void insert_box(const Scene& scene, std::size_t i, ParticleStore& store) {
   std::mt19937_64 rng = source_rng(scene.simulation.seed, i);
   const std::vector<double> radii = box_radii(scene, i, rng);
   if (radii.empty()) return;
-  SphereHash hash = existing_spheres(store, src.region_min, src.region_max, radii.back(),
-                                     radii.size());
+  if (store.size() + radii.size() > SphereHash::max_size)
+    throw InputError(scene.file, 0, source_key(i), "too many particles in all");
+  SphereHash hash =
+      existing_spheres(store, src.region_min, src.region_max, radii.back(), radii.size());
   const double density = scene.materials[src.material].density;
   const double region_volume = box_volume(src.region_min, src.region_max);
   double placed_volume = 0;
@@ -184,11 +211,9 @@ struct CsvColumns {
 
 CsvColumns csv_columns(const CsvReader& csv) {
   CsvColumns c;
-  const std::pair<const char*, int*> known[] = {{"x", &c.x},   {"y", &c.y},
-                                                {"z", &c.z},   {"r", &c.r},
-                                                {"material", &c.material},
-                                                {"vx", &c.vx}, {"vy", &c.vy},
-                                                {"vz", &c.vz}};
+  const std::pair<const char*, int*> known[] = {
+      {"x", &c.x},   {"y", &c.y},   {"z", &c.z},  {"r", &c.r}, {"material", &c.material},
+      {"vx", &c.vx}, {"vy", &c.vy}, {"vz", &c.vz}};
   const std::vector<std::string>& header = csv.header();
   for (std::size_t k = 0; k < header.size(); ++k) {
     const auto match = std::find_if(std::begin(known), std::end(known),
@@ -201,12 +226,10 @@ CsvColumns csv_columns(const CsvReader& csv) {
       throw InputError(csv.path(), 1, header[k], "column '" + header[k] + "' appears twice");
     *match->second = static_cast<int>(k);
   }
-  for (const char* required : {"x", "y", "z", "r"})
-    if (*std::find_if(std::begin(known), std::end(known), [&](const auto& kc) {
-          return std::string(kc.first) == required;
-        })->second < 0)
-      throw InputError(csv.path(), 1, required,
-                       std::string("missing required column '") + required + "'");
+  const std::pair<const char*, int> required[] = {{"x", c.x}, {"y", c.y}, {"z", c.z}, {"r", c.r}};
+  for (const auto& [name, position] : required)
+    if (position < 0)
+      throw InputError(csv.path(), 1, name, std::string("missing required column '") + name + "'");
   return c;
 }
 
@@ -239,21 +262,22 @@ void import_csv(const Scene& scene, std::size_t i, ParticleStore& store) {
   const ParticleSource& src = scene.sources[i];
   CsvReader csv(src.csv_file);
   const CsvColumns col = csv_columns(csv);
+  if (col.material < 0) check_material(scene, i);
   std::vector<std::string> f;
   while (csv.next(f)) {
-    const auto value = [&](int k, const char* name, double fallback) {
+    const auto optional = [&](int k, const char* name, double fallback) {
       return k < 0 ? fallback : csv.number(f[k], name);
     };
-    const Vec3 centre{value(col.x, "x", 0), value(col.y, "y", 0), value(col.z, "z", 0)};
-    const double r = value(col.r, "r", 0);
+    const Vec3 centre{csv.number(f[col.x], "x"), csv.number(f[col.y], "y"),
+                      csv.number(f[col.z], "z")};
+    const double r = csv.number(f[col.r], "r");
     if (!(r > 0))
       throw InputError(csv.path(), csv.line(), "r", "radius must be > 0, got " + f[col.r]);
-    const MaterialId mat = col.material < 0 ? src.material : csv_material(scene, csv, f[col.material]);
-    if (mat >= scene.materials.size())
-      throw InputError(scene.file, 0, source_key(i) + ".material", "no such material");
+    const MaterialId mat =
+        col.material < 0 ? src.material : csv_material(scene, csv, f[col.material]);
     check_in_domain(scene, csv, centre);
-    const Vec3 v{value(col.vx, "vx", src.velocity.x), value(col.vy, "vy", src.velocity.y),
-                 value(col.vz, "vz", src.velocity.z)};
+    const Vec3 v{optional(col.vx, "vx", src.velocity.x), optional(col.vy, "vy", src.velocity.y),
+                 optional(col.vz, "vz", src.velocity.z)};
     store.add(store.size(), centre, r, mat, v, 1.0 / sphere_mass(scene.materials[mat].density, r));
   }
 }
@@ -271,6 +295,8 @@ void create_particles(const Scene& scene, ParticleStore& store) {
 
 std::vector<double> sample_radii(const RadiusDistribution& dist, std::size_t count,
                                  std::mt19937_64& rng) {
+  const std::string problem = sampling_problem(dist);
+  if (!problem.empty()) throw std::invalid_argument("sample_radii: " + problem);
   std::vector<double> radii(count);
   switch (dist.kind) {
     case RadiusDistributionKind::Uniform:
@@ -283,13 +309,14 @@ std::vector<double> sample_radii(const RadiusDistribution& dist, std::size_t cou
       }
       break;
     case RadiusDistributionKind::Discrete: {
-      std::vector<double> cumulative = discrete_weights(dist);
-      cumulative.resize(dist.values.size(), 0.0);
+      const std::vector<double> support = discrete_support(dist);
+      std::vector<double> cumulative = positive_weights(dist);
       std::partial_sum(cumulative.begin(), cumulative.end(), cumulative.begin());
       for (double& r : radii) {
         const double u = uniform01(rng) * cumulative.back();
-        const auto k = std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin();
-        r = dist.values[static_cast<std::size_t>(k)];
+        const auto k =
+            std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin();
+        r = support[std::min(static_cast<std::size_t>(k), support.size() - 1)];
       }
       break;
     }
@@ -299,8 +326,10 @@ std::vector<double> sample_radii(const RadiusDistribution& dist, std::size_t cou
 
 double min_radius(const RadiusDistribution& dist) {
   switch (dist.kind) {
-    case RadiusDistributionKind::Uniform: return dist.mean - dist.spread;
-    case RadiusDistributionKind::TruncatedNormal: return dist.min;
+    case RadiusDistributionKind::Uniform:
+      return dist.mean - dist.spread;
+    case RadiusDistributionKind::TruncatedNormal:
+      return dist.min;
     case RadiusDistributionKind::Discrete: {
       const std::vector<double> s = discrete_support(dist);
       return s.empty() ? 0.0 : *std::min_element(s.begin(), s.end());
@@ -311,8 +340,10 @@ double min_radius(const RadiusDistribution& dist) {
 
 double max_radius(const RadiusDistribution& dist) {
   switch (dist.kind) {
-    case RadiusDistributionKind::Uniform: return dist.mean + dist.spread;
-    case RadiusDistributionKind::TruncatedNormal: return dist.max;
+    case RadiusDistributionKind::Uniform:
+      return dist.mean + dist.spread;
+    case RadiusDistributionKind::TruncatedNormal:
+      return dist.max;
     case RadiusDistributionKind::Discrete: {
       const std::vector<double> s = discrete_support(dist);
       return s.empty() ? 0.0 : *std::max_element(s.begin(), s.end());

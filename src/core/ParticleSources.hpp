@@ -11,12 +11,29 @@
 namespace gpudem {
 
 /// Creates the particles of every source, in scene order, appending to `store` with
-/// consecutive global ids starting at store.size(). New particles never overlap each other or
-/// those already present. Throws InputError (file, line, key) for unreadable CSV files, bad
-/// rows, or a region that cannot hold the requested particles.
+/// consecutive global ids starting at store.size().
+///
+/// A box source samples all its radii first (`count` of them, or until their volume reaches
+/// volume_fraction × region volume) and places them largest first by random sequential
+/// insertion: uniform random centres keeping the whole sphere inside the region, rejecting any
+/// overlap with particles already in `store`; at most 1000 tries per particle. The random
+/// stream is std::mt19937_64 seeded from scene.simulation.seed and the source index, so a
+/// scene always gives the same particles. Velocity = source velocity, angular velocity 0.
+///
+/// A CSV source reads columns x, y, z, r and optionally material (name or 0-based index),
+/// vx, vy, vz, in any order named by the header line; missing ones take the source's
+/// material and velocity. CSV particles are not checked for overlaps.
+///
+/// Throws InputError (file, line, key) for unreadable CSV files, bad rows or values, centres
+/// outside the domain on a non-periodic axis, or a region that cannot hold the requested
+/// particles.
 void create_particles(const Scene& scene, ParticleStore& store);
 
-/// Draws `count` radii from `dist` [m]; all are > 0.
+/// Draws `count` radii from `dist` [m]: uniform on [mean - spread, mean + spread]; normal
+/// (mean, stddev) redrawn until within [min, max]; or values[k] with probability
+/// weights[k] / sum(weights) (equal weights when none are given). Throws
+/// std::invalid_argument for a distribution that cannot be sampled (no value of positive
+/// weight, or bounds holding less than 1e-6 of the normal's probability).
 std::vector<double> sample_radii(const RadiusDistribution& dist, std::size_t count,
                                  std::mt19937_64& rng);
 

@@ -88,7 +88,7 @@ struct ParticleSource {
 struct OutputSettings {
   std::string dir = "out";          ///< output directory (relative to the working directory)
   double every = 0;                 ///< [s] snapshot interval; 0 = first and last only
-  double timeseries_every = 0;      ///< [s] time-series interval; 0 = every/10 (or 100 rows)
+  double timeseries_every = 0;      ///< [s] time-series interval; 0 = about 200 rows per run
 };
 
 struct CheckpointSettings {

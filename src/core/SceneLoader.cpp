@@ -1,1 +1,355 @@
-// to be written
+// Scene loading: parse the TOML file, apply --set overrides, then read and check every table
+// of the schema documented in docs/input.md.
+#include "core/SceneLoader.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <toml.hpp>
+
+#include "core/InputError.hpp"
+#include "core/SceneOverrides.hpp"
+#include "core/TomlReader.hpp"
+
+namespace gpudem {
+namespace {
+
+/// The parsed tree of `path`; a syntax error keeps toml11's report of line and column.
+toml::value parse_scene_file(const std::string& path) {
+  std::error_code ignored;
+  std::ifstream in;
+  if (std::filesystem::is_regular_file(path, ignored)) in.open(path, std::ios::binary);
+  if (!in.is_open()) throw InputError(path, 0, "", "cannot open scene file");
+  try {
+    return toml::parse(in, path);
+  } catch (const toml::exception& e) {
+    throw InputError(path, static_cast<int>(e.location().line()), "",
+                     std::string("TOML syntax error:\n") + e.what());
+  }
+}
+
+/// "auto" (returned as 0) or a number > 0 in `unit`; absent means "auto".
+double auto_or_positive(const TableReader& table, const std::string& key,
+                        const std::string& unit) {
+  if (!table.has(key)) return 0;
+  const toml::value& v = table.value(key);
+  if (v.is_string() && v.as_string().str == "auto") return 0;
+  const Range range = positive(unit);
+  const std::optional<double> x = finite_number(v);
+  if (!x || !range.contains(*x)) table.fail_found(key, "\"auto\" or " + range.text("a number"));
+  return *x;
+}
+
+/// Fails on `key` with "`what`: ..." unless max > min on every axis.
+void require_extent(const TableReader& table, const std::string& key, Vec3 min, Vec3 max,
+                    const std::string& what) {
+  for (int k = 0; k < 3; ++k) {
+    if (!(axis(max, k) > axis(min, k))) {
+      table.fail(key, what + ": max must exceed min on every axis, got max = " +
+                          format_number(axis(max, k)) + " <= min = " +
+                          format_number(axis(min, k)) + " on " + "xyz"[k]);
+    }
+  }
+}
+
+SimulationSettings read_simulation(const TableReader& root) {
+  const TableReader table = root.table("simulation");
+  table.allow_only({"end_time", "dt", "dt_fraction", "integrator", "seed", "gravity"});
+  SimulationSettings s;
+  s.end_time = table.number("end_time", positive("s"));
+  s.dt = auto_or_positive(table, "dt", "s");
+  s.dt_auto = s.dt == 0;
+  s.dt_fraction = table.number("dt_fraction", interval(0, true, 1, false), s.dt_fraction);
+  const std::string integrator =
+      table.choice("integrator", {"velocity_verlet", "symplectic_euler"}, "velocity_verlet");
+  s.integrator = integrator == "velocity_verlet" ? IntegratorKind::VelocityVerlet
+                                                 : IntegratorKind::SymplecticEuler;
+  s.seed = static_cast<std::uint64_t>(table.integer("seed", non_negative(), 1));
+  s.gravity = table.vec3("gravity", "m/s^2", s.gravity);
+  return s;
+}
+
+DomainSettings read_domain(const TableReader& root) {
+  const TableReader table = root.table("domain");
+  table.allow_only({"min", "max", "periodic"});
+  DomainSettings d;
+  d.min = table.vec3("min", "m");
+  d.max = table.vec3("max", "m");
+  d.periodic = table.bool3("periodic", d.periodic);
+  require_extent(table, "max", d.min, d.max, "the domain is empty");
+  return d;
+}
+
+Material read_material(const TableReader& table) {
+  table.allow_only({"name", "density", "young", "poisson", "restitution", "friction"});
+  Material m;
+  m.name = table.string("name");
+  m.density = table.number("density", positive("kg/m^3"));
+  m.young = table.number("young", positive("Pa"));
+  m.poisson = table.number("poisson", interval(-1, true, 0.5, true), m.poisson);
+  m.restitution = table.number("restitution", interval(0, true, 1, false), m.restitution);
+  m.friction = table.number("friction", non_negative(), m.friction);
+  return m;
+}
+
+std::vector<Material> read_materials(const TableReader& root) {
+  const std::vector<TableReader> tables = root.array_of_tables("material");
+  if (tables.empty()) root.fail("material", "expected at least one [[material]] table");
+  std::vector<Material> materials;
+  for (const TableReader& table : tables) {
+    Material m = read_material(table);
+    for (std::size_t j = 0; j < materials.size(); ++j) {
+      if (materials[j].name == m.name) {
+        table.fail("name", "duplicate material name '" + m.name + "' (also used by material[" +
+                               std::to_string(j) + "])");
+      }
+    }
+    materials.push_back(std::move(m));
+  }
+  return materials;
+}
+
+ContactSettings read_contact(const TableReader& root) {
+  const TableReader table = root.optional_table("contact");
+  table.allow_only({"normal", "damping", "tangential", "stiffness"});
+  ContactSettings c;
+  c.normal = table.choice("normal", {"hooke"}, c.normal);
+  c.damping = table.choice("damping", {"restitution", "none"}, c.damping);
+  c.tangential = table.choice("tangential", {"coulomb", "none"}, c.tangential);
+  if (c.normal == "hooke") c.stiffness = table.number("stiffness", positive("N/m"));
+  return c;
+}
+
+NeighborSettings read_neighbor(const TableReader& root) {
+  const TableReader table = root.optional_table("neighbor");
+  table.allow_only({"skin"});
+  NeighborSettings n;
+  n.skin = auto_or_positive(table, "skin", "m");
+  return n;
+}
+
+/// Index of the material named by string `key`.
+MaterialId material_index(const TableReader& table, const std::string& key,
+                          const std::vector<Material>& materials) {
+  const std::string name = table.string(key);
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    if (materials[i].name == name) return static_cast<MaterialId>(i);
+    names.push_back(materials[i].name);
+  }
+  table.fail(key, "unknown material '" + name + "'; " + suggest(name, names, "materials"));
+}
+
+WallSettings read_wall(const TableReader& table, std::size_t index,
+                       const std::vector<Material>& materials) {
+  table.allow_only({"name", "point", "normal", "material"});
+  WallSettings w;
+  w.name = table.string("name", "wall" + std::to_string(index));
+  w.point = table.vec3("point", "m");
+  const Vec3 normal = table.vec3("normal", "");
+  const double length = norm(normal);
+  if (!(length > 0) || !std::isfinite(length)) {
+    table.fail_found("normal", "a normal vector of non-zero, finite length");
+  }
+  w.normal = (1 / length) * normal;
+  w.material = material_index(table, "material", materials);
+  return w;
+}
+
+std::vector<WallSettings> read_walls(const TableReader& root,
+                                     const std::vector<Material>& materials) {
+  std::vector<WallSettings> walls;
+  const std::vector<TableReader> tables = root.array_of_tables("wall");
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    WallSettings wall = read_wall(tables[i], i, materials);
+    for (std::size_t j = 0; j < walls.size(); ++j) {
+      if (walls[j].name == wall.name) {
+        tables[i].fail("name", "duplicate wall name '" + wall.name + "' (also used by wall[" +
+                                   std::to_string(j) + "]); names label the force columns");
+      }
+    }
+    walls.push_back(std::move(wall));
+  }
+  return walls;
+}
+
+/// radius = {distribution = "uniform", mean, spread}: radii in mean ± spread.
+RadiusDistribution read_uniform_radius(const TableReader& table) {
+  table.allow_only({"distribution", "mean", "spread"});
+  RadiusDistribution r;
+  r.kind = RadiusDistributionKind::Uniform;
+  r.mean = table.number("mean", positive("m"));
+  r.spread = table.number("spread", non_negative("m"), 0);
+  if (!(r.spread < r.mean)) {
+    table.fail_found("spread", "a number < mean = " + format_number(r.mean) +
+                                   " [m] so that every radius is > 0");
+  }
+  return r;
+}
+
+/// radius = {distribution = "normal", mean, stddev, min, max}: truncated normal.
+RadiusDistribution read_normal_radius(const TableReader& table) {
+  table.allow_only({"distribution", "mean", "stddev", "min", "max"});
+  RadiusDistribution r;
+  r.kind = RadiusDistributionKind::TruncatedNormal;
+  r.mean = table.number("mean", positive("m"));
+  r.stddev = table.number("stddev", positive("m"));
+  r.min = table.number("min", positive("m"));
+  r.max = table.number("max", positive("m"));
+  const std::string mean = format_number(r.mean);
+  if (r.min > r.mean) table.fail_found("min", "a number <= mean = " + mean + " [m]");
+  if (r.max < r.mean) table.fail_found("max", "a number >= mean = " + mean + " [m]");
+  return r;
+}
+
+/// radius = {distribution = "discrete", values, weights}: radii drawn from a list.
+RadiusDistribution read_discrete_radius(const TableReader& table) {
+  table.allow_only({"distribution", "values", "weights"});
+  RadiusDistribution r;
+  r.kind = RadiusDistributionKind::Discrete;
+  r.values = table.numbers("values", positive("m"));
+  r.weights = table.has("weights") ? table.numbers("weights", positive())
+                                   : std::vector<double>(r.values.size(), 1.0);
+  if (r.weights.size() != r.values.size()) {
+    table.fail("weights", "expected as many weights as values (" +
+                              std::to_string(r.values.size()) + "), got " +
+                              std::to_string(r.weights.size()));
+  }
+  return r;
+}
+
+/// `radius`: a number (every particle the same) or a distribution table.
+RadiusDistribution read_radius(const TableReader& source) {
+  if (source.has("radius") && source.value("radius").is_table()) {
+    const TableReader table = source.table("radius");
+    const std::string kind =
+        table.choice("distribution", {"uniform", "normal", "discrete"}, "uniform");
+    if (kind == "normal") return read_normal_radius(table);
+    if (kind == "discrete") return read_discrete_radius(table);
+    return read_uniform_radius(table);
+  }
+  RadiusDistribution r;
+  r.mean = source.number("radius", positive("m"));
+  return r;
+}
+
+/// The box `region` of a source, which must lie inside the domain (touching it is allowed).
+void read_region(const TableReader& source, const DomainSettings& domain, ParticleSource& s) {
+  const TableReader region = source.table("region");
+  region.allow_only({"min", "max"});
+  s.region_min = region.vec3("min", "m");
+  s.region_max = region.vec3("max", "m");
+  require_extent(region, "max", s.region_min, s.region_max, "the source region is empty");
+  for (int k = 0; k < 3; ++k) {
+    const double lo = axis(s.region_min, k), hi = axis(s.region_max, k);
+    if (lo < axis(domain.min, k) || hi > axis(domain.max, k)) {
+      source.fail("region", std::string("source region lies outside the domain on ") + "xyz"[k] +
+                                ": [" + format_number(lo) + ", " + format_number(hi) +
+                                "] is not inside [" + format_number(axis(domain.min, k)) + ", " +
+                                format_number(axis(domain.max, k)) + "]");
+    }
+  }
+}
+
+/// Keys that only box (region) sources take.
+const std::vector<std::string> kBoxOnlyKeys = {"region", "count", "volume_fraction", "radius",
+                                              "velocity"};
+
+ParticleSource read_box_source(const TableReader& table, const Scene& scene) {
+  ParticleSource s;
+  s.kind = SourceKind::Box;
+  read_region(table, scene.domain, s);
+  if (table.has("count") && table.has("volume_fraction")) {
+    table.fail("volume_fraction", "give either count or volume_fraction, not both");
+  }
+  if (table.has("volume_fraction")) {
+    s.volume_fraction = table.number("volume_fraction", interval(0, true, 0.6, false));
+  } else if (table.has("count")) {
+    s.count = static_cast<std::uint64_t>(table.integer("count", positive()));
+  } else {
+    table.fail("count", "missing 'count' or 'volume_fraction' in [[insert]] (give exactly one)");
+  }
+  s.radius = read_radius(table);
+  s.material = material_index(table, "material", scene.materials);
+  s.velocity = table.vec3("velocity", "m/s", s.velocity);
+  return s;
+}
+
+/// A CSV source; its file is resolved relative to the scene file's directory, not opened.
+ParticleSource read_csv_source(const TableReader& table, const Scene& scene) {
+  for (const std::string& key : kBoxOnlyKeys) {
+    if (table.has(key)) {
+      table.fail(key, "'" + key + "' belongs to region sources; a csv source takes only csv "
+                                  "and material");
+    }
+  }
+  ParticleSource s;
+  s.kind = SourceKind::Csv;
+  const std::filesystem::path csv = table.string("csv");
+  const std::filesystem::path scene_dir = std::filesystem::path(scene.file).parent_path();
+  s.csv_file = csv.is_absolute() ? csv.string() : (scene_dir / csv).lexically_normal().string();
+  s.material = table.has("material") ? material_index(table, "material", scene.materials) : 0;
+  return s;
+}
+
+std::vector<ParticleSource> read_sources(const TableReader& root, const Scene& scene) {
+  std::vector<ParticleSource> sources;
+  for (const TableReader& table : root.array_of_tables("insert")) {
+    table.allow_only({"csv", "region", "count", "volume_fraction", "radius", "material",
+                      "velocity"});
+    const bool csv = table.has("csv");
+    const bool box = table.has("region");
+    if (csv && box) table.fail("csv", "an [[insert]] takes either csv or region, not both");
+    if (!csv && !box) {
+      table.fail("region", "missing 'region' (random insertion in a box) or 'csv' (particles "
+                           "from a file) in [[insert]]");
+    }
+    sources.push_back(csv ? read_csv_source(table, scene) : read_box_source(table, scene));
+  }
+  return sources;
+}
+
+OutputSettings read_output(const TableReader& root) {
+  const TableReader table = root.optional_table("output");
+  table.allow_only({"dir", "every", "timeseries_every"});
+  OutputSettings o;
+  o.dir = table.string("dir", o.dir);
+  o.every = table.number("every", non_negative("s"), o.every);
+  o.timeseries_every = table.number("timeseries_every", non_negative("s"), o.timeseries_every);
+  return o;
+}
+
+CheckpointSettings read_checkpoint(const TableReader& root) {
+  const TableReader table = root.optional_table("checkpoint");
+  table.allow_only({"every"});
+  CheckpointSettings c;
+  c.every = table.number("every", non_negative("s"), c.every);
+  return c;
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  toml::value tree = parse_scene_file(path);
+  apply_overrides(tree, overrides);
+  const TableReader root(tree, path, "", "");
+  root.allow_only({"simulation", "domain", "material", "contact", "neighbor", "wall", "insert",
+                   "output", "checkpoint"});
+  Scene scene;
+  scene.file = path;
+  scene.simulation = read_simulation(root);
+  scene.domain = read_domain(root);
+  scene.materials = read_materials(root);
+  scene.contact = read_contact(root);
+  scene.neighbor = read_neighbor(root);
+  scene.walls = read_walls(root, scene.materials);
+  scene.sources = read_sources(root, scene);
+  scene.output = read_output(root);
+  scene.checkpoint = read_checkpoint(root);
+  return scene;
+}
+
+}  // namespace gpudem

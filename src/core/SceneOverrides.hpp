@@ -65,7 +65,8 @@ inline toml::value& element(toml::value& node, const std::string& part, const st
   if (!is_index(part) || std::stoul(part) >= size) {
     throw InputError("--set", 0, key,
                      "index '" + part + "' out of range: '" + array_key + "' has " +
-                         std::to_string(size) + " entries, numbered from 0");
+                         std::to_string(size) + (size == 1 ? " entry" : " entries") +
+                         ", numbered from 0");
   }
   return node.as_array()[std::stoul(part)];
 }

@@ -31,11 +31,10 @@ class SphereHash {
     std::size_t buckets = 1024;
     while (buckets < 2 * capacity) buckets *= 2;
     head_.assign(buckets, empty_);
-    spheres_.reserve(capacity);
-    next_.reserve(capacity);
+    nodes_.reserve(capacity);
   }
 
-  std::size_t size() const { return spheres_.size(); }
+  std::size_t size() const { return nodes_.size(); }
 
   void insert(Vec3 centre, double radius) {
     if (size() >= max_size) throw std::length_error("SphereHash: full");
@@ -43,18 +42,16 @@ class SphereHash {
     level_count_[l] += 1;
     if (radius > level_max_radius_[l]) level_max_radius_[l] = radius;
     const double h = cell_edge(l);
-    const std::size_t bucket = bucket_of(l, cell_of(centre.x, h), cell_of(centre.y, h),
-                                         cell_of(centre.z, h));
-    const auto index = static_cast<std::uint32_t>(spheres_.size());
-    spheres_.push_back({centre.x, centre.y, centre.z, radius});
-    next_.push_back(head_[bucket]);
-    head_[bucket] = index;
+    const std::size_t bucket =
+        bucket_of(l, cell_of(centre.x, h), cell_of(centre.y, h), cell_of(centre.z, h));
+    nodes_.push_back({centre.x, centre.y, centre.z, radius, head_[bucket]});
+    head_[bucket] = static_cast<std::uint32_t>(nodes_.size() - 1);
   }
 
   /// True when a sphere at `centre` with `radius` would overlap a stored one:
   /// |x_i - x_j| < r_i + r_j (touching spheres do not overlap).
   bool overlaps(Vec3 centre, double radius) const {
-    for (int l = 0; l < levels_; ++l)
+    for (int l = levels_ - 1; l >= 0; --l)  // large spheres first: they reject most often
       if (level_count_[l] > 0 && overlaps_on_level(l, centre, radius)) return true;
     return false;
   }
@@ -76,15 +73,16 @@ class SphereHash {
     return static_cast<std::int64_t>(std::floor(x / h));
   }
 
+  /// Bucket of cell (i, j, k) on level l. Cells next to each other along x get adjacent
+  /// buckets, so a query reads each row of cells from one or two cache lines.
   std::size_t bucket_of(int l, std::int64_t i, std::int64_t j, std::int64_t k) const {
-    std::uint64_t key = static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull ^
-                        static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4Full ^
-                        static_cast<std::uint64_t>(k) * 0x165667B19E3779F9ull ^
-                        static_cast<std::uint64_t>(l) * 0xD6E8FEB86659FD93ull;
+    std::uint64_t key = static_cast<std::uint64_t>(j) * 0x9E3779B97F4A7C15ull ^
+                        static_cast<std::uint64_t>(k) * 0xC2B2AE3D27D4EB4Full ^
+                        static_cast<std::uint64_t>(l) * 0x165667B19E3779F9ull;
     key ^= key >> 32;  // the table size is a power of two: fold the high bits in
-    key *= 0x9E3779B97F4A7C15ull;
+    key *= 0xD6E8FEB86659FD93ull;
     key ^= key >> 29;
-    return static_cast<std::size_t>(key & (head_.size() - 1));
+    return static_cast<std::size_t>((key + static_cast<std::uint64_t>(i)) & (head_.size() - 1));
   }
 
   bool overlaps_on_level(int l, Vec3 c, double radius) const {
@@ -93,27 +91,35 @@ class SphereHash {
     const std::int64_t x0 = cell_of(c.x - reach, h), x1 = cell_of(c.x + reach, h);
     const std::int64_t y0 = cell_of(c.y - reach, h), y1 = cell_of(c.y + reach, h);
     const std::int64_t z0 = cell_of(c.z - reach, h), z1 = cell_of(c.z + reach, h);
-    for (std::int64_t i = x0; i <= x1; ++i)
+    // The candidate's own cell first: it holds the likeliest overlap.
+    if (bucket_overlaps(bucket_of(l, cell_of(c.x, h), cell_of(c.y, h), cell_of(c.z, h)), c, radius))
+      return true;
+    for (std::int64_t k = z0; k <= z1; ++k)
       for (std::int64_t j = y0; j <= y1; ++j)
-        for (std::int64_t k = z0; k <= z1; ++k)
+        for (std::int64_t i = x0; i <= x1; ++i)
           if (bucket_overlaps(bucket_of(l, i, j, k), c, radius)) return true;
     return false;
   }
 
   bool bucket_overlaps(std::size_t bucket, Vec3 c, double radius) const {
-    for (std::uint32_t n = head_[bucket]; n != empty_; n = next_[n]) {
-      const Real4& s = spheres_[n];
+    for (std::uint32_t n = head_[bucket]; n != empty_; n = nodes_[n].next) {
+      const Node& s = nodes_[n];
       const double dx = s.x - c.x, dy = s.y - c.y, dz = s.z - c.z;
-      const double contact = s.w + radius;
+      const double contact = s.radius + radius;
       if (dx * dx + dy * dy + dz * dz < contact * contact) return true;
     }
     return false;
   }
 
+  /// A stored sphere and the next one in its bucket (one cache miss per candidate).
+  struct Node {
+    double x, y, z, radius;
+    std::uint32_t next;
+  };
+
   double finest_cell_;
-  std::vector<std::uint32_t> head_;   ///< first sphere of each bucket
-  std::vector<std::uint32_t> next_;   ///< next sphere in the same bucket
-  std::vector<Real4> spheres_;        ///< centre and radius
+  std::vector<std::uint32_t> head_;  ///< first sphere of each bucket
+  std::vector<Node> nodes_;
   std::size_t level_count_[levels_] = {};
   double level_max_radius_[levels_] = {};
 };

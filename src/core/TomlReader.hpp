@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -74,6 +75,20 @@ inline std::string format_number(double x) {
   return out.str();
 }
 
+inline std::string describe(const toml::value& v);
+
+/// `[1, 0.5, true]` for a short array of numbers and booleans, else its size.
+inline std::string describe_array(const toml::array& elements) {
+  const bool plain = elements.size() <= 6 &&
+                     std::all_of(elements.begin(), elements.end(), [](const toml::value& e) {
+                       return e.is_boolean() || e.is_integer() || e.is_floating();
+                     });
+  if (!plain) return "an array of " + std::to_string(elements.size()) + " elements";
+  std::string text;
+  for (const toml::value& e : elements) text += (text.empty() ? "" : ", ") + describe(e);
+  return "[" + text + "]";
+}
+
 /// How an error message shows a value that was found: `-3`, `2.0`, `the string "abc"`.
 inline std::string describe(const toml::value& v) {
   switch (v.type()) {
@@ -85,8 +100,7 @@ inline std::string describe(const toml::value& v) {
       return format_number(x) + (integral ? ".0" : "");
     }
     case toml::value_t::string: return "the string \"" + v.as_string().str + "\"";
-    case toml::value_t::array:
-      return "an array of " + std::to_string(v.as_array().size()) + " elements";
+    case toml::value_t::array: return describe_array(v.as_array());
     case toml::value_t::table: return "a table";
     default: return "a date or time";
   }
@@ -139,6 +153,13 @@ inline Range interval(double lo, bool lo_open, double hi, bool hi_open, std::str
   return Range{lo, hi, lo_open, hi_open, std::move(unit)};
 }
 
+/// The value of `v` when it is a finite number (integer or float), else nothing.
+inline std::optional<double> finite_number(const toml::value& v) {
+  if (v.is_integer()) return static_cast<double>(v.as_integer());
+  if (v.is_floating() && std::isfinite(v.as_floating())) return v.as_floating();
+  return std::nullopt;
+}
+
 /// Line of `v` in `file`; 0 when it came from elsewhere (--set) or has no recorded place.
 inline int line_in(const toml::value& v, const std::string& file) {
   const toml::source_location where = v.location();
@@ -154,7 +175,6 @@ class TableReader {
   TableReader(const toml::value& table, std::string file, std::string key, std::string title)
       : table_(&table), file_(std::move(file)), key_(std::move(key)), title_(std::move(title)) {}
 
-  const std::string& file() const { return file_; }
   /// Dotted key of `key` inside this table ("material[1].density").
   std::string path(const std::string& key) const { return key_.empty() ? key : key_ + "." + key; }
   /// Line of `key`'s value, or of this table when `key` is absent (0 for the whole file).
@@ -197,12 +217,11 @@ class TableReader {
     return table_->as_table().at(key);
   }
 
+  /// A finite number in `range` (integers accepted).
   double number(const std::string& key, const Range& range) const {
-    const toml::value& v = value(key);
-    if (!v.is_integer() && !v.is_floating()) fail_found(key, range.text("a number"));
-    const double x = v.is_integer() ? static_cast<double>(v.as_integer()) : v.as_floating();
-    if (!std::isfinite(x) || !range.contains(x)) fail_found(key, range.text("a number"));
-    return x;
+    const std::optional<double> x = finite_number(value(key));
+    if (!x || !range.contains(*x)) fail_found(key, range.text("a number"));
+    return *x;
   }
   double number(const std::string& key, const Range& range, double fallback) const {
     return has(key) ? number(key, range) : fallback;
@@ -256,15 +275,12 @@ class TableReader {
     if (size ? elements.size() != size : elements.empty()) fail_found(key, expected);
     std::vector<double> result;
     for (std::size_t i = 0; i < elements.size(); ++i) {
-      const toml::value& e = elements[i];
-      const bool is_number = e.is_integer() || e.is_floating();
-      const double x = e.is_integer() ? static_cast<double>(e.as_integer())
-                                      : (e.is_floating() ? e.as_floating() : 0.0);
-      if (!is_number || !std::isfinite(x) || !range.contains(x)) {
-        fail(key, "expected " + expected + ", got " + describe(e) + " at index " +
+      const std::optional<double> x = finite_number(elements[i]);
+      if (!x || !range.contains(*x)) {
+        fail(key, "expected " + expected + ", got " + describe(elements[i]) + " at index " +
                       std::to_string(i));
       }
-      result.push_back(x);
+      result.push_back(*x);
     }
     return result;
   }
@@ -292,13 +308,13 @@ class TableReader {
   TableReader table(const std::string& key) const {
     if (!has(key)) fail(key, "missing required table [" + path(key) + "]");
     const toml::value& v = value(key);
-    if (!v.is_table()) fail_found(key, "a table [" + path(key) + "]");
-    return TableReader(v, file_, path(key), "[" + path(key) + "]");
+    if (!v.is_table()) fail_found(key, "a table " + table_title(key));
+    return TableReader(v, file_, path(key), table_title(key));
   }
   /// A sub-table, or an empty one when absent (so its keys take their defaults).
   TableReader optional_table(const std::string& key) const {
-    static const toml::value empty{toml::table{}};
-    return has(key) ? table(key) : TableReader(empty, file_, path(key), "[" + path(key) + "]");
+    static const toml::value empty(toml::table{});
+    return has(key) ? table(key) : TableReader(empty, file_, path(key), table_title(key));
   }
   /// The entries of an array of tables `[[key]]`, each keyed `key[i]`; empty when absent.
   std::vector<TableReader> array_of_tables(const std::string& key) const {
@@ -320,6 +336,12 @@ class TableReader {
   }
 
  private:
+  /// "[simulation]" for a table header, "insert[0].region" inside an array of tables.
+  std::string table_title(const std::string& key) const {
+    const std::string p = path(key);
+    return p.find('[') == std::string::npos ? "[" + p + "]" : p;
+  }
+
   const toml::value* table_;
   std::string file_;
   std::string key_;

@@ -97,6 +97,7 @@ struct HealthScore {
   GPUDEM_HD Real operator()(std::size_t i) const {
     const Real4 x = position_radius[i];
     const Real4 v = velocity_inv_mass[i];
+    using std::isfinite;
     const bool finite = isfinite(x.x) && isfinite(x.y) && isfinite(x.z) && isfinite(v.x) &&
                         isfinite(v.y) && isfinite(v.z) && isfinite(overlap_ratio[i]);
     return finite ? overlap_ratio[i] : Real(1e300);

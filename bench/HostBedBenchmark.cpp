@@ -1,0 +1,129 @@
+// Host-backend throughput on settled beds: settles a periodic bed of 10^4 spheres, tiles it
+// in x and y to 10^4, 10^5 and 10^6 particles, and times the step loop at 1 and 2 OpenMP
+// threads. Prints a Markdown table (particle-steps/s, bytes per particle).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#if defined(GPUDEM_HAVE_OPENMP)
+#include <omp.h>
+#endif
+
+#include "core/ParticleSources.hpp"
+#include "core/SceneSetup.hpp"
+
+namespace gpudem {
+namespace {
+
+constexpr double kSide = 0.08;  // periodic cell of the seed bed [m]
+
+Scene bed_scene(double side_x, double side_y) {
+  Scene s;
+  s.file = "<bench>";
+  s.simulation.end_time = 1;
+  s.simulation.dt_fraction = 0.2;
+  s.domain.min = {0, 0, 0};
+  s.domain.max = {side_x, side_y, 0.4};
+  s.domain.periodic = {true, true, false};
+  Material m;
+  m.name = "soil";
+  m.density = 1850;
+  m.young = 1e6;
+  m.poisson = 0.3;
+  m.restitution = 0.3;
+  m.friction = 0.5;
+  s.materials.push_back(m);
+  s.contact.stiffness = 1000;
+  WallSettings floor;
+  floor.name = "floor";
+  floor.normal = {0, 0, 1};
+  s.walls.push_back(floor);
+  return s;
+}
+
+/// A settled periodic bed of 10^4 particles (poured, then stepped until nearly at rest).
+ParticleStore settled_seed_bed() {
+  Scene scene = bed_scene(kSide, kSide);
+  ParticleSource source;
+  source.region_min = {0, 0, 0};
+  source.region_max = {kSide, kSide, 0.4};
+  source.count = 10000;
+  source.radius.mean = 2.5e-3;
+  source.radius.spread = 0.5e-3;
+  scene.sources.push_back(source);
+  ParticleStore particles;
+  create_particles(scene, particles);
+  auto engine = make_host_engine(make_engine_setup(scene, particles));
+  engine->set_particles(particles);
+  const double potential = engine->diagnostics().potential_gravity;
+  for (int block = 0; block < 400; ++block) {
+    for (int n = 0; n < 200; ++n) engine->step();
+    const Diagnostics d = engine->diagnostics();
+    if (block > 20 && d.kinetic_translational + d.kinetic_rotational < 1e-6 * potential) break;
+  }
+  engine->get_particles(particles);
+  return particles;
+}
+
+/// The seed bed repeated tx × ty times in x and y.
+ParticleStore tile(const ParticleStore& seed, int tx, int ty) {
+  ParticleStore out;
+  ParticleId next = 0;
+  for (int a = 0; a < tx; ++a)
+    for (int b = 0; b < ty; ++b)
+      for (std::size_t i = 0; i < seed.size(); ++i) {
+        const Real4 p = seed.position_radius[i];
+        const Real4 v = seed.velocity_inv_mass[i];
+        out.add(next++, {p.x + a * kSide, p.y + b * kSide, p.z}, p.w, seed.material[i],
+                {v.x, v.y, v.z}, v.w);
+      }
+  return out;
+}
+
+void set_threads(int n) {
+#if defined(GPUDEM_HAVE_OPENMP)
+  omp_set_num_threads(n);
+#else
+  (void)n;
+#endif
+}
+
+void measure(const ParticleStore& bed, int tx, int ty, int threads) {
+  set_threads(threads);
+  const Scene scene = bed_scene(kSide * tx, kSide * ty);
+  auto engine = make_host_engine(make_engine_setup(scene, bed));
+  engine->set_particles(bed);
+  const int steps = std::max(20, static_cast<int>(3e7 / bed.size()));
+  for (int n = 0; n < 5; ++n) engine->step();
+  const std::uint64_t rebuilds0 = engine->rebuild_count();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int n = 0; n < steps; ++n) engine->step();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("| %zu | %d | %d | %.3g | %.1f | %llu |\n", bed.size(), threads, steps,
+              steps * double(bed.size()) / seconds,
+              double(engine->memory_bytes()) / bed.size(),
+              static_cast<unsigned long long>(engine->rebuild_count() - rebuilds0));
+  std::fflush(stdout);
+}
+
+}  // namespace
+}  // namespace gpudem
+
+int main(int argc, char** argv) {
+  using namespace gpudem;
+  const int max_exponent = argc > 1 ? std::stoi(argv[1]) : 6;
+  std::printf("settling the 10^4 seed bed...\n");
+  std::fflush(stdout);
+  const ParticleStore seed = settled_seed_bed();
+  std::printf("| particles | threads | steps | particle-steps/s | bytes/particle | rebuilds |\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  const int tiles[][2] = {{1, 1}, {5, 2}, {10, 10}};
+  for (int e = 4; e <= max_exponent && e <= 6; ++e) {
+    const ParticleStore bed = tile(seed, tiles[e - 4][0], tiles[e - 4][1]);
+    for (int threads : {1, 2}) measure(bed, tiles[e - 4][0], tiles[e - 4][1], threads);
+  }
+  return 0;
+}

@@ -1,0 +1,206 @@
+#pragma once
+/// Cell list: particles binned into the cells of their radius class's grid (SizeClassGrid.hpp)
+/// and sorted by (class, cell).
+///
+/// Use on a rebuild step:
+///   1. cells.bin(position_radius, n, box, skin);           // keys, sort, cell ranges
+///   2. permute(space, cells.order(), in, out, n);          // each particle array into cell order
+///   3. neighbors.build(cells, sorted_position_radius, n, box, skin);  // NeighborList.hpp
+/// Slot k of the cell order holds the particle that had index order()[k]; the particles of
+/// cell c occupy slots [cell_begin()[c], cell_begin()[c + 1]).
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "core/Config.hpp"
+#include "core/Vec3.hpp"
+#include "kernels/DeviceArray.hpp"
+#include "kernels/ParallelFor.hpp"
+#include "kernels/PeriodicBox.hpp"
+#include "kernels/SizeClassGrid.hpp"
+
+namespace gpudem {
+
+namespace cell_list_kernels {
+
+struct Radius {
+  const Real4* position_radius;
+  GPUDEM_HD Real operator()(std::size_t i) const { return position_radius[i].w; }
+};
+
+struct NegativeRadius {
+  const Real4* position_radius;
+  GPUDEM_HD Real operator()(std::size_t i) const { return -position_radius[i].w; }
+};
+
+/// 1 for a particle of class `wanted`, else 0.
+struct InClass {
+  const Real4* position_radius;
+  Real radius_top;
+  int class_count;
+  int wanted;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    return size_class(position_radius[i].w, radius_top, class_count) == wanted ? 1 : 0;
+  }
+};
+
+/// Radius of a particle of class `wanted`, else 0.
+struct RadiusInClass {
+  InClass member;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    return member(i) > 0 ? member.position_radius[i].w : Real(0);
+  }
+};
+
+/// cell[i] = the cell holding particle i; order[i] = i.
+struct AssignCell {
+  SizeClassGrids grids;
+  const Real4* position_radius;
+  std::uint64_t* cell;
+  std::uint32_t* order;
+  GPUDEM_HD void operator()(std::size_t i) const {
+    cell[i] = grids.cell_of(position_radius[i]);
+    order[i] = static_cast<std::uint32_t>(i);
+  }
+};
+
+/// begin[c] = first slot whose cell is >= c, by binary search over the sorted cells.
+struct FindCellBegin {
+  const std::uint64_t* sorted_cell;
+  std::uint32_t n;
+  std::uint32_t* begin;
+  GPUDEM_HD void operator()(std::size_t c) const {
+    std::uint32_t lo = 0, hi = n;
+    while (lo < hi) {
+      const std::uint32_t mid = lo + (hi - lo) / 2;
+      if (sorted_cell[mid] < c)
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
+    begin[c] = lo;
+  }
+};
+
+}  // namespace cell_list_kernels
+
+template <class Space>
+class CellList {
+ public:
+  /// max_size_classes in [1, kMaxSizeClasses]; 1 gives a single grid sized by the largest radius.
+  explicit CellList(int max_size_classes = kMaxSizeClasses) : max_size_classes_(max_size_classes) {
+    if (max_size_classes < 1 || max_size_classes > kMaxSizeClasses)
+      throw std::invalid_argument("CellList: max_size_classes must be in [1, " +
+                                  std::to_string(kMaxSizeClasses) + "]");
+  }
+
+  /// Bins n particles (x, y, z, radius in Space memory) and sorts them by (class, cell). On a
+  /// periodic axis any image of a position is accepted; on the others, positions outside the box
+  /// belong to the edge cells. skin [m] >= 0 is the neighbour list's skin. Throws
+  /// std::invalid_argument when a periodic length is below 2 (2 r_max + skin), when a radius is
+  /// not finite and > 0, or when the skin is negative.
+  void bin(const Real4* position_radius, std::size_t n, const PeriodicBox& box, Real skin) {
+    if (n > std::numeric_limits<std::uint32_t>::max() / (kMaxCellsPerParticle + 1))
+      throw std::invalid_argument("CellList: too many particles for 32-bit cell indices");
+    n_ = n;
+    Real r_min = 0, r_max = 0;
+    if (n > 0) {
+      r_max = reduce_max(Space{}, n, Real(0), cell_list_kernels::Radius{position_radius});
+      r_min = -reduce_max(Space{}, n, -r_max, cell_list_kernels::NegativeRadius{position_radius});
+    }
+    if (n > 0) check_radii(r_min, r_max);
+    check_sizes(box, skin, r_max);
+    make_grids(position_radius, box, skin, r_min, r_max);
+    sort_into_cells(position_radius);
+    find_cell_begins();
+  }
+
+  /// Number of particles binned.
+  std::size_t size() const { return n_; }
+  /// order()[k]: original index of the particle in slot k of the cell order.
+  const std::uint32_t* order() const { return order_.data(); }
+  /// total_cells + 1 entries: cell c holds slots [cell_begin()[c], cell_begin()[c + 1]).
+  const std::uint32_t* cell_begin() const { return cell_begin_.data(); }
+  /// The class grids of the last binning.
+  const SizeClassGrids& grids() const { return grids_; }
+  /// Bytes held in Space memory.
+  std::size_t memory_bytes() const { return cell_.bytes() + order_.bytes() + cell_begin_.bytes(); }
+
+ private:
+  static void check_radii(Real r_min, Real r_max) {
+    if (!(r_min > 0) || !std::isfinite(r_max))
+      throw std::invalid_argument("CellList: particle radii must be finite and > 0");
+  }
+
+  static void check_sizes(const PeriodicBox& box, Real skin, Real r_max) {
+    if (!(skin >= 0) || !std::isfinite(skin))
+      throw std::invalid_argument("CellList: skin must be finite and >= 0");
+    const Real cutoff = 2 * r_max + skin;
+    for (int k = 0; k < 3; ++k)
+      if (box.periodic[k] && !(axis(box.length, k) >= 2 * cutoff)) {
+        std::ostringstream what;
+        what << "CellList: periodic length along " << "xyz"[k] << " (" << axis(box.length, k)
+             << " m) must be at least 2 (2 r_max + skin) = " << 2 * cutoff << " m";
+        throw std::invalid_argument(what.str());
+      }
+  }
+
+  void make_grids(const Real4* position_radius, const PeriodicBox& box, Real skin, Real r_min,
+                  Real r_max) {
+    grids_ = SizeClassGrids{};
+    grids_.box = box;
+    grids_.skin = skin;
+    grids_.radius_top = r_max;
+    grids_.class_count = size_class_count(r_min, r_max, max_size_classes_);
+    std::uint64_t total = 0;
+    for (int c = 0; c < grids_.class_count; ++c) {
+      CellGrid& g = grids_.grid[c];
+      const cell_list_kernels::InClass member{position_radius, r_max, grids_.class_count, c};
+      const auto particles = static_cast<std::uint32_t>(reduce_sum(Space{}, n_, member));
+      if (particles > 0) {
+        const Real radius = reduce_max(Space{}, n_, Real(0),
+                                       cell_list_kernels::RadiusInClass{member});
+        const std::size_t max_cells = std::min<std::size_t>(
+            kMaxCellsPerParticle * particles, std::numeric_limits<int>::max());  // int per axis
+        g = make_cell_grid(box, 2 * radius + skin, Real(max_cells));
+        g.particles = particles;
+        g.radius_max = radius;
+      }
+      g.first_cell = static_cast<std::uint32_t>(total);
+      total += g.cell_count();
+    }
+    if (total >= std::numeric_limits<std::uint32_t>::max())
+      throw std::invalid_argument("CellList: too many cells for 32-bit cell indices");
+    grids_.total_cells = static_cast<std::uint32_t>(total);
+  }
+
+  void sort_into_cells(const Real4* position_radius) {
+    cell_.resize(n_);
+    order_.resize(n_);
+    parallel_for(Space{}, n_,
+                 cell_list_kernels::AssignCell{grids_, position_radius, cell_.data(),
+                                               order_.data()});
+    sort_by_key(Space{}, cell_.data(), order_.data(), n_);
+  }
+
+  void find_cell_begins() {
+    cell_begin_.resize(grids_.total_cells + std::size_t(1));
+    parallel_for(Space{}, cell_begin_.size(),
+                 cell_list_kernels::FindCellBegin{cell_.data(), static_cast<std::uint32_t>(n_),
+                                                  cell_begin_.data()});
+  }
+
+  int max_size_classes_;
+  std::size_t n_ = 0;
+  SizeClassGrids grids_;
+  DeviceArray<std::uint64_t, Space> cell_;  ///< cell of each slot, ascending after the sort
+  DeviceArray<std::uint32_t, Space> order_;
+  DeviceArray<std::uint32_t, Space> cell_begin_;
+};
+
+}  // namespace gpudem

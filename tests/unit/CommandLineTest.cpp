@@ -1,0 +1,216 @@
+// The gpudem-mpi binary end to end: bad input exits 2 with a message naming file, line and key
+// and writes nothing; a valid scene runs and writes its output; a blow-up exits 3 with the
+// offending particle named and its last snapshot written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exit_code;
+  std::string output;
+};
+
+Result run(const std::string& args) {
+  const std::string command = std::string(GPUDEM_BINARY) + " " + args + " 2>&1";
+  Result r{-1, ""};
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  char buffer[4096];
+  while (fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+const char* kValidScene = R"([simulation]
+end_time = 0.002
+dt = 1e-4
+
+[domain]
+min = [0.0, 0.0, 0.0]
+max = [0.1, 0.1, 0.1]
+
+[[material]]
+name = "sand"
+density = 2500.0
+young = 1e7
+poisson = 0.3
+restitution = 0.5
+
+[contact]
+stiffness = 1e4
+
+[[wall]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+material = "sand"
+
+[[insert]]
+region = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1, 0.1] }
+count = 50
+radius = { mean = 0.004, spread = 0.001 }
+material = "sand"
+
+[output]
+every = 0.001
+)";
+
+class CommandLine : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("gpudem_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  /// Writes `text` as the scene and returns its path.
+  std::string scene(const std::string& text) const {
+    const fs::path p = dir_ / "scene.toml";
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  std::string out() const { return (dir_ / "out").string(); }
+
+  /// The scene with `from` replaced by `to` (which must occur).
+  static std::string edit(const std::string& from, const std::string& to) {
+    std::string s = kValidScene;
+    const auto at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return s.replace(at, from.size(), to);
+  }
+
+  /// Runs the scene expecting exit 2, `needle` in the message and no output directory.
+  void expect_rejected(const std::string& scene_text, const std::string& needle,
+                       const std::string& extra_args = "") {
+    const Result r = run(scene(scene_text) + " --output-dir " + out() + " " + extra_args);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(needle), std::string::npos) << "expected '" << needle << "' in:\n"
+                                                        << r.output;
+    EXPECT_NE(r.output.find("error"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out())) << "output written for rejected input";
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(CommandLine, ValidSceneRunsAndWritesOutput) {
+  const Result r = run(scene(kValidScene) + " --output-dir " + out() + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(fs::path(out()) / "particles.xmf"));
+  EXPECT_TRUE(fs::exists(fs::path(out()) / "particles_000000.h5"));
+  EXPECT_TRUE(fs::exists(fs::path(out()) / "particles_000002.h5"));  // t = 0, 0.001, 0.002
+  std::ifstream series(fs::path(out()) / "timeseries.csv");
+  std::string header;
+  std::getline(series, header);
+  EXPECT_EQ(header.rfind("time,step,particles,contacts", 0), 0u) << header;
+  EXPECT_NE(header.find("wall0_fz"), std::string::npos) << header;
+}
+
+TEST_F(CommandLine, CheckValidatesWithoutWriting) {
+  const Result r = run(scene(kValidScene) + " --check --output-dir " + out());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("50 particles"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out()));
+}
+
+TEST_F(CommandLine, SetOverridesAKey) {
+  const Result r =
+      run(scene(kValidScene) + " --check --set insert.0.count=20 --output-dir " + out());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("20 particles"), std::string::npos) << r.output;
+}
+
+TEST_F(CommandLine, VersionAndHelp) {
+  EXPECT_EQ(run("--version").exit_code, 0);
+  const Result help = run("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.output.find("--set"), std::string::npos);
+}
+
+TEST_F(CommandLine, MissingFile) {
+  const Result r = run((dir_ / "nope.toml").string() + " --output-dir " + out());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("nope.toml"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out()));
+}
+
+TEST_F(CommandLine, SyntaxErrorNamesLine) {
+  expect_rejected(edit("young = 1e7", "young = = 1e7"), "scene.toml:12");
+}
+
+TEST_F(CommandLine, UnknownKeySuggestsNearest) {
+  expect_rejected(edit("density = 2500.0", "densty = 2500.0"), "density");
+}
+
+TEST_F(CommandLine, WrongType) { expect_rejected(edit("young = 1e7", "young = \"big\""), "young"); }
+
+TEST_F(CommandLine, MissingRequiredKey) { expect_rejected(edit("end_time = 0.002", ""), "end_time"); }
+
+TEST_F(CommandLine, NegativeRadius) {
+  expect_rejected(edit("mean = 0.004, spread = 0.001", "mean = -0.004, spread = 0.001"), "radius");
+}
+
+TEST_F(CommandLine, ZeroRadius) { expect_rejected(edit("{ mean = 0.004, spread = 0.001 }", "0.0"), "radius"); }
+
+TEST_F(CommandLine, PoissonOutOfRange) { expect_rejected(edit("poisson = 0.3", "poisson = 0.5"), "poisson"); }
+
+TEST_F(CommandLine, RestitutionOutOfRange) {
+  expect_rejected(edit("restitution = 0.5", "restitution = 0.0"), "restitution");
+  expect_rejected(edit("restitution = 0.5", "restitution = 1.5"), "restitution");
+}
+
+TEST_F(CommandLine, NonPositiveDensity) { expect_rejected(edit("density = 2500.0", "density = 0.0"), "density"); }
+
+TEST_F(CommandLine, EmptyDomain) {
+  expect_rejected(edit("max = [0.1, 0.1, 0.1]", "max = [0.1, 0.0, 0.1]"), "domain");
+}
+
+TEST_F(CommandLine, SourceOutsideDomain) {
+  expect_rejected(edit("max = [0.1, 0.1, 0.1] }", "max = [0.1, 0.1, 0.3] }"), "insert[0]");
+}
+
+TEST_F(CommandLine, CsvRowThatDoesNotParseNamesItsLine) {
+  std::ofstream(dir_ / "bed.csv") << "x,y,z,r\n0.05,0.05,0.05,0.004\n0.02,0.02,zero,0.004\n";
+  const std::string insert =
+      "[[insert]]\ncsv = \"bed.csv\"\nmaterial = \"sand\"\n\n[output]";
+  std::string s = kValidScene;
+  s = s.substr(0, s.find("[[insert]]")) + insert + s.substr(s.find("[output]") + 8);
+  expect_rejected(s, "bed.csv:3");
+}
+
+TEST_F(CommandLine, OutputDirectoryThatCannotBeCreated) {
+  std::ofstream(dir_ / "blocker") << "a file where a directory should go";
+  const Result r = run(scene(kValidScene) + " --output-dir " + (dir_ / "blocker" / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("output.dir"), std::string::npos) << r.output;
+}
+
+TEST_F(CommandLine, BadOptionValue) {
+  expect_rejected(kValidScene, "--backend", "--backend quantum");
+  expect_rejected(kValidScene, "--set", "--set simulation.end_time");
+}
+
+TEST_F(CommandLine, UnstableRunStopsNamingTheParticle) {
+  // Two particles placed 60 % of a radius into each other: the health check stops at step 1.
+  std::ofstream(dir_ / "pair.csv") << "x,y,z,r\n0.05,0.05,0.05,0.01\n0.062,0.05,0.05,0.01\n";
+  std::string s = kValidScene;
+  s = s.substr(0, s.find("[[insert]]")) + "[[insert]]\ncsv = \"pair.csv\"\n\n[output]" +
+      s.substr(s.find("[output]") + 8);
+  const Result r = run(scene(s) + " --output-dir " + out());
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("step 1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("particle id"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(fs::path(out()) / "particles_000001.h5")) << r.output;
+}
+
+}  // namespace

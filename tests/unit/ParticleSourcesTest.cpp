@@ -1,0 +1,418 @@
+// Particle sources: radius distributions against their closed forms, random non-overlapping
+// box insertion (by count and by volume fraction), and CSV import with its error reports.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "core/InputError.hpp"
+#include "core/ParticleSources.hpp"
+
+namespace gpudem {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+double ball_volume(double r) { return 4.0 / 3.0 * pi * r * r * r; }
+
+Scene make_scene(std::uint64_t seed = 7) {
+  Scene scene;
+  scene.file = "scene.toml";
+  scene.simulation.seed = seed;
+  scene.domain.min = {0, 0, 0};
+  scene.domain.max = {1, 1, 1};
+  scene.materials.push_back({"soil", 2000.0});
+  scene.materials.push_back({"steel", 7800.0});
+  return scene;
+}
+
+RadiusDistribution uniform(double mean, double spread) {
+  RadiusDistribution d;
+  d.kind = RadiusDistributionKind::Uniform;
+  d.mean = mean;
+  d.spread = spread;
+  return d;
+}
+
+RadiusDistribution discrete(std::vector<double> values, std::vector<double> weights) {
+  RadiusDistribution d;
+  d.kind = RadiusDistributionKind::Discrete;
+  d.values = std::move(values);
+  d.weights = std::move(weights);
+  return d;
+}
+
+ParticleSource box(Vec3 lo, Vec3 hi, std::uint64_t count, RadiusDistribution radius) {
+  ParticleSource s;
+  s.kind = SourceKind::Box;
+  s.region_min = lo;
+  s.region_max = hi;
+  s.count = count;
+  s.radius = std::move(radius);
+  return s;
+}
+
+ParticleSource csv_source(const std::string& name) {
+  ParticleSource s;
+  s.kind = SourceKind::Csv;
+  s.csv_file = std::string(GPUDEM_SOURCE_DIR) + "/tests/data/csv/" + name;
+  return s;
+}
+
+double mean_of(const std::vector<double>& x) {
+  double s = 0;
+  for (double v : x) s += v;
+  return s / static_cast<double>(x.size());
+}
+
+double variance_of(const std::vector<double>& x) {
+  const double m = mean_of(x);
+  double s = 0;
+  for (double v : x) s += (v - m) * (v - m);
+  return s / static_cast<double>(x.size() - 1);
+}
+
+// Every pair i < j of particles [first, size) against all of [0, size): no overlap, i.e.
+// |x_i - x_j| >= (r_i + r_j)(1 - 1e-12), the factor allowing for rounding of touching spheres.
+void expect_no_overlaps(const ParticleStore& store, std::size_t first = 0) {
+  std::size_t overlaps = 0;
+  for (std::size_t i = first; i < store.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j) {
+      const Real4& a = store.position_radius[i];
+      const Real4& b = store.position_radius[j];
+      const double contact = (a.w + b.w) * (1 - 1e-12);
+      if (norm2(xyz(a) - xyz(b)) < contact * contact) ++overlaps;
+    }
+  EXPECT_EQ(overlaps, 0u);
+}
+
+// Particles [first, last) lie wholly inside [lo, hi] (to 1e-12 m of rounding).
+void expect_inside(const ParticleStore& store, std::size_t first, std::size_t last, Vec3 lo,
+                   Vec3 hi) {
+  std::size_t outside = 0;
+  for (std::size_t n = first; n < last; ++n) {
+    const Real4& p = store.position_radius[n];
+    for (int k = 0; k < 3; ++k)
+      if (axis(xyz(p), k) - p.w < axis(lo, k) - 1e-12 ||
+          axis(xyz(p), k) + p.w > axis(hi, k) + 1e-12)
+        ++outside;
+  }
+  EXPECT_EQ(outside, 0u);
+}
+
+// ---------------------------------------------------------------- radius distributions
+
+constexpr std::size_t samples = 200000;
+
+TEST(RadiusDistribution, UniformMatchesMeanVarianceAndBounds) {
+  const double mean = 2e-3, spread = 1e-3;
+  std::mt19937_64 rng(1);
+  const std::vector<double> r = sample_radii(uniform(mean, spread), samples, rng);
+  ASSERT_EQ(r.size(), samples);
+  const double n = static_cast<double>(samples);
+  // Mean: sigma = spread/sqrt(3); variance spread^2/3 with standard error
+  // spread^2 sqrt((mu4 - sigma^4)/n) = spread^2 sqrt(4/45/n). Tolerances: 5 standard errors.
+  EXPECT_NEAR(mean_of(r), mean, 5 * spread / std::sqrt(3 * n));
+  EXPECT_NEAR(variance_of(r), spread * spread / 3, 5 * spread * spread * std::sqrt(4 / 45.0 / n));
+  const auto [lo, hi] = std::minmax_element(r.begin(), r.end());
+  EXPECT_GE(*lo, mean - spread);
+  EXPECT_LE(*hi, mean + spread);
+  // The extremes reach within 25/n of the width of the bounds (fails with probability e^-25).
+  EXPECT_LT(*lo - (mean - spread), 2 * spread * 25 / n);
+  EXPECT_GT(*hi - (mean + spread), -2 * spread * 25 / n);
+}
+
+TEST(RadiusDistribution, TruncatedNormalMatchesClosedFormMean) {
+  RadiusDistribution d;
+  d.kind = RadiusDistributionKind::TruncatedNormal;
+  d.mean = 1e-3;
+  d.stddev = 0.4e-3;
+  d.min = 0.5e-3;
+  d.max = 2e-3;
+  std::mt19937_64 rng(2);
+  const std::vector<double> r = sample_radii(d, samples, rng);
+  // Truncated normal moments (Johnson, Kotz & Balakrishnan 1994, §10.1), a = (min-mean)/sd,
+  // b = (max-mean)/sd, Z = Phi(b) - Phi(a): mean + sd (phi(a) - phi(b))/Z and variance
+  // sd^2 [1 + (a phi(a) - b phi(b))/Z - ((phi(a) - phi(b))/Z)^2].
+  const auto phi = [](double x) { return std::exp(-x * x / 2) / std::sqrt(2 * pi); };
+  const auto Phi = [](double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); };
+  const double a = (d.min - d.mean) / d.stddev, b = (d.max - d.mean) / d.stddev;
+  const double z = Phi(b) - Phi(a), shift = (phi(a) - phi(b)) / z;
+  const double expected_mean = d.mean + d.stddev * shift;
+  const double expected_var =
+      d.stddev * d.stddev * (1 + (a * phi(a) - b * phi(b)) / z - shift * shift);
+  const double n = static_cast<double>(samples);
+  EXPECT_NEAR(mean_of(r), expected_mean, 5 * std::sqrt(expected_var / n));
+  // Relative standard error of a sample variance: sqrt((kurtosis - 1)/n) <= sqrt(2/n) here,
+  // truncation making the distribution lighter-tailed than the normal (kurtosis 3).
+  EXPECT_NEAR(variance_of(r), expected_var, 5 * std::sqrt(2 / n) * expected_var);
+  EXPECT_GE(*std::min_element(r.begin(), r.end()), d.min);
+  EXPECT_LE(*std::max_element(r.begin(), r.end()), d.max);
+}
+
+TEST(RadiusDistribution, DiscreteFrequenciesMatchWeights) {
+  const RadiusDistribution d = discrete({1e-3, 2e-3, 5e-3}, {2, 0, 6});
+  std::mt19937_64 rng(3);
+  std::map<double, double> seen;
+  for (double r : sample_radii(d, samples, rng)) seen[r] += 1;
+  EXPECT_EQ(seen.size(), 2u);  // the zero-weight value never appears
+  const double n = static_cast<double>(samples);
+  for (const auto& [value, p] : {std::pair{1e-3, 0.25}, std::pair{5e-3, 0.75}})
+    EXPECT_NEAR(seen[value] / n, p, 5 * std::sqrt(p * (1 - p) / n)) << "radius " << value;
+}
+
+TEST(RadiusDistribution, DiscreteWithoutWeightsIsEquallyLikely) {
+  std::mt19937_64 rng(4);
+  std::map<double, double> seen;
+  for (double r : sample_radii(discrete({1e-3, 3e-3}, {}), samples, rng)) seen[r] += 1;
+  const double n = static_cast<double>(samples);
+  EXPECT_NEAR(seen[1e-3] / n, 0.5, 5 * std::sqrt(0.25 / n));
+}
+
+TEST(RadiusDistribution, BoundsOfEachKind) {
+  EXPECT_DOUBLE_EQ(min_radius(uniform(2e-3, 0.5e-3)), 1.5e-3);
+  EXPECT_DOUBLE_EQ(max_radius(uniform(2e-3, 0.5e-3)), 2.5e-3);
+  RadiusDistribution normal;
+  normal.kind = RadiusDistributionKind::TruncatedNormal;
+  normal.min = 1e-3;
+  normal.max = 4e-3;
+  EXPECT_DOUBLE_EQ(min_radius(normal), 1e-3);
+  EXPECT_DOUBLE_EQ(max_radius(normal), 4e-3);
+  const RadiusDistribution d = discrete({3e-3, 0.5e-3, 1e-3, 9e-3}, {1, 1, 1, 0});
+  EXPECT_DOUBLE_EQ(min_radius(d), 0.5e-3);
+  EXPECT_DOUBLE_EQ(max_radius(d), 3e-3);  // 9e-3 has weight 0
+}
+
+TEST(RadiusDistribution, UnsampleableDistributionsAreRefused) {
+  std::mt19937_64 rng(5);
+  EXPECT_THROW(sample_radii(discrete({1e-3}, {0}), 10, rng), std::invalid_argument);
+  RadiusDistribution far_tail;
+  far_tail.kind = RadiusDistributionKind::TruncatedNormal;
+  far_tail.mean = 1e-3;
+  far_tail.stddev = 1e-4;
+  far_tail.min = 2e-3;  // ten standard deviations out
+  far_tail.max = 3e-3;
+  EXPECT_THROW(sample_radii(far_tail, 10, rng), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------- box insertion
+
+// Count, containment, overlaps, state and ids of a box fill that started at `first`.
+void expect_valid_box_fill(const Scene& scene, const ParticleStore& store, std::size_t first) {
+  const ParticleSource& src = scene.sources.back();
+  ASSERT_EQ(store.size(), first + src.count);
+  expect_inside(store, first, store.size(), src.region_min, src.region_max);
+  expect_no_overlaps(store, first);
+  const double density = scene.materials[src.material].density;
+  for (std::size_t n = first; n < store.size(); ++n) {
+    const Real4& v = store.velocity_inv_mass[n];
+    const double r = store.position_radius[n].w;
+    EXPECT_EQ(store.id[n], n);
+    EXPECT_EQ(store.material[n], src.material);
+    EXPECT_EQ(v.x, src.velocity.x);
+    EXPECT_EQ(v.z, src.velocity.z);
+    EXPECT_EQ(norm2(store.angular_velocity[n]), 0.0);
+    EXPECT_NEAR(v.w * ball_volume(r) * density, 1.0, 1e-12);
+  }
+}
+
+TEST(BoxInsertion, DiscreteTenToOneByCount) {
+  Scene scene = make_scene();
+  scene.sources.push_back(
+      box({0.1, 0.2, 0.0}, {0.3, 0.4, 0.2}, 3000, discrete({1e-3, 1e-2}, {0.9, 0.1})));
+  scene.sources.back().material = 1;
+  scene.sources.back().velocity = {0.5, 0, -1};
+  ParticleStore store;
+  create_particles(scene, store);
+  expect_valid_box_fill(scene, store, 0);
+  const auto large = std::count_if(store.position_radius.begin(), store.position_radius.end(),
+                                   [](const Real4& p) { return p.w == 1e-2; });
+  EXPECT_GT(large, 200);  // binomial(3000, 0.1): mean 300, sd 16
+  EXPECT_LT(large, 400);
+}
+
+TEST(BoxInsertion, UniformTenToOneByCount) {
+  Scene scene = make_scene();
+  scene.sources.push_back(box({0, 0, 0}, {0.025, 0.025, 0.025}, 3000, uniform(0.55e-3, 0.45e-3)));
+  ParticleStore store;
+  create_particles(scene, store);
+  expect_valid_box_fill(scene, store, 0);
+}
+
+TEST(BoxInsertion, SameSeedSameParticlesOtherSeedOthers) {
+  const auto fill = [](std::uint64_t seed) {
+    Scene scene = make_scene(seed);
+    scene.sources.push_back(box({0, 0, 0}, {0.05, 0.05, 0.05}, 500, uniform(1e-3, 0.5e-3)));
+    ParticleStore store;
+    create_particles(scene, store);
+    std::vector<double> flat;
+    for (const Real4& p : store.position_radius) flat.insert(flat.end(), {p.x, p.y, p.z, p.w});
+    return flat;
+  };
+  const std::vector<double> a = fill(11);
+  EXPECT_EQ(a, fill(11));
+  EXPECT_NE(a, fill(12));
+}
+
+TEST(BoxInsertion, VolumeFractionReachedWithinOneParticle) {
+  Scene scene = make_scene();
+  const Vec3 lo{0, 0, 0}, hi{0.04, 0.04, 0.04};
+  const RadiusDistribution radius = uniform(1e-3, 0.5e-3);
+  scene.sources.push_back(box(lo, hi, 0, radius));
+  scene.sources.back().volume_fraction = 0.3;
+  ParticleStore store;
+  create_particles(scene, store);
+  double solid = 0;
+  for (const Real4& p : store.position_radius) solid += ball_volume(p.w);
+  const double region = 0.04 * 0.04 * 0.04;
+  EXPECT_GE(solid / region, 0.3);
+  EXPECT_LE(solid / region, 0.3 + ball_volume(max_radius(radius)) / region);
+  expect_inside(store, 0, store.size(), lo, hi);
+  expect_no_overlaps(store);
+}
+
+TEST(BoxInsertion, ImpossibleRequestNamesTheSource) {
+  Scene scene = make_scene();
+  scene.sources.push_back(box({0.5, 0.5, 0.5}, {0.6, 0.6, 0.6}, 10, uniform(1e-3, 0)));
+  scene.sources.push_back(box({0, 0, 0}, {0.05, 0.05, 0.05}, 10000, uniform(5e-3, 0)));
+  ParticleStore store;
+  try {
+    create_particles(scene, store);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "insert[1]");
+    EXPECT_NE(std::string(e.what()).find("could only place"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("of 10000 particles"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BoxInsertion, RegionThinnerThanADiameterIsRefused) {
+  Scene scene = make_scene();
+  scene.sources.push_back(box({0, 0, 0}, {0.1, 0.1, 0.001}, 1, uniform(1e-3, 0)));
+  ParticleStore store;
+  EXPECT_THROW(create_particles(scene, store), InputError);
+}
+
+TEST(BoxInsertion, SecondSourceAvoidsTheFirst) {
+  Scene scene = make_scene();
+  scene.sources.push_back(box({0, 0, 0}, {0.1, 0.1, 0.1}, 2000, uniform(2e-3, 1e-3)));
+  scene.sources.push_back(box({0.05, 0, 0}, {0.15, 0.1, 0.1}, 2000, uniform(2e-3, 1e-3)));
+  ParticleStore store;
+  create_particles(scene, store);
+  ASSERT_EQ(store.size(), 4000u);
+  expect_inside(store, 0, 2000, scene.sources[0].region_min, scene.sources[0].region_max);
+  expect_inside(store, 2000, 4000, scene.sources[1].region_min, scene.sources[1].region_max);
+  expect_no_overlaps(store);
+}
+
+TEST(BoxInsertion, AvoidsParticlesAlreadyInTheStoreAndContinuesTheirIds) {
+  Scene scene = make_scene();
+  scene.sources.push_back(box({0, 0, 0}, {0.06, 0.06, 0.06}, 1500, uniform(1e-3, 0.2e-3)));
+  ParticleStore store;
+  store.add(0, {0.03, 0.03, 0.03}, 0.02, 0, {}, 1.0);   // large sphere in the middle
+  store.add(1, {0.065, 0.03, 0.03}, 0.01, 0, {}, 1.0);  // centre outside, reaching in
+  create_particles(scene, store);
+  expect_valid_box_fill(scene, store, 2);
+  expect_no_overlaps(store);
+}
+
+TEST(BoxInsertion, NeitherCountNorVolumeFractionIsRefused) {
+  Scene scene = make_scene();
+  scene.sources.push_back(box({0, 0, 0}, {0.1, 0.1, 0.1}, 0, uniform(1e-3, 0)));
+  ParticleStore store;
+  EXPECT_THROW(create_particles(scene, store), InputError);
+}
+
+// ---------------------------------------------------------------- CSV import
+
+TEST(CsvImport, AllColumns) {
+  Scene scene = make_scene();
+  scene.sources.push_back(csv_source("full.csv"));
+  ParticleStore store;
+  store.add(0, {0.9, 0.9, 0.9}, 0.01, 0, {}, 1.0);
+  create_particles(scene, store);
+  ASSERT_EQ(store.size(), 3u);
+  EXPECT_EQ(store.id[1], 1u);
+  EXPECT_EQ(store.id[2], 2u);
+  EXPECT_DOUBLE_EQ(store.position_radius[1].y, 0.2);
+  EXPECT_DOUBLE_EQ(store.position_radius[1].w, 0.01);
+  EXPECT_EQ(store.material[1], 0u);  // "soil"
+  EXPECT_EQ(store.material[2], 1u);  // index 1
+  EXPECT_DOUBLE_EQ(store.velocity_inv_mass[1].y, 2.0);
+  EXPECT_DOUBLE_EQ(store.velocity_inv_mass[2].z, -1.0);
+  EXPECT_NEAR(store.velocity_inv_mass[2].w * ball_volume(0.02) * 7800.0, 1.0, 1e-12);
+}
+
+TEST(CsvImport, RequiredColumnsOnlyTakeTheSourceDefaults) {
+  Scene scene = make_scene();
+  scene.sources.push_back(csv_source("minimal.csv"));  // CRLF line ends, blank lines
+  scene.sources.back().material = 1;
+  scene.sources.back().velocity = {0, 0, -2};
+  ParticleStore store;
+  create_particles(scene, store);
+  ASSERT_EQ(store.size(), 2u);
+  EXPECT_DOUBLE_EQ(store.position_radius[1].x, 0.75);
+  EXPECT_DOUBLE_EQ(store.position_radius[1].w, 0.004);
+  EXPECT_EQ(store.material[0], 1u);
+  EXPECT_DOUBLE_EQ(store.velocity_inv_mass[0].z, -2.0);
+}
+
+TEST(CsvImport, ColumnsInAnyOrder) {
+  Scene scene = make_scene();
+  scene.sources.push_back(csv_source("reordered.csv"));
+  ParticleStore store;
+  create_particles(scene, store);
+  ASSERT_EQ(store.size(), 1u);
+  const Real4& p = store.position_radius[0];
+  EXPECT_DOUBLE_EQ(p.x, 0.1);
+  EXPECT_DOUBLE_EQ(p.y, 0.2);
+  EXPECT_DOUBLE_EQ(p.z, 0.3);
+  EXPECT_DOUBLE_EQ(p.w, 0.01);
+  EXPECT_EQ(store.material[0], 1u);
+  EXPECT_DOUBLE_EQ(store.velocity_inv_mass[0].z, -2.5);
+  EXPECT_DOUBLE_EQ(store.velocity_inv_mass[0].x, 0.0);
+}
+
+// Importing `name` fails with an InputError at `line` and `key` whose message names the file.
+void expect_csv_error(const std::string& name, int line, const std::string& key) {
+  Scene scene = make_scene();
+  scene.sources.push_back(csv_source(name));
+  ParticleStore store;
+  try {
+    create_particles(scene, store);
+    ADD_FAILURE() << name << ": expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), line) << e.what();
+    EXPECT_EQ(e.key(), key) << e.what();
+    const std::string where = name + (line > 0 ? ":" + std::to_string(line) : "");
+    EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
+  }
+}
+
+TEST(CsvImport, BadFilesNameFileLineAndColumn) {
+  expect_csv_error("no_such_file.csv", 0, "");
+  expect_csv_error("empty.csv", 1, "");
+  expect_csv_error("missing_r.csv", 1, "r");
+  expect_csv_error("unknown_column.csv", 1, "colour");
+  expect_csv_error("duplicate_column.csv", 1, "x");
+  expect_csv_error("field_count.csv", 3, "");
+  expect_csv_error("not_a_number.csv", 4, "y");
+  expect_csv_error("radius_zero.csv", 3, "r");
+  expect_csv_error("unknown_material.csv", 3, "material");
+  expect_csv_error("material_index_out_of_range.csv", 3, "material");
+  expect_csv_error("outside_domain.csv", 3, "z");
+}
+
+TEST(CsvImport, OutsideAlongAPeriodicAxisIsAccepted) {
+  Scene scene = make_scene();
+  scene.domain.periodic[2] = true;
+  scene.sources.push_back(csv_source("outside_domain.csv"));
+  ParticleStore store;
+  create_particles(scene, store);
+  EXPECT_EQ(store.size(), 2u);
+}
+
+}  // namespace
+}  // namespace gpudem

@@ -1,0 +1,514 @@
+// Scene loading: every key of tests/data/scenes/full.toml read as written, defaults of a
+// minimal scene, --set overrides, and every kind of bad input reported as an InputError that
+// names file, line and key.
+#include "core/SceneLoader.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/InputError.hpp"
+#include "core/TomlReader.hpp"
+
+namespace gpudem {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kSceneDir = std::string(GPUDEM_SOURCE_DIR) + "/tests/data/scenes";
+
+/// A valid scene. The comment lines are slots that a test replaces with the keys it adds, so
+/// line numbers stay fixed: each slot's number is given by the constants below.
+const char* const kBaseScene = R"([simulation]
+end_time = 1.0
+# slot: simulation
+[domain]
+min = [0, 0, 0]
+max = [1, 1, 1]
+# slot: domain
+[[material]]
+name = "soil"
+density = 1850
+young = 2e6
+# slot: material
+[contact]
+stiffness = 1e4
+# slot: contact
+[[insert]]
+region = {min = [0, 0, 0], max = [1, 1, 0.5]}
+count = 100
+radius = 0.01
+material = "soil"
+# slot: insert
+)";
+
+constexpr int kSimulationSlot = 3;
+constexpr int kDomainMaxLine = 6;
+constexpr int kDomainSlot = 7;
+constexpr int kMaterialLine = 8;
+constexpr int kDensityLine = 10;
+constexpr int kMaterialSlot = 12;
+constexpr int kContactLine = 13;
+constexpr int kStiffnessLine = 14;
+constexpr int kContactSlot = 15;
+constexpr int kInsertLine = 16;
+constexpr int kRegionLine = 17;
+constexpr int kCountLine = 18;
+constexpr int kRadiusLine = 19;
+constexpr int kInsertMaterialLine = 20;
+constexpr int kInsertSlot = 21;
+
+/// `scene` with line `line` (1-based) replaced by `text`.
+std::string replace_line(const std::string& scene, int line, const std::string& text) {
+  std::istringstream in(scene);
+  std::string result, current;
+  for (int n = 1; std::getline(in, current); ++n) result += (n == line ? text : current) + "\n";
+  return result;
+}
+
+std::string base_with(int line, const std::string& text) {
+  return replace_line(kBaseScene, line, text);
+}
+
+/// Writes scenes to a private temporary directory, removed after each test.
+class SceneLoaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("gpudem-scene-test-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write_scene(const std::string& text) {
+    const std::string path = (dir_ / "scene.toml").string();
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  /// The InputError that loading `text` with `overrides` raises.
+  InputError load_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
+    const std::string path = write_scene(text);
+    try {
+      load_scene(path, overrides);
+    } catch (const InputError& e) {
+      return e;
+    }
+    ADD_FAILURE() << "scene loaded without error:\n" << text;
+    return InputError("", 0, "", "");
+  }
+
+  /// Checks file (the scene unless given), line, key, and that the message names all three and
+  /// contains `phrase`.
+  void expect_error(const InputError& e, int line, const std::string& key,
+                    const std::string& phrase, std::string file = "") {
+    if (file.empty()) file = (dir_ / "scene.toml").string();
+    const std::string message = e.what();
+    EXPECT_EQ(e.file(), file) << message;
+    EXPECT_EQ(e.line(), line) << message;
+    EXPECT_EQ(e.key(), key) << message;
+    const std::string where = line > 0 ? file + ":" + std::to_string(line) + ": " : file + ": ";
+    EXPECT_EQ(message.rfind(where, 0), 0u) << message;
+    if (!key.empty()) {
+      EXPECT_NE(message.find("key '" + key + "'"), std::string::npos) << message;
+    }
+    EXPECT_NE(message.find(phrase), std::string::npos) << message;
+  }
+
+  Scene load_text(const std::string& text, const std::vector<std::string>& overrides = {}) {
+    return load_scene(write_scene(text), overrides);
+  }
+
+  fs::path dir_;
+};
+
+void expect_vec3(Vec3 actual, double x, double y, double z) {
+  EXPECT_DOUBLE_EQ(actual.x, x);
+  EXPECT_DOUBLE_EQ(actual.y, y);
+  EXPECT_DOUBLE_EQ(actual.z, z);
+}
+
+TEST(EditDistance, CountsInsertionsDeletionsAndSubstitutions) {
+  EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
+  EXPECT_EQ(edit_distance("densty", "density"), 1u);
+  EXPECT_EQ(edit_distance("", "abc"), 3u);
+  EXPECT_EQ(edit_distance("same", "same"), 0u);
+}
+
+TEST_F(SceneLoaderTest, FullSceneReadsEveryValue) {
+  const std::string path = kSceneDir + "/full.toml";
+  const Scene s = load_scene(path);
+  EXPECT_EQ(s.file, path);
+
+  EXPECT_FALSE(s.simulation.dt_auto);
+  EXPECT_DOUBLE_EQ(s.simulation.dt, 2e-6);
+  EXPECT_DOUBLE_EQ(s.simulation.dt_fraction, 0.2);
+  EXPECT_DOUBLE_EQ(s.simulation.end_time, 2.5);
+  EXPECT_EQ(s.simulation.integrator, IntegratorKind::SymplecticEuler);
+  EXPECT_EQ(s.simulation.seed, 42u);
+  expect_vec3(s.simulation.gravity, 0.5, 0, -9.5);
+
+  expect_vec3(s.domain.min, -0.5, 0, -1);
+  expect_vec3(s.domain.max, 1.5, 0.7, 0.5);
+  EXPECT_EQ(s.domain.periodic, (std::array<bool, 3>{true, false, true}));
+
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.materials[0].name, "soil");
+  EXPECT_DOUBLE_EQ(s.materials[0].density, 1850);
+  EXPECT_DOUBLE_EQ(s.materials[0].young, 2e6);
+  EXPECT_DOUBLE_EQ(s.materials[0].poisson, 0.38);
+  EXPECT_DOUBLE_EQ(s.materials[0].restitution, 0.4);
+  EXPECT_DOUBLE_EQ(s.materials[0].friction, 0.6);
+  EXPECT_EQ(s.materials[1].name, "steel");
+  EXPECT_DOUBLE_EQ(s.materials[1].density, 7800);
+  EXPECT_DOUBLE_EQ(s.materials[1].young, 210e9);
+  EXPECT_DOUBLE_EQ(s.materials[1].poisson, -0.2);
+  EXPECT_DOUBLE_EQ(s.materials[1].restitution, 1);
+  EXPECT_DOUBLE_EQ(s.materials[1].friction, 0);
+
+  EXPECT_EQ(s.contact.normal, "hooke");
+  EXPECT_EQ(s.contact.damping, "none");
+  EXPECT_EQ(s.contact.tangential, "none");
+  EXPECT_DOUBLE_EQ(s.contact.stiffness, 5e4);
+  EXPECT_DOUBLE_EQ(s.neighbor.skin, 1.5e-3);
+
+  ASSERT_EQ(s.walls.size(), 2u);
+  EXPECT_EQ(s.walls[0].name, "floor");
+  expect_vec3(s.walls[0].point, 0, 0, -1);
+  expect_vec3(s.walls[0].normal, 0, 0, 1);
+  EXPECT_EQ(s.walls[0].material, 1u);
+  EXPECT_EQ(s.walls[1].name, "wall1");
+  expect_vec3(s.walls[1].normal, -0.6, 0.8, 0);
+  EXPECT_EQ(s.walls[1].material, 0u);
+
+  ASSERT_EQ(s.sources.size(), 5u);
+  const ParticleSource& uniform = s.sources[0];
+  EXPECT_EQ(uniform.kind, SourceKind::Box);
+  expect_vec3(uniform.region_min, -0.5, 0, -1);
+  expect_vec3(uniform.region_max, 1.5, 0.7, 0.5);
+  EXPECT_EQ(uniform.count, 40000u);
+  EXPECT_DOUBLE_EQ(uniform.volume_fraction, 0);
+  EXPECT_EQ(uniform.radius.kind, RadiusDistributionKind::Uniform);
+  EXPECT_DOUBLE_EQ(uniform.radius.mean, 8.5e-3);
+  EXPECT_DOUBLE_EQ(uniform.radius.spread, 1.5e-3);
+  EXPECT_EQ(uniform.material, 0u);
+  expect_vec3(uniform.velocity, 0.7, 0, -1);
+
+  const ParticleSource& normal = s.sources[1];
+  EXPECT_EQ(normal.count, 0u);
+  EXPECT_DOUBLE_EQ(normal.volume_fraction, 0.55);
+  EXPECT_EQ(normal.radius.kind, RadiusDistributionKind::TruncatedNormal);
+  EXPECT_DOUBLE_EQ(normal.radius.mean, 5e-3);
+  EXPECT_DOUBLE_EQ(normal.radius.stddev, 1e-3);
+  EXPECT_DOUBLE_EQ(normal.radius.min, 3e-3);
+  EXPECT_DOUBLE_EQ(normal.radius.max, 8e-3);
+  EXPECT_EQ(normal.material, 1u);
+  expect_vec3(normal.velocity, 0, 0, 0);
+
+  const ParticleSource& discrete = s.sources[2];
+  EXPECT_EQ(discrete.count, 7u);
+  EXPECT_EQ(discrete.radius.kind, RadiusDistributionKind::Discrete);
+  EXPECT_EQ(discrete.radius.values, (std::vector<double>{2e-3, 4e-3}));
+  EXPECT_EQ(discrete.radius.weights, (std::vector<double>{3, 1}));
+
+  const ParticleSource& mono = s.sources[3];
+  EXPECT_EQ(mono.radius.kind, RadiusDistributionKind::Uniform);
+  EXPECT_DOUBLE_EQ(mono.radius.mean, 0.02);
+  EXPECT_DOUBLE_EQ(mono.radius.spread, 0);
+
+  const ParticleSource& csv = s.sources[4];
+  EXPECT_EQ(csv.kind, SourceKind::Csv);
+  EXPECT_EQ(csv.csv_file, kSceneDir + "/particles/bed.csv");
+  EXPECT_EQ(csv.material, 1u);
+
+  EXPECT_EQ(s.output.dir, "results/run1");
+  EXPECT_DOUBLE_EQ(s.output.every, 0.01);
+  EXPECT_DOUBLE_EQ(s.output.timeseries_every, 0.001);
+  EXPECT_DOUBLE_EQ(s.checkpoint.every, 0.5);
+}
+
+TEST_F(SceneLoaderTest, MinimalSceneTakesDefaults) {
+  const Scene s = load_text(kBaseScene);
+  EXPECT_TRUE(s.simulation.dt_auto);
+  EXPECT_DOUBLE_EQ(s.simulation.dt_fraction, 0.1);
+  EXPECT_EQ(s.simulation.integrator, IntegratorKind::VelocityVerlet);
+  EXPECT_EQ(s.simulation.seed, 1u);
+  expect_vec3(s.simulation.gravity, 0, 0, -9.81);
+  EXPECT_EQ(s.domain.periodic, (std::array<bool, 3>{false, false, false}));
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.materials[0].poisson, 0.3);
+  EXPECT_DOUBLE_EQ(s.materials[0].restitution, 0.5);
+  EXPECT_DOUBLE_EQ(s.materials[0].friction, 0.5);
+  EXPECT_EQ(s.contact.normal, "hooke");
+  EXPECT_EQ(s.contact.damping, "restitution");
+  EXPECT_EQ(s.contact.tangential, "coulomb");
+  EXPECT_DOUBLE_EQ(s.neighbor.skin, 0);
+  EXPECT_TRUE(s.walls.empty());
+  ASSERT_EQ(s.sources.size(), 1u);
+  EXPECT_EQ(s.sources[0].count, 100u);
+  EXPECT_EQ(s.sources[0].radius.kind, RadiusDistributionKind::Uniform);
+  EXPECT_DOUBLE_EQ(s.sources[0].radius.mean, 0.01);
+  EXPECT_DOUBLE_EQ(s.sources[0].radius.spread, 0);
+  EXPECT_EQ(s.output.dir, "out");
+  EXPECT_DOUBLE_EQ(s.output.every, 0);
+  EXPECT_DOUBLE_EQ(s.output.timeseries_every, 0);
+  EXPECT_DOUBLE_EQ(s.checkpoint.every, 0);
+}
+
+TEST_F(SceneLoaderTest, SceneWithoutParticlesIsAllowed) {
+  const std::string no_insert = std::string(kBaseScene).substr(
+      0, std::string(kBaseScene).find("[[insert]]"));
+  EXPECT_TRUE(load_text(no_insert).sources.empty());
+}
+
+TEST_F(SceneLoaderTest, MissingFile) {
+  const std::string path = (dir_ / "absent.toml").string();
+  try {
+    load_scene(path);
+    ADD_FAILURE() << "no error for a missing file";
+  } catch (const InputError& e) {
+    expect_error(e, 0, "", "cannot open scene file", path);
+  }
+  try {
+    load_scene(dir_.string());
+    ADD_FAILURE() << "no error for a directory";
+  } catch (const InputError& e) {
+    expect_error(e, 0, "", "cannot open scene file", dir_.string());
+  }
+}
+
+TEST_F(SceneLoaderTest, SyntaxErrorKeepsLineAndColumnReport) {
+  const InputError e = load_error(base_with(kSimulationSlot, "dt = = 1"));
+  expect_error(e, kSimulationSlot, "", "TOML syntax error");
+  EXPECT_NE(std::string(e.what()).find("dt = = 1"), std::string::npos) << e.what();
+
+  const InputError twice = load_error(base_with(kSimulationSlot, "end_time = 2.0"));
+  expect_error(twice, kSimulationSlot, "", "TOML syntax error");
+}
+
+TEST_F(SceneLoaderTest, UnknownKeySuggestsNearest) {
+  expect_error(load_error(base_with(kDensityLine, "densty = 1850")), kDensityLine,
+               "material[0].densty",
+               "unknown key 'densty' in [[material]]; did you mean 'density'?");
+  expect_error(load_error(base_with(kSimulationSlot, "end_tme = 2")), kSimulationSlot,
+               "simulation.end_tme", "did you mean 'end_time'?");
+  expect_error(load_error(base_with(kInsertSlot, "volume_fracton = 0.3")), kInsertSlot,
+               "insert[0].volume_fracton", "did you mean 'volume_fraction'?");
+  expect_error(load_error(base_with(kMaterialSlot, "colour = 3")), kMaterialSlot,
+               "material[0].colour",
+               "valid keys are: name, density, young, poisson, restitution, friction");
+}
+
+TEST_F(SceneLoaderTest, UnknownTableSuggestsNearest) {
+  expect_error(load_error(base_with(1, "[simulaton]")), 1, "simulaton",
+               "unknown table 'simulaton'; did you mean 'simulation'?");
+  expect_error(load_error(base_with(kContactLine, "[contacts]")), kContactLine, "contacts",
+               "did you mean 'contact'?");
+}
+
+TEST_F(SceneLoaderTest, WrongTypeNamesExpectedType) {
+  expect_error(load_error(base_with(2, "end_time = \"soon\"")), 2, "simulation.end_time",
+               "expected a number > 0 [s], got the string \"soon\"");
+  expect_error(load_error(base_with(kCountLine, "count = 1.5")), kCountLine, "insert[0].count",
+               "expected an integer > 0, got 1.5");
+  expect_error(load_error(base_with(kDomainSlot, "periodic = [1, 0, 0]")), kDomainSlot,
+               "domain.periodic", "expected an array of 3 booleans, got [1, 0, 0]");
+  expect_error(load_error(base_with(kDomainMaxLine, "max = [1, 1]")), kDomainMaxLine,
+               "domain.max", "expected an array of 3 numbers [m], got [1, 1]");
+  expect_error(load_error(base_with(kDomainMaxLine, "max = [1, \"a\", 1]")), kDomainMaxLine,
+               "domain.max", "got the string \"a\" at index 1");
+  expect_error(load_error(base_with(kMaterialLine, "[material]")), kMaterialLine, "material",
+               "expected an array of tables [[material]], got a table");
+  expect_error(load_error(base_with(kSimulationSlot, "integrator = \"rk4\"")), kSimulationSlot,
+               "simulation.integrator",
+               "expected one of \"velocity_verlet\", \"symplectic_euler\", got the string \"rk4\"");
+  expect_error(load_error(base_with(kSimulationSlot, "dt = \"fast\"")), kSimulationSlot,
+               "simulation.dt", "expected \"auto\" or a number > 0 [s]");
+  expect_error(load_error(base_with(kContactSlot, "normal = \"hertz\"")), kContactSlot,
+               "contact.normal", "expected one of \"hooke\"");
+}
+
+TEST_F(SceneLoaderTest, MissingRequiredKeyNamesItsTable) {
+  expect_error(load_error(base_with(kDensityLine, "")), kMaterialLine, "material[0].density",
+               "missing required key 'density' in [[material]]");
+  expect_error(load_error(base_with(kStiffnessLine, "")), kContactLine, "contact.stiffness",
+               "missing required key 'stiffness' in [contact]");
+  expect_error(load_error(replace_line(base_with(kContactLine, ""), kStiffnessLine, "")), 0,
+               "contact.stiffness", "missing required key 'stiffness'");
+  expect_error(load_error(base_with(1, "[checkpoint]")), 0, "simulation",
+               "missing required table [simulation]");
+  expect_error(load_error(base_with(kCountLine, "")), kInsertLine, "insert[0].count",
+               "missing 'count' or 'volume_fraction'");
+}
+
+TEST_F(SceneLoaderTest, RadiusMustBePositive) {
+  expect_error(load_error(base_with(kRadiusLine, "radius = 0")), kRadiusLine, "insert[0].radius",
+               "expected a number > 0 [m], got 0");
+  expect_error(load_error(base_with(kRadiusLine, "radius = -0.01")), kRadiusLine,
+               "insert[0].radius", "got -0.01");
+  expect_error(load_error(base_with(kRadiusLine, "radius = {mean = -1e-3}")), kRadiusLine,
+               "insert[0].radius.mean", "expected a number > 0 [m], got -0.001");
+  expect_error(load_error(base_with(kRadiusLine, "radius = {mean = 1e-3, spread = 1e-3}")),
+               kRadiusLine, "insert[0].radius.spread", "so that every radius is > 0");
+  expect_error(
+      load_error(base_with(kRadiusLine,
+                           "radius = {distribution = \"discrete\", values = [1e-3, 0]}")),
+      kRadiusLine, "insert[0].radius.values", "got 0 at index 1");
+  expect_error(load_error(base_with(kRadiusLine,
+                                    "radius = {distribution = \"normal\", mean = 1e-3, "
+                                    "stddev = 1e-4, min = 0, max = 2e-3}")),
+               kRadiusLine, "insert[0].radius.min", "expected a number > 0 [m], got 0");
+}
+
+TEST_F(SceneLoaderTest, PoissonRatioInOpenInterval) {
+  for (const char* bad : {"0.5", "-1", "0.7"}) {
+    expect_error(load_error(base_with(kMaterialSlot, std::string("poisson = ") + bad)),
+                 kMaterialSlot, "material[0].poisson", "expected a number in (-1, 0.5), got");
+  }
+  EXPECT_DOUBLE_EQ(load_text(base_with(kMaterialSlot, "poisson = 0.499")).materials[0].poisson,
+                   0.499);
+  EXPECT_DOUBLE_EQ(load_text(base_with(kMaterialSlot, "poisson = -0.99")).materials[0].poisson,
+                   -0.99);
+}
+
+TEST_F(SceneLoaderTest, RestitutionInHalfOpenInterval) {
+  expect_error(load_error(base_with(kMaterialSlot, "restitution = 0")), kMaterialSlot,
+               "material[0].restitution", "expected a number in (0, 1], got 0");
+  expect_error(load_error(base_with(kMaterialSlot, "restitution = 1.5")), kMaterialSlot,
+               "material[0].restitution", "expected a number in (0, 1], got 1.5");
+  EXPECT_DOUBLE_EQ(load_text(base_with(kMaterialSlot, "restitution = 1")).materials[0].restitution,
+                   1.0);
+}
+
+TEST_F(SceneLoaderTest, DensityMustBePositive) {
+  expect_error(load_error(base_with(kDensityLine, "density = -3")), kDensityLine,
+               "material[0].density", "expected a number > 0 [kg/m^3], got -3");
+  expect_error(load_error(base_with(kDensityLine, "density = 0.0")), kDensityLine,
+               "material[0].density", "expected a number > 0 [kg/m^3], got 0.0");
+  expect_error(load_error(base_with(kDensityLine, "density = nan")), kDensityLine,
+               "material[0].density", "got nan");
+}
+
+TEST_F(SceneLoaderTest, EmptyDomain) {
+  expect_error(load_error(base_with(kDomainMaxLine, "max = [1, 0, 1]")), kDomainMaxLine,
+               "domain.max", "the domain is empty");
+  expect_error(load_error(base_with(kDomainMaxLine, "max = [1, 1, -2]")), kDomainMaxLine,
+               "domain.max", "got max = -2 <= min = 0 on z");
+}
+
+TEST_F(SceneLoaderTest, SourceRegionMustLieInsideDomain) {
+  expect_error(
+      load_error(base_with(kRegionLine, "region = {min = [0, 0, 0], max = [1, 1, 1.5]}")),
+      kRegionLine, "insert[0].region", "source region lies outside the domain on z");
+  expect_error(
+      load_error(base_with(kRegionLine, "region = {min = [-0.1, 0, 0], max = [1, 1, 1]}")),
+      kRegionLine, "insert[0].region", "source region lies outside the domain on x");
+  expect_error(
+      load_error(base_with(kRegionLine, "region = {min = [0, 0.5, 0], max = [1, 0.5, 1]}")),
+      kRegionLine, "insert[0].region.max", "the source region is empty");
+  const Scene touching =
+      load_text(base_with(kRegionLine, "region = {min = [0, 0, 0], max = [1, 1, 1]}"));
+  expect_vec3(touching.sources[0].region_max, 1, 1, 1);
+}
+
+TEST_F(SceneLoaderTest, UnknownMaterialName) {
+  expect_error(load_error(base_with(kInsertMaterialLine, "material = \"sol\"")),
+               kInsertMaterialLine, "insert[0].material",
+               "unknown material 'sol'; did you mean 'soil'?");
+  const std::string wall = "[[wall]]\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nmaterial = \"steel\"";
+  expect_error(load_error(base_with(kContactSlot, wall)), kContactSlot + 3, "wall[0].material",
+               "unknown material 'steel'; valid materials are: soil");
+}
+
+TEST_F(SceneLoaderTest, DuplicateMaterialName) {
+  const std::string second = "[[material]]\nname = \"soil\"\ndensity = 1\nyoung = 1";
+  expect_error(load_error(base_with(kMaterialSlot, second)), kMaterialSlot + 1,
+               "material[1].name", "duplicate material name 'soil'");
+}
+
+TEST_F(SceneLoaderTest, DuplicateWallName) {
+  const std::string walls =
+      "[[wall]]\nname = \"wall1\"\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nmaterial = \"soil\"\n"
+      "[[wall]]\npoint = [0, 0, 0]\nnormal = [1, 0, 0]\nmaterial = \"soil\"";
+  expect_error(load_error(base_with(kContactSlot, walls)), kContactSlot + 5, "wall[1].name",
+               "duplicate wall name 'wall1'");
+}
+
+TEST_F(SceneLoaderTest, CountAndVolumeFractionExclusive) {
+  expect_error(load_error(base_with(kInsertSlot, "volume_fraction = 0.3")), kInsertSlot,
+               "insert[0].volume_fraction", "either count or volume_fraction, not both");
+  expect_error(load_error(base_with(kCountLine, "volume_fraction = 0.7")), kCountLine,
+               "insert[0].volume_fraction", "expected a number in (0, 0.6], got 0.7");
+}
+
+TEST_F(SceneLoaderTest, CsvAndRegionExclusive) {
+  expect_error(load_error(base_with(kInsertSlot, "csv = \"bed.csv\"")), kInsertSlot,
+               "insert[0].csv", "either csv or region, not both");
+  expect_error(load_error(base_with(kRegionLine, "")), kInsertLine, "insert[0].region",
+               "missing 'region'");
+  const std::string csv_with_count = "[[insert]]\ncsv = \"bed.csv\"\ncount = 3";
+  expect_error(load_error(base_with(kContactSlot, csv_with_count)), kContactSlot + 2,
+               "insert[0].count", "a csv source takes only csv and material");
+}
+
+TEST_F(SceneLoaderTest, CsvPathIsRelativeToSceneFile) {
+  const Scene s = load_text(base_with(kContactSlot, "[[insert]]\ncsv = \"../beds/bed.csv\""));
+  ASSERT_EQ(s.sources.size(), 2u);
+  EXPECT_EQ(s.sources[0].kind, SourceKind::Csv);
+  EXPECT_EQ(s.sources[0].csv_file, (dir_.parent_path() / "beds" / "bed.csv").string());
+  EXPECT_EQ(s.sources[0].material, 0u);
+}
+
+TEST_F(SceneLoaderTest, WallNormalMustBeNonZero) {
+  const std::string wall = "[[wall]]\npoint = [0, 0, 0]\nnormal = [0, 0, 0]\nmaterial = \"soil\"";
+  expect_error(load_error(base_with(kContactSlot, wall)), kContactSlot + 2, "wall[0].normal",
+               "expected a normal vector of non-zero, finite length, got [0, 0, 0]");
+}
+
+TEST_F(SceneLoaderTest, OverridesChangeValues) {
+  const Scene s = load_text(kBaseScene, {"simulation.end_time=0.5", "output.dir=\"run2\"",
+                                         "material.0.density = 2000",
+                                         "domain.periodic=[true,false,false]",
+                                         "simulation.dt=1e-5", "insert.0.region.max.2=1"});
+  EXPECT_DOUBLE_EQ(s.simulation.end_time, 0.5);
+  EXPECT_EQ(s.output.dir, "run2");
+  EXPECT_DOUBLE_EQ(s.materials[0].density, 2000);
+  EXPECT_EQ(s.domain.periodic, (std::array<bool, 3>{true, false, false}));
+  EXPECT_FALSE(s.simulation.dt_auto);
+  EXPECT_DOUBLE_EQ(s.simulation.dt, 1e-5);
+  EXPECT_DOUBLE_EQ(s.sources[0].region_max.z, 1);
+}
+
+TEST_F(SceneLoaderTest, MalformedOverridesNameSetAndKey) {
+  expect_error(load_error(kBaseScene, {"simulation.end_time"}), 0, "simulation.end_time",
+               "expected dotted.key=value", "--set");
+  expect_error(load_error(kBaseScene, {"output.dir=run2"}), 0, "output.dir",
+               "cannot read 'run2' as a TOML value", "--set");
+  expect_error(load_error(kBaseScene, {"simulation.end_time="}), 0, "simulation.end_time",
+               "cannot read", "--set");
+  expect_error(load_error(kBaseScene, {"material.1.density=2000"}), 0, "material.1.density",
+               "index '1' out of range: 'material' has 1 entry", "--set");
+  expect_error(load_error(kBaseScene, {"wall.0.name=\"x\""}), 0, "wall.0.name",
+               "there is no array 'wall'", "--set");
+  expect_error(load_error(kBaseScene, {"simulation..end_time=1"}), 0, "simulation..end_time",
+               "expected a dotted key", "--set");
+  expect_error(load_error(kBaseScene, {"simulation.end_time.x=1"}), 0, "simulation.end_time.x",
+               "'simulation.end_time' is a value, not a table", "--set");
+}
+
+TEST_F(SceneLoaderTest, InvalidOverriddenValueNamesKey) {
+  expect_error(load_error(kBaseScene, {"material.0.density=-1"}), 0, "material[0].density",
+               "expected a number > 0 [kg/m^3], got -1");
+  expect_error(load_error(kBaseScene, {"simulation.end_tme=1"}), 0, "simulation.end_tme",
+               "did you mean 'end_time'?");
+}
+
+}  // namespace
+}  // namespace gpudem

@@ -1,0 +1,311 @@
+// Particle snapshots read back with the HDF5 C API: every dataset equals the particle store bit
+// for bit at this run's rank count (each rank checks its own rows), the attributes hold time and
+// step, ranks without particles take part, and the .xmf lists every file by relative name.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <mpi.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "comm/SnapshotWriter.hpp"
+
+namespace gpudem {
+namespace {
+
+namespace fs = std::filesystem;
+
+int comm_rank() {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+
+int comm_size() {
+  int size = 0;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
+}
+
+/// An HDF5 identifier closed at scope exit.
+template <herr_t (*Close)(hid_t)>
+struct H5Id {
+  explicit H5Id(hid_t value) : id(value) {}
+  H5Id(const H5Id&) = delete;
+  H5Id& operator=(const H5Id&) = delete;
+  ~H5Id() {
+    if (id >= 0) Close(id);
+  }
+  hid_t id;
+};
+
+/// `count` particles with random values in every field; ids are unique over ranks (the seed
+/// differs per rank), not contiguous, and above 2^40.
+ParticleStore random_store(std::size_t count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> value(-1e3, 1e3);
+  std::uniform_int_distribution<std::uint32_t> material;
+  ParticleStore p;
+  std::uint64_t id = (std::uint64_t(1) << 40) + seed * (std::uint64_t(1) << 32);
+  for (std::size_t i = 0; i < count; ++i) {
+    id += 1 + rng() % 1000;
+    p.position_radius.push_back({value(rng), value(rng), value(rng), value(rng)});
+    p.velocity_inv_mass.push_back({value(rng), value(rng), value(rng), value(rng)});
+    p.angular_velocity.push_back({value(rng), value(rng), value(rng)});
+    p.force.push_back({value(rng), value(rng), value(rng)});
+    p.torque.push_back({value(rng), value(rng), value(rng)});
+    p.id.push_back(id);
+    p.material.push_back(material(rng));
+  }
+  return p;
+}
+
+/// This rank's first row in the file: the counts of lower ranks added up.
+std::uint64_t expected_offset(std::uint64_t count) {
+  std::vector<std::uint64_t> counts(comm_size());
+  MPI_Allgather(&count, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
+  std::uint64_t offset = 0;
+  for (int r = 0; r < comm_rank(); ++r) offset += counts[r];
+  return offset;
+}
+
+std::uint64_t global_count(std::uint64_t count) {
+  std::uint64_t total = 0;
+  MPI_Allreduce(&count, &total, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  return total;
+}
+
+std::vector<double> xyz_of(const std::vector<Real4>& values) {
+  std::vector<double> out;
+  for (const Real4& v : values) out.insert(out.end(), {v.x, v.y, v.z});
+  return out;
+}
+
+std::vector<double> xyz_of(const std::vector<Vec3>& values) {
+  std::vector<double> out;
+  for (const Vec3& v : values) out.insert(out.end(), {v.x, v.y, v.z});
+  return out;
+}
+
+std::vector<double> radii_of(const ParticleStore& p) {
+  std::vector<double> out;
+  for (const Real4& v : p.position_radius) out.push_back(v.w);
+  return out;
+}
+
+/// Checks a dataset's stored type and global shape, then reads rows [offset, offset + rows).
+template <class T>
+std::vector<T> read_rows(hid_t file, const char* name, hid_t stored_type, hid_t memory_type,
+                         std::vector<hsize_t> global_dims, hsize_t offset, hsize_t rows) {
+  H5Id<H5Dclose> dataset(H5Dopen2(file, name, H5P_DEFAULT));
+  EXPECT_GE(dataset.id, 0) << "no dataset " << name;
+  if (dataset.id < 0) return {};
+  H5Id<H5Tclose> type(H5Dget_type(dataset.id));
+  EXPECT_GT(H5Tequal(type.id, stored_type), 0) << name << " has the wrong stored type";
+  H5Id<H5Sclose> file_space(H5Dget_space(dataset.id));
+  std::vector<hsize_t> dims(H5Sget_simple_extent_ndims(file_space.id));
+  H5Sget_simple_extent_dims(file_space.id, dims.data(), nullptr);
+  EXPECT_EQ(dims, global_dims) << name << " has the wrong shape";
+  const hsize_t columns = global_dims.size() > 1 ? global_dims[1] : 1;
+  std::vector<T> values(rows * columns);
+  if (rows == 0 || dims != global_dims) return values;
+  const hsize_t start[2] = {offset, 0}, count[2] = {rows, columns};
+  H5Sselect_hyperslab(file_space.id, H5S_SELECT_SET, start, nullptr, count, nullptr);
+  const hsize_t memory_dims[1] = {rows * columns};
+  H5Id<H5Sclose> memory_space(H5Screate_simple(1, memory_dims, nullptr));
+  EXPECT_GE(
+      H5Dread(dataset.id, memory_type, memory_space.id, file_space.id, H5P_DEFAULT, values.data()),
+      0)
+      << "cannot read " << name;
+  return values;
+}
+
+template <class T>
+void expect_bit_identical(const std::vector<T>& expected, const std::vector<T>& actual,
+                          const char* name) {
+  ASSERT_EQ(expected.size(), actual.size()) << name;
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    ASSERT_EQ(0, std::memcmp(&expected[i], &actual[i], sizeof(T)))
+        << name << " differs at value " << i << " on rank " << comm_rank();
+}
+
+template <class T>
+T read_attribute(hid_t file, const char* name, hid_t stored_type, hid_t memory_type) {
+  T value{};
+  H5Id<H5Aclose> attribute(H5Aopen(file, name, H5P_DEFAULT));
+  EXPECT_GE(attribute.id, 0) << "no attribute " << name;
+  if (attribute.id < 0) return value;
+  H5Id<H5Tclose> type(H5Aget_type(attribute.id));
+  EXPECT_GT(H5Tequal(type.id, stored_type), 0) << name << " has the wrong stored type";
+  EXPECT_GE(H5Aread(attribute.id, memory_type, &value), 0);
+  return value;
+}
+
+/// Reads back one snapshot file and compares this rank's rows with `p`.
+void expect_snapshot_holds(const std::string& path, const ParticleStore& p, double time,
+                           std::uint64_t step) {
+  MPI_Barrier(MPI_COMM_WORLD);
+  const hsize_t n = global_count(p.size()), offset = expected_offset(p.size()), rows = p.size();
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  ASSERT_GE(file.id, 0) << "cannot open " << path;
+  const hid_t f64 = H5T_IEEE_F64LE, f64_mem = H5T_NATIVE_DOUBLE;
+  expect_bit_identical(xyz_of(p.position_radius),
+                       read_rows<double>(file.id, "position", f64, f64_mem, {n, 3}, offset, rows),
+                       "position");
+  expect_bit_identical(
+      radii_of(p), read_rows<double>(file.id, "radius", f64, f64_mem, {n}, offset, rows), "radius");
+  expect_bit_identical(xyz_of(p.velocity_inv_mass),
+                       read_rows<double>(file.id, "velocity", f64, f64_mem, {n, 3}, offset, rows),
+                       "velocity");
+  expect_bit_identical(
+      xyz_of(p.angular_velocity),
+      read_rows<double>(file.id, "angular_velocity", f64, f64_mem, {n, 3}, offset, rows),
+      "angular_velocity");
+  expect_bit_identical(xyz_of(p.force),
+                       read_rows<double>(file.id, "force", f64, f64_mem, {n, 3}, offset, rows),
+                       "force");
+  expect_bit_identical(p.material,
+                       read_rows<std::uint32_t>(file.id, "material", H5T_STD_U32LE,
+                                                H5T_NATIVE_UINT32, {n}, offset, rows),
+                       "material");
+  expect_bit_identical(
+      p.id,
+      read_rows<std::uint64_t>(file.id, "id", H5T_STD_U64LE, H5T_NATIVE_UINT64, {n}, offset, rows),
+      "id");
+  const double stored_time = read_attribute<double>(file.id, "time", f64, f64_mem);
+  EXPECT_EQ(0, std::memcmp(&stored_time, &time, sizeof(double))) << "time " << stored_time;
+  EXPECT_EQ(step,
+            (read_attribute<std::uint64_t>(file.id, "step", H5T_STD_U64LE, H5T_NATIVE_UINT64)));
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// A fresh directory, the same on every rank, removed after the test.
+class SnapshotWriterTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string path;
+    if (comm_rank() == 0) {
+      path = (fs::temp_directory_path() /
+              ("gpudem_snapshot_" + std::to_string(::getpid()) + "_" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
+                 .string();
+      fs::remove_all(path);
+      fs::create_directories(path);
+    }
+    int length = static_cast<int>(path.size());
+    MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    path.resize(length);
+    MPI_Bcast(path.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
+    dir_ = path;
+  }
+  void TearDown() override {
+    MPI_Barrier(MPI_COMM_WORLD);
+    if (comm_rank() == 0) fs::remove_all(dir_);
+  }
+
+  std::string dir_;
+};
+
+/// A few hundred particles per rank; rank 1 has none when there are several ranks.
+std::size_t particles_on_this_rank() { return comm_rank() == 1 ? 0 : 300 + 37 * comm_rank(); }
+
+TEST_F(SnapshotWriterTest, EveryDatasetReadsBackBitIdenticalToTheStore) {
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_);
+  const ParticleStore first = random_store(particles_on_this_rank(), 100 + comm_rank());
+  const ParticleStore second = random_store(particles_on_this_rank() + 5, 200 + comm_rank());
+  writer.write(first, 0.1234567890123456789, 7);
+  writer.write(second, 2.5e-3 / 3.0, (std::uint64_t(1) << 40) + 3);
+
+  ASSERT_EQ(writer.files().size(), 2u);
+  EXPECT_EQ(writer.files()[0], (fs::path(dir_) / "particles_000000.h5").string());
+  EXPECT_EQ(writer.files()[1], (fs::path(dir_) / "particles_000001.h5").string());
+  expect_snapshot_holds(writer.files()[0], first, 0.1234567890123456789, 7);
+  expect_snapshot_holds(writer.files()[1], second, 2.5e-3 / 3.0, (std::uint64_t(1) << 40) + 3);
+}
+
+TEST_F(SnapshotWriterTest, SnapshotWithoutAnyParticleHasEmptyDatasets) {
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, "empty");
+  writer.write(ParticleStore{}, 1.5, 42);
+  ASSERT_EQ(writer.files().size(), 1u);
+  expect_snapshot_holds(writer.files()[0], ParticleStore{}, 1.5, 42);
+  EXPECT_NE(read_text(writer.xmf_path()).find("NumberOfElements=\"0\""), std::string::npos);
+}
+
+TEST_F(SnapshotWriterTest, XmfListsEverySnapshotByRelativeFileName) {
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, "bed");
+  EXPECT_EQ(writer.xmf_path(), (fs::path(dir_) / "bed.xmf").string());
+  writer.write(random_store(particles_on_this_rank(), 300 + comm_rank()), 0.0, 0);
+  writer.write(random_store(particles_on_this_rank(), 400 + comm_rank()), 0.01, 100);
+  MPI_Barrier(MPI_COMM_WORLD);
+
+  const std::string xmf = read_text(writer.xmf_path());
+  const std::string total = std::to_string(global_count(particles_on_this_rank()));
+  EXPECT_NE(xmf.find(">bed_000000.h5:/position<"), std::string::npos) << xmf;
+  EXPECT_NE(xmf.find(">bed_000001.h5:/position<"), std::string::npos) << xmf;
+  EXPECT_NE(xmf.find("NumberOfElements=\"" + total + "\""), std::string::npos) << xmf;
+  EXPECT_NE(xmf.find("<Time Value=\"0.01\"/>"), std::string::npos) << xmf;
+  EXPECT_EQ(xmf.find(dir_), std::string::npos) << "file names must be relative";
+  EXPECT_FALSE(fs::exists(writer.xmf_path() + ".tmp"));
+}
+
+TEST_F(SnapshotWriterTest, LeavesNoHdf5ObjectOpen) {
+  ASSERT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0);
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_);
+  for (int k = 0; k < 3; ++k) writer.write(random_store(10, 500 + comm_rank()), k, k);
+  EXPECT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0);
+}
+
+TEST_F(SnapshotWriterTest, FailureNamesTheFileAndTheHdf5Call) {
+  const std::string missing_dir = (fs::path(dir_) / "missing").string();
+  SnapshotWriter writer(MPI_COMM_WORLD, missing_dir);
+  H5E_auto2_t print = nullptr;
+  void* print_data = nullptr;
+  H5Eget_auto2(H5E_DEFAULT, &print, &print_data);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // the expected failure need not print a trace
+  try {
+    writer.write(random_store(5, 600 + comm_rank()), 0.0, 0);
+    ADD_FAILURE() << "writing into a missing directory did not throw";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(missing_dir + "/particles_000000.h5"), std::string::npos) << message;
+    EXPECT_NE(message.find("H5Fcreate"), std::string::npos) << message;
+  }
+  H5Eset_auto2(H5E_DEFAULT, print, print_data);
+  EXPECT_TRUE(writer.files().empty());
+}
+
+#ifdef GPUDEM_SNAPSHOT_FIXTURE_DIR
+// Output folder kept for tests/scripts/check_snapshot.py: two random snapshots and one without
+// any particle.
+TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
+  const std::string dir = GPUDEM_SNAPSHOT_FIXTURE_DIR;
+  if (comm_rank() == 0) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  SnapshotWriter writer(MPI_COMM_WORLD, dir);
+  writer.write(random_store(particles_on_this_rank(), 700 + comm_rank()), 0.0, 0);
+  writer.write(random_store(particles_on_this_rank() + 11, 800 + comm_rank()), 0.005, 50);
+  writer.write(ParticleStore{}, 0.01, 100);
+  MPI_Barrier(MPI_COMM_WORLD);
+  for (const std::string& file : writer.files()) EXPECT_TRUE(fs::exists(file)) << file;
+  EXPECT_TRUE(fs::exists(writer.xmf_path()));
+}
+#endif
+
+}  // namespace
+}  // namespace gpudem

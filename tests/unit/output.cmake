@@ -1,0 +1,40 @@
+# Particle snapshots (HDF5 + XDMF): the C++ read-back test, which also leaves an output folder
+# behind, then tests/scripts/check_snapshot.py on that folder (and its own check that it
+# catches broken documents). Python is Debian's, which has h5py and numpy.
+set(GPUDEM_SNAPSHOT_FIXTURE_DIR ${CMAKE_CURRENT_BINARY_DIR}/snapshot_fixture)
+set(GPUDEM_CHECK_SNAPSHOT ${CMAKE_CURRENT_LIST_DIR}/../scripts/check_snapshot.py)
+
+gpudem_add_test(test_snapshot_writer
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/SnapshotWriterTest.cpp
+  LIBS gpudem_comm
+  LABELS unit
+  TIMEOUT 60)
+target_compile_definitions(test_snapshot_writer PRIVATE
+  GPUDEM_SNAPSHOT_FIXTURE_DIR="${GPUDEM_SNAPSHOT_FIXTURE_DIR}")
+set_tests_properties(test_snapshot_writer PROPERTIES FIXTURES_SETUP snapshot_fixture)
+
+add_test(NAME check_snapshot_xdmf
+  COMMAND /usr/bin/python3 ${GPUDEM_CHECK_SNAPSHOT} ${GPUDEM_SNAPSHOT_FIXTURE_DIR})
+add_test(NAME check_snapshot_xdmf_catches_errors
+  COMMAND /usr/bin/python3 ${GPUDEM_CHECK_SNAPSHOT} --self-test ${GPUDEM_SNAPSHOT_FIXTURE_DIR})
+set_tests_properties(check_snapshot_xdmf check_snapshot_xdmf_catches_errors PROPERTIES
+  DEPENDS test_snapshot_writer
+  FIXTURES_REQUIRED snapshot_fixture
+  LABELS unit
+  TIMEOUT 60)
+
+# The same read-back checks at 2 and 4 ranks (rank 1 holds no particle). Open MPI runs as root
+# and past the core count only when told so; these variables do that and other MPIs ignore them.
+set(GPUDEM_OPEN_MPI_TEST_ENV
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1)
+foreach(ranks 2 4)
+  add_test(NAME test_snapshot_writer_np${ranks}
+    COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${ranks} ${MPIEXEC_PREFLAGS}
+            $<TARGET_FILE:test_snapshot_writer> ${MPIEXEC_POSTFLAGS}
+            --gtest_filter=SnapshotWriterTest.*)
+  set_tests_properties(test_snapshot_writer_np${ranks} PROPERTIES
+    LABELS mpi
+    TIMEOUT 120
+    PROCESSORS ${ranks}
+    ENVIRONMENT "${GPUDEM_OPEN_MPI_TEST_ENV}")
+endforeach()

@@ -1,0 +1,4 @@
+gpudem_add_test(test_particle_sources
+  SOURCES unit/ParticleSourcesTest.cpp
+  LIBS gpudem_particles
+  LABELS unit)
