@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 #include <system_error>
 #include <type_traits>
@@ -166,6 +167,26 @@ void write_dataset(const H5Calls& h5, hid_t file, hid_t creation, hid_t transfer
       "H5Dwrite" + what);
 }
 
+/// The Polyvertex connectivity: one vertex cell per particle, holding its global row index,
+/// so every XDMF reader makes a cell per particle. 32-bit indices while they fit.
+void write_connectivity(const H5Calls& h5, hid_t file, hid_t creation, hid_t transfer,
+                        const Slice& slice) {
+  const bool wide = slice.total > std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint64_t> wide_index(wide ? slice.count : 0);
+  std::vector<std::uint32_t> narrow_index(wide ? 0 : slice.count);
+  for (hsize_t k = 0; k < slice.count; ++k) {
+    if (wide)
+      wide_index[k] = slice.offset + k;
+    else
+      narrow_index[k] = static_cast<std::uint32_t>(slice.offset + k);
+  }
+  const FieldSource field =
+      wide ? FieldSource{"connectivity", wide_index.data(), H5T_NATIVE_UINT64, H5T_STD_U64LE, 1, 1, 0}
+           : FieldSource{"connectivity", narrow_index.data(), H5T_NATIVE_UINT32, H5T_STD_U32LE, 1,
+                         1, 0};
+  write_dataset(h5, file, creation, transfer, field, slice);
+}
+
 template <class T>
 void write_attribute(const H5Calls& h5, hid_t file, const char* name, hid_t file_type, T value) {
   const std::string what = std::string("(") + name + ")";
@@ -200,6 +221,7 @@ void write_snapshot_file(const SnapshotFile& target, const ParticleStore& partic
                             H5Fclose, "H5Fcreate");
   for (const FieldSource& field : field_sources(particles))
     write_dataset(h5, file.id(), creation.id(), transfer.id(), field, slice);
+  write_connectivity(h5, file.id(), creation.id(), transfer.id(), slice);
   write_attribute(h5, file.id(), "time", H5T_IEEE_F64LE, target.time);
   write_attribute(h5, file.id(), "step", H5T_STD_U64LE, target.step);
   h5.check(file.close(), "H5Fclose");

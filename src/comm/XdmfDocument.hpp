@@ -90,8 +90,10 @@ inline std::string uniform_grid(const XdmfSnapshot& snapshot) {
   std::string grid =
       "      <Grid Name=\"" + escape(stem(snapshot.h5_file)) + "\" GridType=\"Uniform\">\n";
   grid += "        <Time Value=\"" + exact_decimal(snapshot.time) + "\"/>\n";
+  const int index_bytes = snapshot.count > 0xffffffffull ? 8 : 4;
   grid += "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + n +
-          "\" NodesPerElement=\"1\"/>\n";
+          "\" NodesPerElement=\"1\">\n          " +
+          data_item(snapshot, "connectivity", "UInt", index_bytes, 1) + "\n        </Topology>\n";
   grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
           data_item(snapshot, "position", "Float", 8, 3) + "\n        </Geometry>\n";
   for (const XdmfField& field : xdmf_particle_fields()) {

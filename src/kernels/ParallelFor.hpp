@@ -17,7 +17,7 @@ namespace gpudem {
 template <class F>
 void parallel_for(HostSpace, std::size_t n, const F& f) {
   const std::int64_t count = static_cast<std::int64_t>(n);
-#if defined(GPUDEM_HAVE_OPENMP)
+#if defined(GPUDEM_HAVE_OPENMP) && defined(_OPENMP)
 #pragma omp parallel for schedule(static)
 #endif
   for (std::int64_t i = 0; i < count; ++i) f(static_cast<std::size_t>(i));
@@ -28,7 +28,7 @@ template <class F>
 Real reduce_max(HostSpace, std::size_t n, Real identity, const F& f) {
   const std::int64_t count = static_cast<std::int64_t>(n);
   Real m = identity;
-#if defined(GPUDEM_HAVE_OPENMP)
+#if defined(GPUDEM_HAVE_OPENMP) && defined(_OPENMP)
 #pragma omp parallel for schedule(static) reduction(max : m)
 #endif
   for (std::int64_t i = 0; i < count; ++i) m = std::max(m, f(static_cast<std::size_t>(i)));
@@ -40,7 +40,7 @@ template <class F>
 Real reduce_sum(HostSpace, std::size_t n, const F& f) {
   const std::int64_t count = static_cast<std::int64_t>(n);
   Real s = 0;
-#if defined(GPUDEM_HAVE_OPENMP)
+#if defined(GPUDEM_HAVE_OPENMP) && defined(_OPENMP)
 #pragma omp parallel for schedule(static) reduction(+ : s)
 #endif
   for (std::int64_t i = 0; i < count; ++i) s += f(static_cast<std::size_t>(i));

@@ -179,6 +179,12 @@ void expect_snapshot_holds(const std::string& path, const ParticleStore& p, doub
       p.id,
       read_rows<std::uint64_t>(file.id, "id", H5T_STD_U64LE, H5T_NATIVE_UINT64, {n}, offset, rows),
       "id");
+  std::vector<std::uint32_t> rows_in_file(rows);
+  for (hsize_t k = 0; k < rows; ++k) rows_in_file[k] = static_cast<std::uint32_t>(offset + k);
+  expect_bit_identical(rows_in_file,
+                       read_rows<std::uint32_t>(file.id, "connectivity", H5T_STD_U32LE,
+                                                H5T_NATIVE_UINT32, {n}, offset, rows),
+                       "connectivity");
   const double stored_time = read_attribute<double>(file.id, "time", f64, f64_mem);
   EXPECT_EQ(0, std::memcmp(&stored_time, &time, sizeof(double))) << "time " << stored_time;
   EXPECT_EQ(step,
