@@ -39,11 +39,11 @@ struct Material {
 };
 
 /// Contact law selection. The skeleton ships one law: linear spring, restitution-based
-/// dashpot and a velocity-regularised Coulomb tangential force.
+/// dashpot and a tangential spring with a Coulomb limit (LinearContact.hpp).
 struct ContactSettings {
   std::string normal = "hooke";         ///< normal spring law
   std::string damping = "restitution";  ///< "restitution" | "none"
-  std::string tangential = "coulomb";   ///< "coulomb" | "none"
+  std::string tangential = "linear_history";  ///< "linear_history" | "none"
   double stiffness = 0;                 ///< Hooke normal stiffness k_n [N/m] (required)
 };
 

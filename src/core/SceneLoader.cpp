@@ -118,7 +118,7 @@ ContactSettings read_contact(const TableReader& root) {
   ContactSettings c;
   c.normal = table.choice("normal", {"hooke"}, c.normal);
   c.damping = table.choice("damping", {"restitution", "none"}, c.damping);
-  c.tangential = table.choice("tangential", {"coulomb", "none"}, c.tangential);
+  c.tangential = table.choice("tangential", {"linear_history", "none"}, c.tangential);
   if (c.normal == "hooke") c.stiffness = table.number("stiffness", positive("N/m"));
   return c;
 }

@@ -25,7 +25,9 @@ std::vector<LinearPairParams> pair_table(const Scene& scene) {
       p.damping_beta = scene.contact.damping == "restitution"
                            ? restitution_beta(pair_mean(ma.restitution, mb.restitution))
                            : 0.0;
-      p.friction = scene.contact.tangential == "coulomb" ? pair_mean(ma.friction, mb.friction) : 0.0;
+      const bool tangential = scene.contact.tangential == "linear_history";
+      p.tangential_stiffness = tangential ? kTangentialStiffnessRatio * p.stiffness : 0.0;
+      p.friction = tangential ? pair_mean(ma.friction, mb.friction) : 0.0;
     }
   return table;
 }

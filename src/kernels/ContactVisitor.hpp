@@ -1,7 +1,8 @@
 #pragma once
 /// Walks every contact of one particle — neighbours from the Verlet list, then plane walls —
-/// and hands each touching one to a visitor. Forces, energies and counters are all visitors,
-/// so the contact geometry lives in one place.
+/// and hands each touching one to a visitor (`visit(sample)`), and each listed partner that
+/// is not touching to `visit.separated(slot)`. Forces, energies and counters are all
+/// visitors, so the contact geometry lives in one place.
 #include <cstdint>
 
 #include "core/Config.hpp"
@@ -29,6 +30,14 @@ struct ContactScene {
   const PlaneWall* walls;
   std::uint32_t wall_count;
   PeriodicBox box;
+  const Vec3* pair_spring;  ///< tangential spring per neighbour-list entry
+  const Vec3* wall_spring;  ///< tangential spring per (particle, wall): slot i·wall_count + w
+};
+
+/// Base for visitors that ignore partners out of contact.
+struct IgnoreSeparated {
+  GPUDEM_HD void separated(std::uint32_t) {}
+  GPUDEM_HD void separated_from_wall(std::uint32_t) {}
 };
 
 /// One touching contact as seen from particle i.
@@ -38,6 +47,8 @@ struct ContactSample {
   Real min_radius;          ///< smaller radius of the pair (r_i for walls) [m]
   const LinearPairParams* params;
   std::int32_t wall;        ///< wall index, or −1 for a particle partner
+  std::uint32_t slot;       ///< index of this contact's history (pair or wall spring array)
+  Vec3 spring;              ///< tangential spring ξ stored at the end of the last step
 };
 
 /// Calls visit(sample) for each contact of particle i with positive overlap.
@@ -54,7 +65,10 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p, const Co
     const Vec3 d = s.box.minimum_image(xyz(xj) - xyz(xi));
     const Real dist2 = norm2(d);
     const Real reach = xi.w + xj.w;
-    if (dist2 >= reach * reach || dist2 == 0) continue;
+    if (dist2 >= reach * reach || dist2 == 0) {
+      visit.separated(k);
+      continue;
+    }
     const Real dist = sqrt(dist2);
     ContactSample c;
     c.kinematics.normal = (Real(1) / dist) * d;
@@ -69,12 +83,18 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p, const Co
     c.min_radius = xi.w < xj.w ? xi.w : xj.w;
     c.params = &s.pair_params[mi * s.material_count + p.material[j]];
     c.wall = -1;
+    c.slot = k;
+    c.spring = s.pair_spring[k];
     visit(c);
   }
   for (std::uint32_t w = 0; w < s.wall_count; ++w) {
     const PlaneWall& wall = s.walls[w];
     const Real overlap = wall_overlap(wall, xyz(xi), xi.w);
-    if (overlap <= 0) continue;
+    const std::uint32_t slot = i * s.wall_count + w;
+    if (overlap <= 0) {
+      visit.separated_from_wall(slot);
+      continue;
+    }
     ContactSample c;
     c.kinematics.normal = -wall.normal;
     c.kinematics.overlap = overlap;
@@ -84,6 +104,8 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p, const Co
     c.min_radius = xi.w;
     c.params = &s.pair_params[mi * s.material_count + wall.material];
     c.wall = static_cast<std::int32_t>(w);
+    c.slot = slot;
+    c.spring = s.wall_spring[slot];
     visit(c);
   }
 }

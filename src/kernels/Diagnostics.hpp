@@ -38,13 +38,13 @@ struct GravityEnergy {
 };
 
 /// Contact count and elastic energy; a particle pair is seen from both sides, so it adds ½.
-struct ContactTally {
+struct ContactTally : IgnoreSeparated {
   Real contacts = 0;
   Real elastic_energy = 0;
   GPUDEM_HD void operator()(const ContactSample& c) {
     const Real share = c.wall < 0 ? Real(0.5) : Real(1);
     contacts += share;
-    elastic_energy += share * linear_contact_energy(*c.params, c.kinematics.overlap);
+    elastic_energy += share * linear_contact_energy(*c.params, c.kinematics.overlap, c.spring);
   }
 };
 
@@ -74,15 +74,16 @@ struct WallForceComponent {
   ContactScene scene;
   std::int32_t wall;
   int component;
-  struct Pick {
-    std::int32_t wall;
+  struct Pick : IgnoreSeparated {
+    std::int32_t wall = -1;
     Vec3 force;
     GPUDEM_HD void operator()(const ContactSample& c) {
-      if (c.wall == wall) force -= linear_contact_force(*c.params, c.kinematics);
+      if (c.wall == wall) force -= linear_contact_force(*c.params, c.kinematics, c.spring);
     }
   };
   GPUDEM_HD Real operator()(std::size_t i) const {
-    Pick pick{wall, Vec3{}};
+    Pick pick;
+    pick.wall = wall;
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, pick);
     return axis(pick.force, component);
   }

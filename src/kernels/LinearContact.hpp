@@ -1,12 +1,15 @@
 #pragma once
-/// Linear spring–dashpot contact with a velocity-regularised Coulomb tangential force.
+/// Linear spring–dashpot contact with a history-dependent tangential spring and Coulomb limit
+/// (Cundall & Strack 1979; the `hooke/history` model of LAMMPS GRANULAR).
 ///
 ///   normal:      F_n = max(0, k_n·δ + γ_n·δ̇)          (never attractive)
 ///   damping:     γ_n = 2·|β|·√(m*·k_n),  β = ln e / √(ln² e + π²)
 ///                (gives restitution e exactly for the linear spring–dashpot oscillator
-///                 before the no-attraction clamp; Cundall & Strack 1979, Tsuji et al. 1992)
-///   tangential:  F_t = −min(γ_t·|v_t|, μ·|F_n|)·t̂,   γ_t = γ_n,   t̂ = v_t/|v_t|
-///                (no tangential spring: the regularised Coulomb law of LAMMPS gran/hooke)
+///                 before the no-attraction clamp; Tsuji et al. 1992)
+///   tangential:  F_t = −k_t·ξ − γ_t·v_t,  |F_t| ≤ μ·F_n,  k_t = 2/7·k_n,  γ_t = γ_n
+///                ξ, the tangential spring, is kept per contact: each step it is rotated into
+///                the current tangent plane (length kept) and grows by v_t·dt; on sliding it
+///                is reset so that −k_t·ξ − γ_t·v_t equals the Coulomb force μ·F_n.
 ///
 /// δ is the overlap, δ̇ its rate (positive when approaching), v_t the tangential relative
 /// velocity at the contact point (spin included), m* = m_i m_j/(m_i + m_j) (m* = m_i on walls).
@@ -17,10 +20,14 @@ namespace gpudem {
 
 /// Per material pair constants, precomputed on the host.
 struct LinearPairParams {
-  Real stiffness;     ///< k_n [N/m]
-  Real damping_beta;  ///< |β| from the pair restitution (0 when damping is off)
-  Real friction;      ///< μ (0 when the tangential force is off)
+  Real stiffness;             ///< k_n [N/m]
+  Real tangential_stiffness;  ///< k_t [N/m] (0 when the tangential force is off)
+  Real damping_beta;          ///< |β| from the pair restitution (0 when damping is off)
+  Real friction;              ///< μ (0 when the tangential force is off)
 };
+
+/// k_t / k_n: equal normal and tangential oscillation periods for a solid sphere.
+constexpr double kTangentialStiffnessRatio = 2.0 / 7.0;
 
 /// Geometry and kinematics of one contact, seen from particle i.
 struct ContactKinematics {
@@ -37,25 +44,65 @@ inline Real restitution_beta(Real e) {
   return fabs(l) / sqrt(l * l + pi * pi);
 }
 
-/// Force on particle i from one contact [N].
-GPUDEM_HD inline Vec3 linear_contact_force(const LinearPairParams& p, const ContactKinematics& c) {
-  const Real approach = dot(c.velocity, c.normal);  // δ̇ > 0 when closing
-  const Real gamma = 2 * p.damping_beta * sqrt(c.reduced_mass * p.stiffness);
-  Real fn = p.stiffness * c.overlap + gamma * approach;
-  if (fn < 0) fn = 0;
-  Vec3 force = -fn * c.normal;
-  const Vec3 vt = c.velocity - approach * c.normal;
-  const Real vt_mag = norm(vt);
-  if (vt_mag > 0 && p.friction > 0) {
-    const Real ft = fmin(gamma * vt_mag, p.friction * fn);
-    force -= (ft / vt_mag) * vt;
-  }
-  return force;
+/// γ_n = 2|β|√(m* k_n) [kg/s].
+GPUDEM_HD inline Real damping_coefficient(const LinearPairParams& p, const ContactKinematics& c) {
+  return 2 * p.damping_beta * sqrt(c.reduced_mass * p.stiffness);
 }
 
-/// Elastic energy stored in one linear contact: ½·k_n·δ² [J].
-GPUDEM_HD inline Real linear_contact_energy(const LinearPairParams& p, Real overlap) {
-  return Real(0.5) * p.stiffness * overlap * overlap;
+/// F_n = max(0, k_n δ + γ_n δ̇) [N].
+GPUDEM_HD inline Real normal_force(const LinearPairParams& p, const ContactKinematics& c) {
+  const Real fn = p.stiffness * c.overlap + damping_coefficient(p, c) * dot(c.velocity, c.normal);
+  return fn > 0 ? fn : Real(0);
+}
+
+/// Tangential relative velocity v_t = v − (v·n) n [m/s].
+GPUDEM_HD inline Vec3 tangential_velocity(const ContactKinematics& c) {
+  return c.velocity - dot(c.velocity, c.normal) * c.normal;
+}
+
+/// F_t = −k_t ξ − γ_t v_t, limited to μ F_n [N].
+GPUDEM_HD inline Vec3 tangential_force(const LinearPairParams& p, const ContactKinematics& c,
+                                       Vec3 spring, Real fn) {
+  if (p.tangential_stiffness == 0) return Vec3{};
+  Vec3 ft = -p.tangential_stiffness * spring - damping_coefficient(p, c) * tangential_velocity(c);
+  const Real limit = p.friction * fn;
+  const Real magnitude = norm(ft);
+  if (magnitude > limit) ft = (magnitude > 0 ? limit / magnitude : Real(0)) * ft;
+  return ft;
+}
+
+/// The spring after one step dt: ξ rotated into the current tangent plane (length kept),
+/// plus v_t·dt, then shortened so that the trial force respects the Coulomb limit.
+GPUDEM_HD inline Vec3 advance_tangential_spring(const LinearPairParams& p,
+                                                const ContactKinematics& c, Vec3 spring, Real dt) {
+  if (p.tangential_stiffness == 0) return Vec3{};
+  const Real length = norm(spring);
+  spring -= dot(spring, c.normal) * c.normal;
+  const Real projected = norm(spring);
+  if (projected > 0) spring = (length / projected) * spring;
+  const Vec3 vt = tangential_velocity(c);
+  spring += dt * vt;
+  const Real gamma = damping_coefficient(p, c);
+  const Vec3 trial = -p.tangential_stiffness * spring - gamma * vt;
+  const Real limit = p.friction * normal_force(p, c);
+  const Real magnitude = norm(trial);
+  if (magnitude > limit) {  // sliding: the spring holds only what friction allows
+    const Vec3 ft = (magnitude > 0 ? limit / magnitude : Real(0)) * trial;
+    spring = (Real(-1) / p.tangential_stiffness) * (ft + gamma * vt);
+  }
+  return spring;
+}
+
+/// Force on particle i from one contact with tangential spring ξ [N].
+GPUDEM_HD inline Vec3 linear_contact_force(const LinearPairParams& p, const ContactKinematics& c,
+                                           Vec3 spring) {
+  const Real fn = normal_force(p, c);
+  return tangential_force(p, c, spring, fn) - fn * c.normal;
+}
+
+/// Elastic energy stored in one contact: ½ k_n δ² + ½ k_t |ξ|² [J].
+GPUDEM_HD inline Real linear_contact_energy(const LinearPairParams& p, Real overlap, Vec3 spring) {
+  return Real(0.5) * (p.stiffness * overlap * overlap + p.tangential_stiffness * norm2(spring));
 }
 
 }  // namespace gpudem

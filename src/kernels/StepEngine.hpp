@@ -63,6 +63,10 @@ class StepEngine {
   /// Advances one time step dt.
   virtual void step() = 0;
 
+  /// Rebuilds the neighbour list now (re-sorting particles by cell and carrying contact
+  /// history over) and re-evaluates the forces, without advancing time.
+  virtual void rebuild_neighbors() = 0;
+
   /// Checks every particle for non-finite state and for an overlap above `max_overlap_ratio`
   /// of the smaller radius; returns the first offender's details (false when healthy).
   virtual bool find_unhealthy(double max_overlap_ratio, HealthFailure& failure) const = 0;

@@ -12,6 +12,7 @@
 #include "kernels/Diagnostics.hpp"
 #include "kernels/Integrators.hpp"
 #include "kernels/NeighborList.hpp"
+#include "kernels/Permute.hpp"
 #include "kernels/StepEngine.hpp"
 
 namespace gpudem {
@@ -48,15 +49,6 @@ struct WrapPositions {
   }
 };
 
-/// out[k] = in[order[k]].
-template <class T>
-struct Gather {
-  const std::uint32_t* order;
-  const T* in;
-  T* out;
-  GPUDEM_HD void operator()(std::size_t k) const { out[k] = in[order[k]]; }
-};
-
 struct ReadValue {
   const Real* value;
   GPUDEM_HD Real operator()(std::size_t i) const { return value[i]; }
@@ -67,6 +59,58 @@ struct CopyArray {
   const T* in;
   T* out;
   GPUDEM_HD void operator()(std::size_t k) const { out[k] = in[k]; }
+};
+
+template <class T>
+struct Fill {
+  T* out;
+  T value;
+  GPUDEM_HD void operator()(std::size_t k) const { out[k] = value; }
+};
+
+struct Iota {
+  std::uint32_t* out;
+  GPUDEM_HD void operator()(std::size_t k) const { out[k] = static_cast<std::uint32_t>(k); }
+};
+
+/// out row k = in row order[k], rows of `width` values (per-particle wall springs).
+struct GatherRows {
+  const std::uint32_t* order;
+  const Vec3* in;
+  Vec3* out;
+  std::uint32_t width;
+  GPUDEM_HD void operator()(std::size_t k) const {
+    for (std::uint32_t w = 0; w < width; ++w) out[k * width + w] = in[order[k] * width + w];
+  }
+};
+
+/// Carries tangential springs over a neighbour rebuild: for each new list entry of particle
+/// k, the spring of the old entry of the same particle (old index previous_index[k]) with
+/// the same partner global id, or zero for a new contact. Contact history is keyed by
+/// global id, never by position in a list.
+struct RemapPairSprings {
+  const std::uint32_t* offsets;
+  const std::uint32_t* neighbors;
+  const ParticleId* id;
+  const std::uint32_t* previous_index;
+  const std::uint32_t* previous_offsets;
+  const std::uint32_t* previous_neighbors;
+  const ParticleId* previous_id;
+  const Vec3* previous_spring;
+  Vec3* spring;
+  GPUDEM_HD void operator()(std::size_t k) const {
+    const std::uint32_t old = previous_index[k];
+    for (std::uint32_t e = offsets[k]; e < offsets[k + 1]; ++e) {
+      const ParticleId partner = id[neighbors[e]];
+      Vec3 carried{};
+      for (std::uint32_t f = previous_offsets[old]; f < previous_offsets[old + 1]; ++f)
+        if (previous_id[previous_neighbors[f]] == partner) {
+          carried = previous_spring[f];
+          break;
+        }
+      spring[e] = carried;
+    }
+  }
 };
 
 template <class Space>
@@ -87,6 +131,9 @@ class StepEngineImpl final : public StepEngine {
     force_.resize(n);
     torque_.resize(n);
     overlap_ratio_.resize(n);
+    wall_spring_.resize(n * wall_count());
+    parallel_for(Space{}, wall_spring_.size(), Fill<Vec3>{wall_spring_.data(), Vec3{}});
+    has_list_ = false;
     rebuild();
     compute_forces();
   }
@@ -111,6 +158,11 @@ class StepEngineImpl final : public StepEngine {
     if (needs_rebuild()) rebuild();
     compute_forces();
     if (verlet) kick(Real(0.5) * dt);
+  }
+
+  void rebuild_neighbors() override {
+    rebuild();
+    compute_forces();
   }
 
   bool find_unhealthy(double limit, HealthFailure& failure) const override {
@@ -166,7 +218,8 @@ class StepEngineImpl final : public StepEngine {
   std::size_t memory_bytes() const override {
     return position_radius_.bytes() + velocity_inv_mass_.bytes() + angular_velocity_.bytes() +
            force_.bytes() + torque_.bytes() + id_.bytes() + material_.bytes() +
-           overlap_ratio_.bytes() + position_at_build_.bytes() + scratch_bytes() +
+           overlap_ratio_.bytes() + position_at_build_.bytes() + pair_spring_.bytes() +
+           wall_spring_.bytes() + scratch_bytes() +
            cells_.memory_bytes() + neighbors_.memory_bytes();
   }
 
@@ -181,10 +234,9 @@ class StepEngineImpl final : public StepEngine {
   }
 
   ContactScene contact_scene() const {
-    return ContactScene{neighbors_.offsets(),  neighbors_.neighbors(),
-                        pair_params_.data(),   setup_.material_count,
-                        walls_.data(),         static_cast<std::uint32_t>(walls_.size()),
-                        setup_.box};
+    return ContactScene{neighbors_.offsets(), neighbors_.neighbors(), pair_params_.data(),
+                        setup_.material_count, walls_.data(),         wall_count(),
+                        setup_.box,            pair_spring_.data(),   wall_spring_.data()};
   }
 
   void kick(Real h) {
@@ -193,9 +245,12 @@ class StepEngineImpl final : public StepEngine {
                       torque_.data(), position_radius_.data(), h});
   }
 
+  std::uint32_t wall_count() const { return static_cast<std::uint32_t>(setup_.walls.size()); }
+
   void compute_forces() {
     parallel_for(Space{}, size(),
-                 ComputeForces{particle_view(), contact_scene(), setup_.gravity, force_.data(),
+                 ComputeForces{particle_view(), contact_scene(), setup_.gravity, setup_.dt,
+                               pair_spring_.data(), wall_spring_.data(), force_.data(),
                                torque_.data(), overlap_ratio_.data()});
   }
 
@@ -208,18 +263,40 @@ class StepEngineImpl final : public StepEngine {
     return moved2 > half_skin * half_skin;
   }
 
-  /// Wraps periodic images, removes particles that left the box, sorts by cell and rebuilds
-  /// the neighbour list.
+  /// Wraps periodic images, removes particles that left the box, sorts by cell, rebuilds the
+  /// neighbour list and carries the contact springs over to it.
   void rebuild() {
     parallel_for(Space{}, size(), WrapPositions{position_radius_.data(), setup_.box});
+    std::swap(neighbors_, previous_neighbors_);
+    previous_id_.resize(size());
+    parallel_for(Space{}, size(), CopyArray<ParticleId>{id_.data(), previous_id_.data()});
+    previous_index_.resize(size());
+    parallel_for(Space{}, size(), Iota{previous_index_.data()});
     remove_leavers();
     const std::size_t n = size();
     cells_.bin(position_radius_.data(), n, setup_.box, setup_.skin);
     reorder(cells_.order(), n);
     neighbors_.build(cells_, position_radius_.data(), n, setup_.box, setup_.skin);
+    remap_pair_springs();
     position_at_build_.resize(n);
     parallel_for(Space{}, n, CopyArray<Real4>{position_radius_.data(), position_at_build_.data()});
     ++rebuilds_;
+  }
+
+  void remap_pair_springs() {
+    const std::size_t n = size();
+    DeviceArray<Vec3, Space> fresh(neighbors_.pairs_kept());
+    if (has_list_) {
+      parallel_for(Space{}, n,
+                   RemapPairSprings{neighbors_.offsets(), neighbors_.neighbors(), id_.data(),
+                                    previous_index_.data(), previous_neighbors_.offsets(),
+                                    previous_neighbors_.neighbors(), previous_id_.data(),
+                                    pair_spring_.data(), fresh.data()});
+    } else {
+      parallel_for(Space{}, fresh.size(), Fill<Vec3>{fresh.data(), Vec3{}});
+    }
+    pair_spring_.swap(fresh);
+    has_list_ = true;
   }
 
   void remove_leavers() {
@@ -240,17 +317,21 @@ class StepEngineImpl final : public StepEngine {
   /// Applies the permutation `order` (slot k takes particle order[k]) to every per-particle
   /// array whose value must survive a rebuild (forces are recomputed right after).
   void reorder(const std::uint32_t* order, std::size_t n) {
-    permute(order, n, position_radius_);
-    permute(order, n, velocity_inv_mass_);
-    permute(order, n, angular_velocity_);
-    permute(order, n, id_);
-    permute(order, n, material_);
+    permute_array(order, n, position_radius_);
+    permute_array(order, n, velocity_inv_mass_);
+    permute_array(order, n, angular_velocity_);
+    permute_array(order, n, id_);
+    permute_array(order, n, material_);
+    permute_array(order, n, previous_index_);
+    DeviceArray<Vec3, Space> springs(n * wall_count());
+    parallel_for(Space{}, n, GatherRows{order, wall_spring_.data(), springs.data(), wall_count()});
+    wall_spring_.swap(springs);
   }
 
   template <class T>
-  void permute(const std::uint32_t* order, std::size_t n, DeviceArray<T, Space>& a) {
+  void permute_array(const std::uint32_t* order, std::size_t n, DeviceArray<T, Space>& a) {
     DeviceArray<T, Space> out(n);
-    parallel_for(Space{}, n, Gather<T>{order, a.data(), out.data()});
+    permute(Space{}, order, a.data(), out.data(), n);
     a.swap(out);
   }
 
@@ -263,9 +344,14 @@ class StepEngineImpl final : public StepEngine {
     force_.resize(n);
     torque_.resize(n);
     overlap_ratio_.resize(n);
+    previous_index_.resize(n);
+    wall_spring_.resize(n * wall_count());
   }
 
-  std::size_t scratch_bytes() const { return sort_key_.bytes() + sort_index_.bytes(); }
+  std::size_t scratch_bytes() const {
+    return sort_key_.bytes() + sort_index_.bytes() + previous_index_.bytes() +
+           previous_id_.bytes() + previous_neighbors_.memory_bytes();
+  }
 
   EngineSetup setup_;
   DeviceArray<LinearPairParams, Space> pair_params_;
@@ -281,8 +367,14 @@ class StepEngineImpl final : public StepEngine {
   DeviceArray<Real4, Space> position_at_build_;
   DeviceArray<std::uint64_t, Space> sort_key_;
   DeviceArray<std::uint32_t, Space> sort_index_;
+  DeviceArray<Vec3, Space> pair_spring_;   ///< tangential spring per neighbour-list entry
+  DeviceArray<Vec3, Space> wall_spring_;   ///< tangential spring per (particle, wall)
+  DeviceArray<std::uint32_t, Space> previous_index_;  ///< index before this rebuild's reorders
+  DeviceArray<ParticleId, Space> previous_id_;
   CellList<Space> cells_;
   NeighborList<Space> neighbors_;
+  NeighborList<Space> previous_neighbors_;
+  bool has_list_ = false;
   std::uint64_t removed_ = 0;
   std::uint64_t rebuilds_ = 0;
 };

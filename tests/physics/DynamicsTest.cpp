@@ -130,3 +130,65 @@ GPUDEM_INSTANTIATE_BACKENDS(Dynamics);
 
 }  // namespace
 }  // namespace gpudem::test
+
+namespace gpudem::test {
+namespace {
+
+class Incline : public BackendTest {
+ protected:
+  /// Acceleration along the slope of a sphere on a floor under gravity tilted by θ, measured
+  /// between t = 0.2 s and 0.4 s; also the angular acceleration about y.
+  void measure(double theta, double friction, double& accel, double& angular_accel) {
+    Scene scene = basic_scene({-100, -1, -1}, {100, 1, 1}, 1e4, 0.3, friction);
+    scene.simulation.gravity = {9.81 * std::sin(theta), 0, -9.81 * std::cos(theta)};
+    WallSettings floor;
+    floor.name = "floor";
+    floor.point = {0, 0, -0.5};
+    floor.normal = {0, 0, 1};
+    scene.walls.push_back(floor);
+    const double r = 0.01;
+    ParticleStore particles = single_particle(scene, {0, 0, -0.5 + r}, {0, 0, 0}, r);
+    auto engine = make_engine(make_engine_setup(scene, particles));
+    engine->set_particles(particles);
+    const EngineSetup setup = make_engine_setup(scene, particles);
+    auto advance_to = [&](double t) {
+      while (steps_ * setup.dt < t) {
+        engine->step();
+        ++steps_;
+      }
+      engine->get_particles(particles);
+      return std::make_pair(steps_ * setup.dt, particles);
+    };
+    const auto [t1, p1] = advance_to(0.2);
+    const auto [t2, p2] = advance_to(0.4);
+    accel = (p2.velocity_inv_mass[0].x - p1.velocity_inv_mass[0].x) / (t2 - t1);
+    angular_accel = (p2.angular_velocity[0].y - p1.angular_velocity[0].y) / (t2 - t1);
+  }
+  long steps_ = 0;
+};
+
+/// Below tan θ = 3.5 μ a sphere rolls without slipping: a = 5/7 g sin θ, α = a / r.
+TEST_P(Incline, SphereRollsWithoutSlipping) {
+  const double theta = 20 * 3.14159265358979 / 180, mu = 0.5;
+  double a = 0, alpha = 0;
+  measure(theta, mu, a, alpha);
+  const double expected = 5.0 / 7.0 * 9.81 * std::sin(theta);
+  EXPECT_NEAR(a, expected, 0.01 * expected);
+  EXPECT_NEAR(alpha, expected / 0.01, 0.01 * expected / 0.01);
+}
+
+/// Above tan θ = 3.5 μ it slides: a = g (sin θ − μ cos θ), α = 5 μ g cos θ / (2 r).
+TEST_P(Incline, SphereSlidesAtCoulombLimit) {
+  const double theta = 40 * 3.14159265358979 / 180, mu = 0.1;
+  double a = 0, alpha = 0;
+  measure(theta, mu, a, alpha);
+  const double expected = 9.81 * (std::sin(theta) - mu * std::cos(theta));
+  const double expected_alpha = 5 * mu * 9.81 * std::cos(theta) / (2 * 0.01);
+  EXPECT_NEAR(a, expected, 0.01 * expected);
+  EXPECT_NEAR(alpha, expected_alpha, 0.01 * expected_alpha);
+}
+
+GPUDEM_INSTANTIATE_BACKENDS(Incline);
+
+}  // namespace
+}  // namespace gpudem::test

@@ -248,7 +248,7 @@ TEST_F(SceneLoaderTest, MinimalSceneTakesDefaults) {
   EXPECT_DOUBLE_EQ(s.materials[0].friction, 0.5);
   EXPECT_EQ(s.contact.normal, "hooke");
   EXPECT_EQ(s.contact.damping, "restitution");
-  EXPECT_EQ(s.contact.tangential, "coulomb");
+  EXPECT_EQ(s.contact.tangential, "linear_history");
   EXPECT_DOUBLE_EQ(s.neighbor.skin, 0);
   EXPECT_TRUE(s.walls.empty());
   ASSERT_EQ(s.sources.size(), 1u);
