@@ -36,6 +36,7 @@ struct Material {
   double poisson = 0.3;     ///< Poisson ratio [-], in (-1, 0.5)
   double restitution = 0.5; ///< coefficient of restitution [-], in (0, 1]
   double friction = 0.5;    ///< Coulomb (sliding) friction coefficient [-], >= 0
+  double rolling_friction = 0;  ///< rolling friction coefficient μ_r [-], >= 0
 };
 
 /// Contact law selection. The skeleton ships one law: linear spring, restitution-based
@@ -44,6 +45,7 @@ struct ContactSettings {
   std::string normal = "hooke";         ///< normal spring law
   std::string damping = "restitution";  ///< "restitution" | "none"
   std::string tangential = "linear_history";  ///< "linear_history" | "none"
+  std::string rolling = "none";                ///< "constant_torque" | "none"
   double stiffness = 0;                 ///< Hooke normal stiffness k_n [N/m] (required)
 };
 

@@ -84,7 +84,8 @@ DomainSettings read_domain(const TableReader& root) {
 }
 
 Material read_material(const TableReader& table) {
-  table.allow_only({"name", "density", "young", "poisson", "restitution", "friction"});
+  table.allow_only(
+      {"name", "density", "young", "poisson", "restitution", "friction", "rolling_friction"});
   Material m;
   m.name = table.string("name");
   m.density = table.number("density", positive("kg/m^3"));
@@ -92,6 +93,7 @@ Material read_material(const TableReader& table) {
   m.poisson = table.number("poisson", interval(-1, true, 0.5, true), m.poisson);
   m.restitution = table.number("restitution", interval(0, true, 1, false), m.restitution);
   m.friction = table.number("friction", non_negative(), m.friction);
+  m.rolling_friction = table.number("rolling_friction", non_negative(), m.rolling_friction);
   return m;
 }
 
@@ -114,11 +116,12 @@ std::vector<Material> read_materials(const TableReader& root) {
 
 ContactSettings read_contact(const TableReader& root) {
   const TableReader table = root.optional_table("contact");
-  table.allow_only({"normal", "damping", "tangential", "stiffness"});
+  table.allow_only({"normal", "damping", "tangential", "rolling", "stiffness"});
   ContactSettings c;
   c.normal = table.choice("normal", {"hooke"}, c.normal);
   c.damping = table.choice("damping", {"restitution", "none"}, c.damping);
   c.tangential = table.choice("tangential", {"linear_history", "none"}, c.tangential);
+  c.rolling = table.choice("rolling", {"constant_torque", "none"}, c.rolling);
   if (c.normal == "hooke") c.stiffness = table.number("stiffness", positive("N/m"));
   return c;
 }

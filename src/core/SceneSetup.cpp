@@ -28,6 +28,9 @@ std::vector<LinearPairParams> pair_table(const Scene& scene) {
       const bool tangential = scene.contact.tangential == "linear_history";
       p.tangential_stiffness = tangential ? kTangentialStiffnessRatio * p.stiffness : 0.0;
       p.friction = tangential ? pair_mean(ma.friction, mb.friction) : 0.0;
+      p.rolling_friction = scene.contact.rolling == "constant_torque"
+                               ? pair_mean(ma.rolling_friction, mb.rolling_friction)
+                               : 0.0;
     }
   return table;
 }

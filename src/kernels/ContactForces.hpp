@@ -18,7 +18,8 @@ struct ForceSum {
     (c.wall < 0 ? pair_spring : wall_spring)[c.slot] = spring;
     const Vec3 f = linear_contact_force(*c.params, c.kinematics, spring);
     force += f;
-    torque += cross(c.arm * c.kinematics.normal, f);
+    torque += cross(c.arm * c.kinematics.normal, f) +
+              rolling_torque(*c.params, c.kinematics, normal_force(*c.params, c.kinematics), dt);
     const Real ratio = c.kinematics.overlap / c.min_radius;
     if (ratio > worst_overlap_ratio) worst_overlap_ratio = ratio;
   }

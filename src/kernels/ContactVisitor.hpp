@@ -34,6 +34,11 @@ struct ContactScene {
   const Vec3* wall_spring;  ///< tangential spring per (particle, wall): slot i·wall_count + w
 };
 
+/// Moment of inertia of a solid sphere, I = 2/5 m r², from its radius and inverse mass.
+GPUDEM_HD inline Real sphere_inertia(Real radius, Real inv_mass) {
+  return Real(0.4) * radius * radius / inv_mass;
+}
+
 /// Base for visitors that ignore partners out of contact.
 struct IgnoreSeparated {
   GPUDEM_HD void separated(std::uint32_t) {}
@@ -80,6 +85,10 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p, const Co
     const Vec3 uj = xyz(vj) + cross(p.angular_velocity[j], -arm_j * c.kinematics.normal);
     c.kinematics.velocity = ui - uj;
     c.kinematics.reduced_mass = Real(1) / (vi.w + vj.w);
+    c.kinematics.relative_spin = wi - p.angular_velocity[j];
+    c.kinematics.rolling_radius = xi.w * xj.w / (xi.w + xj.w);
+    const Real inertia_i = sphere_inertia(xi.w, vi.w), inertia_j = sphere_inertia(xj.w, vj.w);
+    c.kinematics.reduced_inertia = inertia_i * inertia_j / (inertia_i + inertia_j);
     c.min_radius = xi.w < xj.w ? xi.w : xj.w;
     c.params = &s.pair_params[mi * s.material_count + p.material[j]];
     c.wall = -1;
@@ -101,6 +110,9 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p, const Co
     c.arm = xi.w - Real(0.5) * overlap;
     c.kinematics.velocity = xyz(vi) + cross(wi, c.arm * c.kinematics.normal);
     c.kinematics.reduced_mass = Real(1) / vi.w;
+    c.kinematics.relative_spin = wi;
+    c.kinematics.rolling_radius = xi.w;
+    c.kinematics.reduced_inertia = sphere_inertia(xi.w, vi.w);
     c.min_radius = xi.w;
     c.params = &s.pair_params[mi * s.material_count + wall.material];
     c.wall = static_cast<std::int32_t>(w);

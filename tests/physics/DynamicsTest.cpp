@@ -192,3 +192,42 @@ GPUDEM_INSTANTIATE_BACKENDS(Incline);
 
 }  // namespace
 }  // namespace gpudem::test
+
+namespace gpudem::test {
+namespace {
+
+class Rolling : public BackendTest {};
+
+/// With constant-torque rolling resistance a sphere rolling on a floor decelerates at
+/// 5/7·μ_r·g and stops after s = 7 v0² / (10 μ_r g), then stays at rest.
+TEST_P(Rolling, ConstantTorqueStopsSphereAtClosedFormDistance) {
+  const double r = 0.01, v0 = 0.5, mu_r = 0.05;
+  Scene scene = basic_scene({-10, -1, -1}, {10, 1, 1}, 1e4, 0.3, 0.5);
+  scene.materials[0].rolling_friction = mu_r;
+  scene.contact.rolling = "constant_torque";
+  WallSettings floor;
+  floor.name = "floor";
+  floor.point = {0, 0, -0.5};
+  floor.normal = {0, 0, 1};
+  scene.walls.push_back(floor);
+  ParticleStore particles = single_particle(scene, {0, 0, -0.5 + r}, {v0, 0, 0}, r);
+  const double m = 1.0 / particles.velocity_inv_mass[0].w;
+  particles.position_radius[0].z -= m * 9.81 / 1e4;  // start at the static overlap
+  particles.angular_velocity[0] = {0, v0 / r, 0};   // rolling without slip
+  auto engine = make_engine(make_engine_setup(scene, particles));
+  engine->set_particles(particles);
+  const double stop_time = v0 / (5.0 / 7.0 * mu_r * 9.81);
+  const double dt = make_engine_setup(scene, particles).dt;
+  const long steps = static_cast<long>(1.5 * stop_time / dt);
+  for (long n = 0; n < steps; ++n) engine->step();
+  engine->get_particles(particles);
+  const double expected = 7 * v0 * v0 / (10 * mu_r * 9.81);
+  EXPECT_NEAR(particles.position_radius[0].x, expected, 0.02 * expected);
+  EXPECT_LT(std::fabs(particles.velocity_inv_mass[0].x), 1e-6 * v0);
+  EXPECT_LT(std::fabs(particles.angular_velocity[0].y), 1e-6 * v0 / r);
+}
+
+GPUDEM_INSTANTIATE_BACKENDS(Rolling);
+
+}  // namespace
+}  // namespace gpudem::test

@@ -28,10 +28,9 @@ double sphere_volume_between(double z, double r, double a, double b) {
 class Settling : public BackendTest {};
 
 TEST_P(Settling, BedComesToRestWithRandomPacking) {
-  const double side = 0.08;
-  Scene scene = basic_scene({0, 0, 0}, {side, side, 0.4}, 1000, 0.3, 0.5);
+  const double side = 0.12;
+  Scene scene = basic_scene({0, 0, 0}, {side, side, 0.3}, 2000, 0.2, 0.5);
   scene.materials[0].young = 1e6;
-  scene.simulation.dt_fraction = 0.2;
   scene.domain.periodic = {true, true, false};
   WallSettings floor;
   floor.name = "floor";
@@ -39,7 +38,7 @@ TEST_P(Settling, BedComesToRestWithRandomPacking) {
   scene.walls.push_back(floor);
   ParticleSource source;
   source.region_min = {0, 0, 0};
-  source.region_max = {side, side, 0.4};
+  source.region_max = {side, side, 0.3};
   source.count = 10000;
   source.radius.mean = 2.5e-3;
   source.radius.spread = 0.5e-3;
