@@ -36,6 +36,7 @@ TEST_P(Dynamics, FreeFallVelocityVerletIsExact) {
   const Vec3 g = scene.simulation.gravity;
   const Vec3 expected = x0 + t * v0 + (0.5 * t * t) * g;
   const Vec3 x = xyz(particles.position_radius[0]);
+  RecordProperty("position_error_m", std::to_string(norm(x - expected)));
   EXPECT_NEAR(x.x, expected.x, 1e-12);
   EXPECT_NEAR(x.y, expected.y, 1e-12);
   EXPECT_NEAR(x.z, expected.z, 1e-11);
@@ -77,6 +78,8 @@ TEST_P(Dynamics, SphereRestsOnPlaneWithStaticOverlap) {
   engine->get_particles(particles);
   const double weight = -m * scene.simulation.gravity.z;
   const double overlap = r - particles.position_radius[0].z;
+  RecordProperty("static_overlap_relative_error",
+                 std::to_string(std::fabs(overlap - weight / 1e4) / (weight / 1e4)));
   EXPECT_NEAR(overlap, weight / 1e4, 1e-6 * weight / 1e4);
   EXPECT_LT(std::fabs(particles.velocity_inv_mass[0].z), 1e-9);
   const Diagnostics d = engine->diagnostics();
@@ -120,6 +123,7 @@ TEST_P(Dynamics, ElasticGasConservesEnergy) {
     for (int n = 0; n < 1000; ++n) engine->step();
     worst = std::max(worst, std::fabs(energy() - e0) / e0);
   }
+  RecordProperty("max_relative_energy_error", std::to_string(worst));
   EXPECT_LT(worst, 1e-3);
   EXPECT_GT(engine->diagnostics().kinetic_translational, 0.5 * e0);  // still a gas
   EXPECT_EQ(engine->removed_count(), 0u);
@@ -173,6 +177,8 @@ TEST_P(Incline, SphereRollsWithoutSlipping) {
   double a = 0, alpha = 0;
   measure(theta, mu, a, alpha);
   const double expected = 5.0 / 7.0 * 9.81 * std::sin(theta);
+  RecordProperty("acceleration", std::to_string(a));
+  RecordProperty("acceleration_expected", std::to_string(expected));
   EXPECT_NEAR(a, expected, 0.01 * expected);
   EXPECT_NEAR(alpha, expected / 0.01, 0.01 * expected / 0.01);
 }
@@ -184,6 +190,10 @@ TEST_P(Incline, SphereSlidesAtCoulombLimit) {
   measure(theta, mu, a, alpha);
   const double expected = 9.81 * (std::sin(theta) - mu * std::cos(theta));
   const double expected_alpha = 5 * mu * 9.81 * std::cos(theta) / (2 * 0.01);
+  RecordProperty("acceleration", std::to_string(a));
+  RecordProperty("acceleration_expected", std::to_string(expected));
+  RecordProperty("angular_acceleration", std::to_string(alpha));
+  RecordProperty("angular_acceleration_expected", std::to_string(expected_alpha));
   EXPECT_NEAR(a, expected, 0.01 * expected);
   EXPECT_NEAR(alpha, expected_alpha, 0.01 * expected_alpha);
 }
@@ -222,12 +232,52 @@ TEST_P(Rolling, ConstantTorqueStopsSphereAtClosedFormDistance) {
   for (long n = 0; n < steps; ++n) engine->step();
   engine->get_particles(particles);
   const double expected = 7 * v0 * v0 / (10 * mu_r * 9.81);
+  RecordProperty("stopping_distance", std::to_string(particles.position_radius[0].x));
+  RecordProperty("stopping_distance_expected", std::to_string(expected));
   EXPECT_NEAR(particles.position_radius[0].x, expected, 0.02 * expected);
   EXPECT_LT(std::fabs(particles.velocity_inv_mass[0].x), 1e-6 * v0);
   EXPECT_LT(std::fabs(particles.angular_velocity[0].y), 1e-6 * v0 / r);
 }
 
 GPUDEM_INSTANTIATE_BACKENDS(Rolling);
+
+}  // namespace
+}  // namespace gpudem::test
+
+namespace gpudem::test {
+namespace {
+
+class Boundaries : public BackendTest {};
+
+/// A particle that leaves along a non-periodic axis is removed and counted; one crossing a
+/// periodic face re-enters on the other side.
+TEST_P(Boundaries, LeaversAreRemovedAndPeriodicImagesWrap) {
+  Scene scene = basic_scene({0, 0, 0}, {1, 1, 1}, 1e4, 0.5, 0.5);
+  scene.simulation.gravity = {0, 0, 0};
+  scene.simulation.dt_auto = false;
+  scene.simulation.dt = 1e-3;
+  scene.domain.periodic = {false, true, false};
+  const double r = 0.01, inv_m = 1.0 / sphere_mass(scene.materials[0].density, r);
+  ParticleStore particles;
+  particles.add(7, {0.9, 0.5, 0.5}, r, 0, {2.0, 0, 0}, inv_m);   // leaves through x = 1
+  particles.add(8, {0.5, 0.95, 0.5}, r, 0, {0, 1.0, 0}, inv_m);  // wraps through y = 1
+  particles.add(9, {0.5, 0.5, 0.5}, r, 0, {0, 0, 0}, inv_m);     // stays
+  auto engine = make_engine(make_engine_setup(scene, particles));
+  engine->set_particles(particles);
+  for (int n = 0; n < 200; ++n) engine->step();  // 0.2 s
+  EXPECT_EQ(engine->removed_count(), 1u);
+  EXPECT_EQ(engine->particle_count(), 2u);
+  engine->get_particles(particles);
+  ASSERT_EQ(particles.size(), 2u);
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    EXPECT_NE(particles.id[i], 7u);
+    if (particles.id[i] == 8u) {
+      EXPECT_NEAR(particles.position_radius[i].y, 0.15, 0.02);
+    }
+  }
+}
+
+GPUDEM_INSTANTIATE_BACKENDS(Boundaries);
 
 }  // namespace
 }  // namespace gpudem::test

@@ -58,6 +58,8 @@ TEST_P(Settling, BedComesToRestWithRandomPacking) {
     kinetic = d.kinetic_translational + d.kinetic_rotational;
     if (blocks > 20 && kinetic < 1e-6 * initial_potential) break;
   }
+  RecordProperty("kinetic_over_initial_potential", std::to_string(kinetic / initial_potential));
+  RecordProperty("steps", std::to_string(blocks * 200));
   EXPECT_LT(kinetic, 1e-6 * initial_potential) << "bed still moving after " << blocks * 200 << " steps";
   EXPECT_EQ(engine->removed_count(), 0u);
   HealthFailure failure;
