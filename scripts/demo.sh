@@ -6,7 +6,7 @@ scripts/setup.sh
 source scripts/mpi-env.sh
 OUT=${OUT:-out/quickstart}
 NP=${NP:-1}
-mpirun -np "$NP" build/gpudem-mpi inputs/quickstart.toml --output-dir "$OUT"
+mpirun -np "$NP" --bind-to none build/gpudem-mpi inputs/quickstart.toml --output-dir "$OUT"
 cat <<MSG
 
 Output is in $OUT:
