@@ -8,6 +8,7 @@
 #include "core/ParticleSources.hpp"
 #include "core/SceneSetup.hpp"
 #include "support/Backends.hpp"
+#include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"
 
 namespace gpudem::test {
@@ -58,7 +59,7 @@ TEST_P(ContactHistory, SpringsSurviveRebuild) {
   // Springs advance by v_t·dt in the re-evaluation and the bed is at rest, so the net forces
   // (zero at equilibrium) stay tiny; dropping the springs would unbalance contacts carrying a
   // good part of a weight.
-  RecordProperty("force_change_over_weight", std::to_string(worst / weight));
+  RecordProperty("force_change_over_weight", significant(worst / weight));
   EXPECT_LT(worst, 1e-4 * weight) << "largest weight " << weight;
 }
 

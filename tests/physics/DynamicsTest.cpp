@@ -7,6 +7,7 @@
 #include "core/ParticleSources.hpp"
 #include "core/SceneSetup.hpp"
 #include "support/Backends.hpp"
+#include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"
 
 namespace gpudem::test {
@@ -36,7 +37,7 @@ TEST_P(Dynamics, FreeFallVelocityVerletIsExact) {
   const Vec3 g = scene.simulation.gravity;
   const Vec3 expected = x0 + t * v0 + (0.5 * t * t) * g;
   const Vec3 x = xyz(particles.position_radius[0]);
-  RecordProperty("position_error_m", std::to_string(norm(x - expected)));
+  RecordProperty("position_error_m", significant(norm(x - expected)));
   EXPECT_NEAR(x.x, expected.x, 1e-12);
   EXPECT_NEAR(x.y, expected.y, 1e-12);
   EXPECT_NEAR(x.z, expected.z, 1e-11);
@@ -57,6 +58,9 @@ TEST_P(Dynamics, FreeFallSymplecticEulerMatchesItsRecurrence) {
   for (int s = 0; s < n; ++s) engine->step();
   engine->get_particles(particles);
   const double dt = 1e-4, g = scene.simulation.gravity.z;
+  const double expected_z = 1 + n * dt * 2 + g * dt * dt * n * (n + 1) / 2.0;
+  RecordProperty("position_error_m",
+                 significant(std::fabs(particles.position_radius[0].z - expected_z)));
   EXPECT_NEAR(particles.position_radius[0].z, 1 + n * dt * 2 + g * dt * dt * n * (n + 1) / 2.0,
               1e-11);
   EXPECT_NEAR(particles.velocity_inv_mass[0].z, 2 + n * dt * g, 1e-11);
@@ -79,7 +83,7 @@ TEST_P(Dynamics, SphereRestsOnPlaneWithStaticOverlap) {
   const double weight = -m * scene.simulation.gravity.z;
   const double overlap = r - particles.position_radius[0].z;
   RecordProperty("static_overlap_relative_error",
-                 std::to_string(std::fabs(overlap - weight / 1e4) / (weight / 1e4)));
+                 significant(std::fabs(overlap - weight / 1e4) / (weight / 1e4)));
   EXPECT_NEAR(overlap, weight / 1e4, 1e-6 * weight / 1e4);
   EXPECT_LT(std::fabs(particles.velocity_inv_mass[0].z), 1e-9);
   const Diagnostics d = engine->diagnostics();
@@ -123,7 +127,7 @@ TEST_P(Dynamics, ElasticGasConservesEnergy) {
     for (int n = 0; n < 1000; ++n) engine->step();
     worst = std::max(worst, std::fabs(energy() - e0) / e0);
   }
-  RecordProperty("max_relative_energy_error", std::to_string(worst));
+  RecordProperty("max_relative_energy_error", significant(worst));
   EXPECT_LT(worst, 1e-3);
   EXPECT_GT(engine->diagnostics().kinetic_translational, 0.5 * e0);  // still a gas
   EXPECT_EQ(engine->removed_count(), 0u);
@@ -177,8 +181,8 @@ TEST_P(Incline, SphereRollsWithoutSlipping) {
   double a = 0, alpha = 0;
   measure(theta, mu, a, alpha);
   const double expected = 5.0 / 7.0 * 9.81 * std::sin(theta);
-  RecordProperty("acceleration", std::to_string(a));
-  RecordProperty("acceleration_expected", std::to_string(expected));
+  RecordProperty("acceleration", significant(a));
+  RecordProperty("acceleration_expected", significant(expected));
   EXPECT_NEAR(a, expected, 0.01 * expected);
   EXPECT_NEAR(alpha, expected / 0.01, 0.01 * expected / 0.01);
 }
@@ -190,10 +194,10 @@ TEST_P(Incline, SphereSlidesAtCoulombLimit) {
   measure(theta, mu, a, alpha);
   const double expected = 9.81 * (std::sin(theta) - mu * std::cos(theta));
   const double expected_alpha = 5 * mu * 9.81 * std::cos(theta) / (2 * 0.01);
-  RecordProperty("acceleration", std::to_string(a));
-  RecordProperty("acceleration_expected", std::to_string(expected));
-  RecordProperty("angular_acceleration", std::to_string(alpha));
-  RecordProperty("angular_acceleration_expected", std::to_string(expected_alpha));
+  RecordProperty("acceleration", significant(a));
+  RecordProperty("acceleration_expected", significant(expected));
+  RecordProperty("angular_acceleration", significant(alpha));
+  RecordProperty("angular_acceleration_expected", significant(expected_alpha));
   EXPECT_NEAR(a, expected, 0.01 * expected);
   EXPECT_NEAR(alpha, expected_alpha, 0.01 * expected_alpha);
 }
@@ -232,8 +236,8 @@ TEST_P(Rolling, ConstantTorqueStopsSphereAtClosedFormDistance) {
   for (long n = 0; n < steps; ++n) engine->step();
   engine->get_particles(particles);
   const double expected = 7 * v0 * v0 / (10 * mu_r * 9.81);
-  RecordProperty("stopping_distance", std::to_string(particles.position_radius[0].x));
-  RecordProperty("stopping_distance_expected", std::to_string(expected));
+  RecordProperty("stopping_distance", significant(particles.position_radius[0].x));
+  RecordProperty("stopping_distance_expected", significant(expected));
   EXPECT_NEAR(particles.position_radius[0].x, expected, 0.02 * expected);
   EXPECT_LT(std::fabs(particles.velocity_inv_mass[0].x), 1e-6 * v0);
   EXPECT_LT(std::fabs(particles.angular_velocity[0].y), 1e-6 * v0 / r);

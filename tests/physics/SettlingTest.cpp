@@ -9,6 +9,7 @@
 #include "core/ParticleSources.hpp"
 #include "core/SceneSetup.hpp"
 #include "support/Backends.hpp"
+#include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"
 
 namespace gpudem::test {
@@ -58,8 +59,8 @@ TEST_P(Settling, BedComesToRestWithRandomPacking) {
     kinetic = d.kinetic_translational + d.kinetic_rotational;
     if (blocks > 20 && kinetic < 1e-6 * initial_potential) break;
   }
-  RecordProperty("kinetic_over_initial_potential", std::to_string(kinetic / initial_potential));
-  RecordProperty("steps", std::to_string(blocks * 200));
+  RecordProperty("kinetic_over_initial_potential", significant(kinetic / initial_potential));
+  RecordProperty("steps", significant(blocks * 200));
   EXPECT_LT(kinetic, 1e-6 * initial_potential) << "bed still moving after " << blocks * 200 << " steps";
   EXPECT_EQ(engine->removed_count(), 0u);
   HealthFailure failure;
@@ -77,7 +78,7 @@ TEST_P(Settling, BedComesToRestWithRandomPacking) {
   double solid = 0;
   for (const Real4& p : particles.position_radius) solid += sphere_volume_between(p.z, p.w, lo, hi);
   const double packing = solid / (side * side * (hi - lo));
-  RecordProperty("packing_fraction", std::to_string(packing));
+  RecordProperty("packing_fraction", significant(packing));
   EXPECT_GE(packing, 0.55);
   EXPECT_LE(packing, 0.64);
 }
