@@ -13,6 +13,7 @@
 
 #include "core/ParticleSources.hpp"
 #include "core/SceneSetup.hpp"
+#include "support/SceneBuilder.hpp"
 
 namespace gpudem {
 namespace {
@@ -20,38 +21,18 @@ namespace {
 constexpr double kSide = 0.12;  // periodic cell of the seed bed [m]
 
 Scene bed_scene(double side_x, double side_y) {
-  Scene s;
-  s.file = "<bench>";
-  s.simulation.end_time = 1;
-  s.domain.min = {0, 0, 0};
-  s.domain.max = {side_x, side_y, 0.3};
+  Scene s = test::basic_scene({0, 0, 0}, {side_x, side_y, 0.3}, 2000, 0.2, 0.5);
+  s.materials[0].density = 1850;
+  s.materials[0].young = 1e6;
   s.domain.periodic = {true, true, false};
-  Material m;
-  m.name = "soil";
-  m.density = 1850;
-  m.young = 1e6;
-  m.poisson = 0.3;
-  m.restitution = 0.2;
-  m.friction = 0.5;
-  s.materials.push_back(m);
-  s.contact.stiffness = 2000;
-  WallSettings floor;
-  floor.name = "floor";
-  floor.normal = {0, 0, 1};
-  s.walls.push_back(floor);
+  test::add_floor(s);
   return s;
 }
 
 /// A settled periodic bed of 10^4 particles (poured, then stepped until nearly at rest).
 ParticleStore settled_seed_bed() {
   Scene scene = bed_scene(kSide, kSide);
-  ParticleSource source;
-  source.region_min = {0, 0, 0};
-  source.region_max = {kSide, kSide, 0.3};
-  source.count = 10000;
-  source.radius.mean = 2.5e-3;
-  source.radius.spread = 0.5e-3;
-  scene.sources.push_back(source);
+  test::add_box_source(scene, {0, 0, 0}, {kSide, kSide, 0.3}, 10000, 2.5e-3, 0.5e-3);
   ParticleStore particles;
   create_particles(scene, particles);
   auto engine = make_host_engine(make_engine_setup(scene, particles));

@@ -48,23 +48,15 @@ struct ContactTally : IgnoreSeparated {
   }
 };
 
-struct ContactCount {
+/// Particle i's share of the contact count, or of the elastic energy when `energy` is set.
+struct ContactShare {
   ParticleView particles;
   ContactScene scene;
+  bool energy;
   GPUDEM_HD Real operator()(std::size_t i) const {
     ContactTally t;
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, t);
-    return t.contacts;
-  }
-};
-
-struct ElasticEnergy {
-  ParticleView particles;
-  ContactScene scene;
-  GPUDEM_HD Real operator()(std::size_t i) const {
-    ContactTally t;
-    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, t);
-    return t.elastic_energy;
+    return energy ? t.elastic_energy : t.contacts;
   }
 };
 

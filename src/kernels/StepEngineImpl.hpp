@@ -198,9 +198,9 @@ class StepEngineImpl final : public StepEngine {
         RotationalEnergy{velocity_inv_mass_.data(), position_radius_.data(), angular_velocity_.data()});
     d.potential_gravity = reduce_sum(
         Space{}, n, GravityEnergy{velocity_inv_mass_.data(), position_radius_.data(), setup_.gravity});
-    d.potential_elastic = reduce_sum(Space{}, n, ElasticEnergy{view, scene});
-    d.contact_count =
-        static_cast<std::uint64_t>(std::llround(reduce_sum(Space{}, n, ContactCount{view, scene})));
+    d.potential_elastic = reduce_sum(Space{}, n, ContactShare{view, scene, true});
+    d.contact_count = static_cast<std::uint64_t>(
+        std::llround(reduce_sum(Space{}, n, ContactShare{view, scene, false})));
     d.max_overlap_ratio = reduce_max(Space{}, n, Real(0), ReadValue{overlap_ratio_.data()});
     for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
       Vec3 f;

@@ -28,17 +28,8 @@ TEST_P(ContactHistory, SpringsSurviveRebuild) {
   // A small frictional bed at rest: friction carries part of the contact loads.
   Scene scene = basic_scene({0, 0, 0}, {0.05, 0.05, 0.2}, 2000, 0.2, 0.8);
   scene.domain.periodic = {true, true, false};
-  WallSettings floor;
-  floor.name = "floor";
-  floor.normal = {0, 0, 1};
-  scene.walls.push_back(floor);
-  ParticleSource source;
-  source.region_min = {0, 0, 0};
-  source.region_max = {0.05, 0.05, 0.05};
-  source.count = 300;
-  source.radius.mean = 2.5e-3;
-  source.radius.spread = 0.5e-3;
-  scene.sources.push_back(source);
+  add_floor(scene);
+  add_box_source(scene, {0, 0, 0}, {0.05, 0.05, 0.05}, 300, 2.5e-3, 0.5e-3);
   ParticleStore particles;
   create_particles(scene, particles);
   auto engine = make_engine(make_engine_setup(scene, particles));

@@ -69,10 +69,7 @@ TEST_P(Dynamics, FreeFallSymplecticEulerMatchesItsRecurrence) {
 /// A damped sphere comes to rest on a floor with overlap δ = m g / k, and the floor carries m g.
 TEST_P(Dynamics, SphereRestsOnPlaneWithStaticOverlap) {
   Scene scene = basic_scene({-1, -1, 0}, {1, 1, 1}, 1e4, 0.3, 0.5);
-  WallSettings floor;
-  floor.name = "floor";
-  floor.normal = {0, 0, 1};
-  scene.walls.push_back(floor);
+  add_floor(scene);
   const double r = 0.01;
   ParticleStore particles = single_particle(scene, {0, 0, r}, {0, 0, 0}, r);
   const double m = 1.0 / particles.velocity_inv_mass[0].w;
@@ -99,13 +96,7 @@ TEST_P(Dynamics, ElasticGasConservesEnergy) {
   scene.simulation.dt_fraction = 0.05;  // energy error of velocity Verlet scales with dt²
   scene.contact.tangential = "none";
   add_box_walls(scene);
-  ParticleSource source;
-  source.region_min = scene.domain.min;
-  source.region_max = scene.domain.max;
-  source.count = 300;
-  source.radius.mean = 4e-3;
-  source.radius.spread = 1e-3;
-  scene.sources.push_back(source);
+  add_box_source(scene, scene.domain.min, scene.domain.max, 300, 4e-3, 1e-3);
   ParticleStore particles;
   create_particles(scene, particles);
   std::mt19937_64 rng(3);
@@ -149,11 +140,7 @@ class Incline : public BackendTest {
   void measure(double theta, double friction, double& accel, double& angular_accel) {
     Scene scene = basic_scene({-100, -1, -1}, {100, 1, 1}, 1e4, 0.3, friction);
     scene.simulation.gravity = {9.81 * std::sin(theta), 0, -9.81 * std::cos(theta)};
-    WallSettings floor;
-    floor.name = "floor";
-    floor.point = {0, 0, -0.5};
-    floor.normal = {0, 0, 1};
-    scene.walls.push_back(floor);
+    add_floor(scene, -0.5);
     const double r = 0.01;
     ParticleStore particles = single_particle(scene, {0, 0, -0.5 + r}, {0, 0, 0}, r);
     auto engine = make_engine(make_engine_setup(scene, particles));
@@ -219,11 +206,7 @@ TEST_P(Rolling, ConstantTorqueStopsSphereAtClosedFormDistance) {
   Scene scene = basic_scene({-10, -1, -1}, {10, 1, 1}, 1e4, 0.3, 0.5);
   scene.materials[0].rolling_friction = mu_r;
   scene.contact.rolling = "constant_torque";
-  WallSettings floor;
-  floor.name = "floor";
-  floor.point = {0, 0, -0.5};
-  floor.normal = {0, 0, 1};
-  scene.walls.push_back(floor);
+  add_floor(scene, -0.5);
   ParticleStore particles = single_particle(scene, {0, 0, -0.5 + r}, {v0, 0, 0}, r);
   const double m = 1.0 / particles.velocity_inv_mass[0].w;
   particles.position_radius[0].z -= m * 9.81 / 1e4;  // start at the static overlap

@@ -33,17 +33,8 @@ TEST_P(Settling, BedComesToRestWithRandomPacking) {
   Scene scene = basic_scene({0, 0, 0}, {side, side, 0.3}, 2000, 0.2, 0.5);
   scene.materials[0].young = 1e6;
   scene.domain.periodic = {true, true, false};
-  WallSettings floor;
-  floor.name = "floor";
-  floor.normal = {0, 0, 1};
-  scene.walls.push_back(floor);
-  ParticleSource source;
-  source.region_min = {0, 0, 0};
-  source.region_max = {side, side, 0.3};
-  source.count = 10000;
-  source.radius.mean = 2.5e-3;
-  source.radius.spread = 0.5e-3;
-  scene.sources.push_back(source);
+  add_floor(scene);
+  add_box_source(scene, {0, 0, 0}, {side, side, 0.3}, 10000, 2.5e-3, 0.5e-3);
   ParticleStore particles;
   create_particles(scene, particles);
   ASSERT_EQ(particles.size(), 10000u);
@@ -71,7 +62,7 @@ TEST_P(Settling, BedComesToRestWithRandomPacking) {
   std::vector<double> heights;
   for (const Real4& p : particles.position_radius) heights.push_back(p.z);
   std::sort(heights.begin(), heights.end());
-  const double diameter = 2 * source.radius.mean;
+  const double diameter = 2 * scene.sources[0].radius.mean;
   const double top = heights[heights.size() * 99 / 100];
   const double lo = 4 * diameter, hi = top - 4 * diameter;
   ASSERT_GT(hi - lo, 5 * diameter);

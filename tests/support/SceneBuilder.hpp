@@ -23,6 +23,27 @@ inline Scene basic_scene(Vec3 lo, Vec3 hi, double stiffness, double restitution,
   return s;
 }
 
+/// Adds a floor of material 0: the plane z = height with normal +z.
+inline void add_floor(Scene& s, double height = 0) {
+  WallSettings floor;
+  floor.name = "floor";
+  floor.point = {0, 0, height};
+  floor.normal = {0, 0, 1};
+  s.walls.push_back(floor);
+}
+
+/// Adds a box source of `count` spheres of radius mean ± spread, material 0.
+inline void add_box_source(Scene& s, Vec3 lo, Vec3 hi, std::uint64_t count, double mean,
+                           double spread) {
+  ParticleSource source;
+  source.region_min = lo;
+  source.region_max = hi;
+  source.count = count;
+  source.radius.mean = mean;
+  source.radius.spread = spread;
+  s.sources.push_back(source);
+}
+
 /// Adds the six faces of the domain as walls of material 0, normals pointing inwards.
 inline void add_box_walls(Scene& s) {
   const Vec3 lo = s.domain.min, hi = s.domain.max;
