@@ -1,9 +1,11 @@
 // Host-backend throughput on settled beds: settles a periodic bed of 10^4 spheres, tiles it
 // in x and y to 10^4, 10^5 and 10^6 particles, and times the step loop at 1 and 2 OpenMP
-// threads. Prints a Markdown table (particle-steps/s, bytes per particle).
+// threads. Prints a Markdown table (particle-steps/s, bytes per particle). With a second
+// argument, also writes the 10^5 bed for LAMMPS (scripts/bench_vs_lammps.sh).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -96,12 +98,48 @@ void measure(const ParticleStore& bed, int tx, int ty, int threads) {
   std::fflush(stdout);
 }
 
+/// Writes `bed` as a LAMMPS data file (atom_style sphere) plus `<path>.params`, a LAMMPS
+/// include with the same time step, stiffness and damping, for a side-by-side run with
+/// pair gran/hooke/history. LAMMPS' dashpots are per unit reduced mass, so they use the
+/// reduced mass of two mean-size particles.
+void write_lammps_bed(const ParticleStore& bed, int tx, int ty, const std::string& path) {
+  const Scene scene = bed_scene(kSide * tx, kSide * ty);
+  std::FILE* data = std::fopen(path.c_str(), "w");
+  if (!data) throw std::runtime_error("cannot write " + path);
+  std::fprintf(data, "settled bed\n\n%zu atoms\n1 atom types\n\n", bed.size());
+  std::fprintf(data, "0 %.9g xlo xhi\n0 %.9g ylo yhi\n0 %.9g zlo zhi\n\nAtoms # sphere\n\n",
+               scene.domain.max.x, scene.domain.max.y, scene.domain.max.z);
+  double mean_mass = 0;
+  for (std::size_t i = 0; i < bed.size(); ++i) {
+    const Real4 p = bed.position_radius[i];
+    std::fprintf(data, "%zu 1 %.12g %.9g %.12g %.12g %.12g\n", i + 1, 2 * p.w,
+                 scene.materials[0].density, p.x, p.y, p.z);
+    mean_mass += 1 / bed.velocity_inv_mass[i].w / bed.size();
+  }
+  std::fclose(data);
+  const EngineSetup setup = make_engine_setup(scene, bed);
+  const LinearPairParams& pair = setup.pair_params[0];
+  const double reduced_mass = mean_mass / 2;
+  std::FILE* params = std::fopen((path + ".params").c_str(), "w");
+  if (!params) throw std::runtime_error("cannot write " + path + ".params");
+  std::fprintf(params,
+               "variable dt equal %.9g\nvariable kn equal %.9g\nvariable kt equal %.9g\n"
+               "variable gn equal %.9g\nvariable gt equal %.9g\nvariable mu equal %.9g\n"
+               "variable skin equal %.9g\n",
+               setup.dt, pair.stiffness, pair.tangential_stiffness,
+               2 * pair.damping_beta * std::sqrt(pair.stiffness / reduced_mass),
+               2 * pair.damping_beta * std::sqrt(pair.tangential_stiffness / reduced_mass),
+               pair.friction, setup.skin);
+  std::fclose(params);
+}
+
 }  // namespace
 }  // namespace gpudem
 
 int main(int argc, char** argv) {
   using namespace gpudem;
   const int max_exponent = argc > 1 ? std::stoi(argv[1]) : 6;
+  const std::string lammps_data = argc > 2 ? argv[2] : "";
   std::printf("settling the 10^4 seed bed...\n");
   std::fflush(stdout);
   const ParticleStore seed = settled_seed_bed();
@@ -111,6 +149,7 @@ int main(int argc, char** argv) {
   const int tiles[][2] = {{1, 1}, {5, 2}, {10, 10}};
   for (int e = 4; e <= max_exponent && e <= 6; ++e) {
     const ParticleStore bed = tile(seed, tiles[e - 4][0], tiles[e - 4][1]);
+    if (e == 5 && !lammps_data.empty()) write_lammps_bed(bed, 5, 2, lammps_data);
     for (int threads : {1, 2}) measure(bed, tiles[e - 4][0], tiles[e - 4][1], threads);
   }
   return 0;
