@@ -9,9 +9,10 @@ namespace gpudem {
 
 class Progress {
  public:
-  Progress(bool enabled, double interval_s, std::uint64_t total_steps)
+  /// `first_step`: the step the run starts from (a restart's checkpoint step).
+  Progress(bool enabled, double interval_s, std::uint64_t total_steps, std::uint64_t first_step = 0)
       : enabled_(enabled), interval_(interval_s), total_(total_steps),
-        start_(Clock::now()), last_(start_) {}
+        start_(Clock::now()), last_(start_), last_step_(first_step) {}
 
   /// Prints when the interval has passed or `force` is set.
   void update(double time, std::uint64_t step, std::size_t particles, bool force = false) {
@@ -43,7 +44,7 @@ class Progress {
   std::uint64_t total_;
   Clock::time_point start_;
   Clock::time_point last_;
-  std::uint64_t last_step_ = 0;
+  std::uint64_t last_step_;
 };
 
 }  // namespace gpudem

@@ -11,6 +11,7 @@ struct RunOptions {
   std::string scene_file;
   std::vector<std::string> overrides;  ///< --set key=value, in order
   std::string output_dir;              ///< --output-dir (empty: the scene's output.dir)
+  std::string restart_file;            ///< --restart: checkpoint to continue from (empty: none)
   BackendChoice backend = BackendChoice::Auto;
   bool check_only = false;             ///< --check
   bool quiet = false;                  ///< --quiet

@@ -1,12 +1,15 @@
 #include "app/Runner.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "app/Progress.hpp"
+#include "comm/Checkpoint.hpp"
 #include "comm/OutputDirectory.hpp"
 #include "comm/SnapshotWriter.hpp"
 #include "comm/TimeSeriesWriter.hpp"
@@ -44,6 +47,18 @@ std::unique_ptr<StepEngine> make_engine(BackendChoice choice, const EngineSetup&
 /// Steps between two events `every` seconds apart (at least 1).
 std::uint64_t steps_between(double every, double dt) {
   return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(every / dt)));
+}
+
+/// Steps to reach end_time: ⌈end_time / dt⌉.
+std::uint64_t step_count(double end_time, double dt) {
+  return static_cast<std::uint64_t>(std::ceil(end_time / dt - 1e-9));
+}
+
+/// Shortest decimal text that reads back to exactly `value`.
+std::string exact(double value) {
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof text, value);
+  return std::string(text, result.ptr);
 }
 
 std::vector<std::string> timeseries_columns(const Scene& scene) {
@@ -92,37 +107,60 @@ void print_summary(const Scene& scene, const ParticleStore& particles, const Eng
   std::fflush(stdout);
 }
 
-/// The time loop with its output schedule.
+/// Where the time loop starts: step 0 of a new run, or a checkpoint's step with the snapshot
+/// series written up to it.
+struct LoopStart {
+  std::uint64_t step = 0;
+  bool resumed = false;
+  std::vector<XdmfSnapshot> snapshots;
+};
+
+/// A restarted run keeps the time-series rows up to its checkpoint's step.
+std::optional<SeriesResume> series_resume(const LoopStart& start) {
+  if (!start.resumed) return std::nullopt;
+  return SeriesResume{"step", static_cast<double>(start.step)};
+}
+
+/// The time loop with its output and checkpoint schedule.
 class TimeLoop {
  public:
-  TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine, double dt, bool quiet)
-      : scene_(scene), mpi_(mpi), engine_(engine), dt_(dt),
-        total_steps_(static_cast<std::uint64_t>(std::ceil(scene.simulation.end_time / dt - 1e-9))),
-        snapshot_every_(scene.output.every > 0 ? steps_between(scene.output.every, dt)
+  TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine, const EngineSetup& setup,
+           bool quiet, const LoopStart& start)
+      : scene_(scene), mpi_(mpi), engine_(engine), dt_(setup.dt), skin_(setup.skin),
+        first_step_(start.step),
+        total_steps_(step_count(scene.simulation.end_time, setup.dt)),
+        snapshot_every_(scene.output.every > 0 ? steps_between(scene.output.every, dt_)
                                                : total_steps_),
         series_every_(scene.output.timeseries_every > 0
-                          ? steps_between(scene.output.timeseries_every, dt)
+                          ? steps_between(scene.output.timeseries_every, dt_)
                           : std::max<std::uint64_t>(1, total_steps_ / 200)),
+        checkpoint_every_(scene.checkpoint.every > 0 ? steps_between(scene.checkpoint.every, dt_)
+                                                     : 0),
         snapshots_(mpi.comm(), scene.output.dir),
-        series_(scene.output.dir + "/timeseries.csv", timeseries_columns(scene), mpi.is_root()),
-        progress_(!quiet && mpi.is_root(), kProgressInterval, total_steps_) {}
+        series_(scene.output.dir + "/timeseries.csv", timeseries_columns(scene), mpi.is_root(),
+                series_resume(start)),
+        progress_(!quiet && mpi.is_root(), kProgressInterval, total_steps_, start.step),
+        resumed_(start.resumed) {
+    if (resumed_) snapshots_.resume(start.snapshots);
+  }
 
   std::uint64_t total_steps() const { return total_steps_; }
 
   int run() {
-    record(0, true);
-    for (std::uint64_t step = 1; step <= total_steps_; ++step) {
+    if (!resumed_) record(first_step_, true);
+    for (std::uint64_t step = first_step_ + 1; step <= total_steps_; ++step) {
       engine_.step();
       HealthFailure failure;
       if (engine_.find_unhealthy(kOverlapLimit, failure)) return stop_unstable(step, failure);
       const bool last = step == total_steps_;
       record(step, last || step % snapshot_every_ == 0);
+      if (checkpoint_every_ > 0 && (last || step % checkpoint_every_ == 0)) checkpoint(step);
       progress_.update(step * dt_, step, engine_.particle_count(), last);
     }
     if (mpi_.is_root())
       std::printf("done: %llu steps in %.2f s; %llu particles removed (left the domain); output "
                   "in %s (open %s in ParaView)\n",
-                  static_cast<unsigned long long>(total_steps_), progress_.elapsed(),
+                  static_cast<unsigned long long>(total_steps_ - first_step_), progress_.elapsed(),
                   static_cast<unsigned long long>(engine_.removed_count()),
                   scene_.output.dir.c_str(), snapshots_.xmf_path().c_str());
     return kExitOk;
@@ -148,6 +186,23 @@ class TimeLoop {
     snapshots_.write(host_, time, step);
   }
 
+  /// Everything the step needs to be continued bit-for-bit (Checkpoint.hpp), after the
+  /// step's snapshot so that the snapshot table includes it.
+  void checkpoint(std::uint64_t step) {
+    Checkpoint c;
+    engine_.get_particles(c.particles);
+    engine_.get_list_positions(c.list_position_radius);
+    engine_.get_contact_history(c.history);
+    c.snapshots = snapshots_.table();
+    c.time = step * dt_;
+    c.step = step;
+    c.removed = engine_.removed_count();
+    c.dt = dt_;
+    c.dt_fraction = scene_.simulation.dt_auto ? scene_.simulation.dt_fraction : 0.0;
+    c.skin = skin_;
+    write_checkpoint(mpi_.comm(), scene_.output.dir, c);
+  }
+
   int stop_unstable(std::uint64_t step, const HealthFailure& f) {
     write_snapshot(step * dt_, step);
     if (mpi_.is_root())
@@ -169,25 +224,87 @@ class TimeLoop {
   const MpiContext& mpi_;
   StepEngine& engine_;
   double dt_;
+  double skin_;
+  std::uint64_t first_step_;
   std::uint64_t total_steps_;
   std::uint64_t snapshot_every_;
   std::uint64_t series_every_;
+  std::uint64_t checkpoint_every_;  ///< 0: no checkpoints
   SnapshotWriter snapshots_;
   TimeSeriesWriter series_;
   Progress progress_;
+  bool resumed_;
   ParticleStore host_;
   std::uint64_t reported_removed_ = 0;
 };
+
+/// A restart continues with the checkpoint's time step and skin (DESIGN §8): an explicit
+/// simulation.dt must equal the stored step; with dt = "auto" the stored step is used (it was
+/// computed from the particles the run started with) provided dt_fraction is unchanged. An
+/// automatic skin is the stored one. The checkpoint must lie before end_time.
+void adopt_checkpoint_step(EngineSetup& setup, const Scene& scene, const Checkpoint& c,
+                           const std::string& path) {
+  const SimulationSettings& sim = scene.simulation;
+  const std::string written = "checkpoint '" + path + "' was written with ";
+  const std::string fix = "; a restart continues with the same time step: set simulation.dt = " +
+                          exact(c.dt);
+  if (!sim.dt_auto && sim.dt != c.dt)
+    throw InputError(scene.file, 0, "simulation.dt",
+                     written + "dt = " + exact(c.dt) + " s but the scene gives " + exact(sim.dt) +
+                         " s" + fix);
+  if (sim.dt_auto && c.dt_fraction == 0)
+    throw InputError(scene.file, 0, "simulation.dt",
+                     written + "an explicit dt = " + exact(c.dt) + " s" + fix);
+  if (sim.dt_auto && sim.dt_fraction != c.dt_fraction)
+    throw InputError(scene.file, 0, "simulation.dt_fraction",
+                     written + "dt_fraction = " + exact(c.dt_fraction) + " but the scene gives " +
+                         exact(sim.dt_fraction) + fix);
+  setup.dt = c.dt;
+  if (scene.neighbor.skin <= 0) setup.skin = c.skin;
+  if (c.step >= step_count(sim.end_time, c.dt))
+    throw InputError(scene.file, 0, "simulation.end_time",
+                     "checkpoint '" + path + "' is at t = " + exact(c.time) +
+                         " s, not before end_time = " + exact(sim.end_time) +
+                         " s: nothing to continue");
+}
+
+/// Hands the particles to the engine: a new run's evaluate their forces; a checkpoint's are
+/// restored with their forces, neighbour list order and contact history.
+void start_engine(StepEngine& engine, const ParticleStore& particles, const Checkpoint* checkpoint,
+                  const std::string& path) {
+  if (!checkpoint) {
+    engine.set_particles(particles);
+    return;
+  }
+  try {
+    engine.restore_particles(particles, checkpoint->list_position_radius, checkpoint->removed);
+    engine.set_contact_history(checkpoint->history);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(path, 0, "", e.what());
+  }
+}
 
 }  // namespace
 
 int run_scene(const RunOptions& options, const MpiContext& mpi) {
   Scene scene = load_scene(options.scene_file, options.overrides);
   if (!options.output_dir.empty()) scene.output.dir = options.output_dir;
-  ParticleStore particles;
-  create_particles(scene, particles);
-  const EngineSetup setup = make_engine_setup(scene, particles);
-  const auto steps = static_cast<std::uint64_t>(std::ceil(scene.simulation.end_time / setup.dt - 1e-9));
+  std::optional<Checkpoint> checkpoint;
+  ParticleStore created;
+  if (!options.restart_file.empty()) {
+    checkpoint = read_checkpoint(options.restart_file);
+    check_checkpoint_fits_scene(*checkpoint, options.restart_file, scene);
+  } else {
+    create_particles(scene, created);
+  }
+  const ParticleStore& particles = checkpoint ? checkpoint->particles : created;
+  EngineSetup setup = make_engine_setup(scene, particles);
+  if (checkpoint) adopt_checkpoint_step(setup, scene, *checkpoint, options.restart_file);
+  const std::uint64_t steps = step_count(scene.simulation.end_time, setup.dt);
+  const bool banner = !options.quiet && mpi.is_root();
+  if (checkpoint && mpi.is_root() && (banner || options.check_only))
+    std::printf("restart from %s at t = %.6g s (step %llu)\n", options.restart_file.c_str(),
+                checkpoint->time, static_cast<unsigned long long>(checkpoint->step));
   if (options.check_only) {
     if (mpi.is_root()) {
       print_summary(scene, particles, setup, nullptr, steps);
@@ -196,10 +313,12 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
     return kExitOk;
   }
   std::unique_ptr<StepEngine> engine = make_engine(options.backend, setup);
+  start_engine(*engine, particles, checkpoint ? &*checkpoint : nullptr, options.restart_file);
   prepare_output_directory(scene.output.dir);
-  engine->set_particles(particles);
-  if (!options.quiet && mpi.is_root()) print_summary(scene, particles, setup, engine.get(), steps);
-  TimeLoop loop(scene, mpi, *engine, setup.dt, options.quiet);
+  if (banner) print_summary(scene, particles, setup, engine.get(), steps);
+  LoopStart start;
+  if (checkpoint) start = {checkpoint->step, true, checkpoint->snapshots};
+  TimeLoop loop(scene, mpi, *engine, setup, options.quiet, start);
   return loop.run();
 }
 

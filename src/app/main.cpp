@@ -29,6 +29,10 @@ int main(int argc, char** argv) {
                  "override a scene key, e.g. --set simulation.end_time=0.5 (repeatable)")
       ->type_name("KEY=VALUE");
   app.add_option("--output-dir", options.output_dir, "output directory (overrides output.dir)");
+  app.add_option("--restart", options.restart_file,
+                 "continue from a checkpoint: particles, contact history and time come from FILE, "
+                 "everything else from the scene")
+      ->type_name("FILE");
   const std::map<std::string, gpudem::BackendChoice> backends{
       {"auto", gpudem::BackendChoice::Auto},
       {"host", gpudem::BackendChoice::Host},

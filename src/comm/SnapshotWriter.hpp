@@ -2,13 +2,14 @@
 /// Particle snapshots: one HDF5 file per snapshot written collectively through the MPI-IO
 /// driver (each rank writes its slice at an MPI_Exscan offset), plus one XDMF temporal
 /// collection (`<basename>.xmf`) rewritten after every snapshot so ParaView can open the run
-/// at any time.
+/// at any time. A restarted run resumes the series where its checkpoint left it.
 #include <mpi.h>
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "comm/XdmfDocument.hpp"
 #include "core/ParticleStore.hpp"
 
 namespace gpudem {
@@ -26,6 +27,14 @@ class SnapshotWriter {
   const std::string& xmf_path() const { return xmf_path_; }
   /// Paths of the snapshot files written so far.
   const std::vector<std::string>& files() const { return files_; }
+  /// The snapshots written so far as the .xmf lists them (file names relative to the folder).
+  std::vector<XdmfSnapshot> table() const;
+
+  /// Continues the series of an earlier writer whose table() was `table`: numbering goes on
+  /// after its last snapshot and the .xmf is rewritten to list exactly these snapshots (any
+  /// written after them are dropped from it, and overwritten as numbering reaches them).
+  /// Collective.
+  void resume(const std::vector<XdmfSnapshot>& table);
 
  private:
   /// Rank 0 rewrites the .xmf (temporary file, then rename) listing every snapshot so far;

@@ -1,4 +1,6 @@
 add_library(gpudem_comm STATIC
+  comm/Checkpoint.cpp
+  comm/Hdf5Io.cpp
   comm/MpiContext.cpp
   comm/OutputDirectory.cpp
   comm/SnapshotWriter.cpp

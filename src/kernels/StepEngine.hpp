@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/ContactHistory.hpp"
 #include "core/ParticleStore.hpp"
 #include "core/Scene.hpp"
 #include "kernels/LinearContact.hpp"
@@ -56,8 +57,30 @@ class StepEngine {
   /// Replaces the engine's particles with `particles` (copied into the engine's space) and
   /// evaluates the initial forces.
   virtual void set_particles(const ParticleStore& particles) = 0;
-  /// Copies the current particle state back to the host.
+  /// Copies the current particle state back to the host, in the engine's order, with the
+  /// forces and torques of the last evaluation.
   virtual void get_particles(ParticleStore& particles) const = 0;
+
+  /// The tangential springs of every contact whose spring is not zero, keyed by global ids.
+  virtual void get_contact_history(ContactHistory& history) const = 0;
+  /// Gives every contact listed in `history` its spring and every other contact a zero
+  /// spring; call after set_particles or restore_particles. Throws std::invalid_argument for
+  /// an entry naming an unknown particle, a pair that is not in the neighbour list, or a wall
+  /// index beyond the walls. Forces are not re-evaluated.
+  virtual void set_contact_history(const ContactHistory& history) = 0;
+
+  /// Positions and radii at the last neighbour-list build, in the order of get_particles.
+  virtual void get_list_positions(std::vector<Real4>& position_radius) const = 0;
+  /// Replaces the particles to continue a saved run bit-for-bit: `particles` and
+  /// `list_positions` as get_particles and get_list_positions gave them. Unlike
+  /// set_particles it keeps the forces and torques of `particles` (evaluated from half-step
+  /// velocities that the saved state no longer holds) and builds the neighbour list at the
+  /// positions of the saved engine's last build, so that list, the next rebuild and every sum
+  /// follow the saved engine's order. Springs are zero until set_contact_history;
+  /// removed_count() continues from `removed`.
+  virtual void restore_particles(const ParticleStore& particles,
+                                 const std::vector<Real4>& list_positions,
+                                 std::uint64_t removed) = 0;
   virtual std::size_t particle_count() const = 0;
 
   /// Advances one time step dt.

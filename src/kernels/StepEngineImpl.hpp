@@ -122,20 +122,28 @@ class StepEngineImpl final : public StepEngine {
   }
 
   void set_particles(const ParticleStore& p) override {
-    position_radius_.upload(p.position_radius);
-    velocity_inv_mass_.upload(p.velocity_inv_mass);
-    angular_velocity_.upload(p.angular_velocity);
-    id_.upload(p.id);
-    material_.upload(p.material);
-    const std::size_t n = p.size();
-    force_.resize(n);
-    torque_.resize(n);
-    overlap_ratio_.resize(n);
-    wall_spring_.resize(n * wall_count());
-    parallel_for(Space{}, wall_spring_.size(), Fill<Vec3>{wall_spring_.data(), Vec3{}});
+    upload_particles(p);
     has_list_ = false;
     rebuild();
     compute_forces();
+  }
+
+  void restore_particles(const ParticleStore& p, const std::vector<Real4>& list_positions,
+                         std::uint64_t removed) override {
+    if (list_positions.size() != p.size() || p.force.size() != p.size() ||
+        p.torque.size() != p.size())
+      throw std::invalid_argument("restore_particles: arrays differ in length");
+    upload_particles(p);
+    position_at_build_.upload(list_positions);
+    DeviceArray<Vec3, Space> saved_force, saved_torque;
+    saved_force.upload(p.force);
+    saved_torque.upload(p.torque);
+    build_list_at_saved_positions(saved_force, saved_torque);
+    compute_forces();  // for the overlap ratios; the forces and springs it leaves are replaced
+    force_.swap(saved_force);
+    torque_.swap(saved_torque);
+    zero_springs();
+    removed_ = removed;
   }
 
   void get_particles(ParticleStore& p) const override {
@@ -146,6 +154,24 @@ class StepEngineImpl final : public StepEngine {
     torque_.download(p.torque);
     id_.download(p.id);
     material_.download(p.material);
+  }
+
+  void get_contact_history(ContactHistory& history) const override {
+    std::vector<Vec3> pair_spring, wall_spring;
+    pair_spring_.download(pair_spring);
+    wall_spring_.download(wall_spring);
+    history = collect_history(contact_slots(), pair_spring, wall_spring);
+  }
+
+  void set_contact_history(const ContactHistory& history) override {
+    std::vector<Vec3> pair_spring, wall_spring;
+    scatter_history(contact_slots(), history, pair_spring, wall_spring);
+    pair_spring_.upload(pair_spring);
+    wall_spring_.upload(wall_spring);
+  }
+
+  void get_list_positions(std::vector<Real4>& position_radius) const override {
+    position_at_build_.download(position_radius);
   }
 
   std::size_t particle_count() const override { return id_.size(); }
@@ -227,6 +253,66 @@ class StepEngineImpl final : public StepEngine {
 
  private:
   std::size_t size() const { return id_.size(); }
+
+  /// Uploads the particle arrays and sizes the per-particle work arrays; wall springs zero.
+  void upload_particles(const ParticleStore& p) {
+    position_radius_.upload(p.position_radius);
+    velocity_inv_mass_.upload(p.velocity_inv_mass);
+    angular_velocity_.upload(p.angular_velocity);
+    id_.upload(p.id);
+    material_.upload(p.material);
+    const std::size_t n = p.size();
+    force_.resize(n);
+    torque_.resize(n);
+    overlap_ratio_.resize(n);
+    wall_spring_.resize(n * wall_count());
+    parallel_for(Space{}, wall_spring_.size(), Fill<Vec3>{wall_spring_.data(), Vec3{}});
+  }
+
+  /// The neighbour list of a restored state, built at the saved positions of the last build
+  /// (position_at_build_): binning them reproduces the saved cell order, so the permutation is
+  /// the identity for a state saved by this engine; it is applied anyway, to the forces too,
+  /// so any order stays consistent.
+  void build_list_at_saved_positions(DeviceArray<Vec3, Space>& force,
+                                     DeviceArray<Vec3, Space>& torque) {
+    const std::size_t n = size();
+    previous_index_.resize(n);
+    cells_.bin(position_at_build_.data(), n, setup_.box, setup_.skin);
+    reorder(cells_.order(), n);
+    permute_array(cells_.order(), n, position_at_build_);
+    permute_array(cells_.order(), n, force);
+    permute_array(cells_.order(), n, torque);
+    neighbors_.build(cells_, position_at_build_.data(), n, setup_.box, setup_.skin);
+    pair_spring_.resize(neighbors_.pairs_kept());
+    zero_springs();
+    has_list_ = true;
+  }
+
+  void zero_springs() {
+    parallel_for(Space{}, pair_spring_.size(), Fill<Vec3>{pair_spring_.data(), Vec3{}});
+    parallel_for(Space{}, wall_spring_.size(), Fill<Vec3>{wall_spring_.data(), Vec3{}});
+  }
+
+  /// Host copies of the ids and the neighbour list, for contact-history conversions.
+  ContactSlots contact_slots() const {
+    ContactSlots slots;
+    id_.download(slots.id);
+    slots.offsets = download_raw(neighbors_.offsets(), has_list_ ? size() + 1 : 0);
+    slots.neighbors = download_raw(neighbors_.neighbors(), has_list_ ? neighbors_.pairs_kept() : 0);
+    if (slots.offsets.empty()) slots.offsets.assign(size() + 1, 0);
+    slots.wall_count = wall_count();
+    return slots;
+  }
+
+  /// Host copy of n values at `data` in Space memory.
+  template <class T>
+  static std::vector<T> download_raw(const T* data, std::size_t n) {
+    DeviceArray<T, Space> copy(n);
+    parallel_for(Space{}, n, CopyArray<T>{data, copy.data()});
+    std::vector<T> host;
+    copy.download(host);
+    return host;
+  }
 
   ParticleView particle_view() const {
     return ParticleView{position_radius_.data(), velocity_inv_mass_.data(),

@@ -1,0 +1,375 @@
+#include "comm/Checkpoint.hpp"
+
+#include <fcntl.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+#include "comm/Hdf5Io.hpp"
+#include "core/InputError.hpp"
+
+namespace gpudem {
+namespace {
+
+static_assert(sizeof(Real4) == 4 * sizeof(Real) && sizeof(Vec3) == 3 * sizeof(Real),
+              "checkpoint rows assume Real4 and Vec3 hold their values unpadded");
+
+// ---- writing ------------------------------------------------------------------------------
+
+FieldSource real_rows(const char* name, const void* data, hsize_t components) {
+  return {name, data, native_type<Real>(), H5T_IEEE_F64LE, components, components, 0};
+}
+
+FieldSource id_rows(const char* name, const ParticleId* data) {
+  return {name, data, native_type<ParticleId>(), H5T_STD_U64LE, 1, 1, 0};
+}
+
+FieldSource index_rows(const char* name, const std::uint32_t* data) {
+  return {name, data, native_type<std::uint32_t>(), H5T_STD_U32LE, 1, 1, 0};
+}
+
+void check_lengths(const Checkpoint& c) {
+  const ParticleStore& p = c.particles;
+  const std::size_t n = p.size();
+  if (p.position_radius.size() != n || p.velocity_inv_mass.size() != n ||
+      p.angular_velocity.size() != n || p.force.size() != n || p.torque.size() != n ||
+      p.material.size() != n || c.list_position_radius.size() != n)
+    throw std::logic_error("checkpoint: particle arrays differ in length");
+  const ContactHistory& h = c.history;
+  if (h.pair_partner.size() != h.pair_owner.size() || h.pair_spring.size() != h.pair_owner.size() ||
+      h.wall_index.size() != h.wall_owner.size() || h.wall_spring.size() != h.wall_owner.size())
+    throw std::logic_error("checkpoint: contact history arrays differ in length");
+}
+
+void write_particles(MPI_Comm comm, const ParallelFile& file, const Checkpoint& c) {
+  const ParticleStore& p = c.particles;
+  const Slice slice = global_slice(comm, p.size());
+  for (const FieldSource& field :
+       {real_rows("position_radius", p.position_radius.data(), 4),
+        real_rows("velocity_inv_mass", p.velocity_inv_mass.data(), 4),
+        real_rows("angular_velocity", p.angular_velocity.data(), 3),
+        real_rows("force", p.force.data(), 3), real_rows("torque", p.torque.data(), 3),
+        id_rows("id", p.id.data()), index_rows("material", p.material.data()),
+        real_rows("list_position_radius", c.list_position_radius.data(), 4)})
+    file.write_dataset(field, slice);
+}
+
+void write_history(MPI_Comm comm, const ParallelFile& file, const ContactHistory& h) {
+  const Slice pairs = global_slice(comm, h.pair_owner.size());
+  file.write_dataset(id_rows("pair_owner", h.pair_owner.data()), pairs);
+  file.write_dataset(id_rows("pair_partner", h.pair_partner.data()), pairs);
+  file.write_dataset(real_rows("pair_spring", h.pair_spring.data(), 3), pairs);
+  const Slice walls = global_slice(comm, h.wall_owner.size());
+  file.write_dataset(id_rows("wall_owner", h.wall_owner.data()), walls);
+  file.write_dataset(index_rows("wall_index", h.wall_index.data()), walls);
+  file.write_dataset(real_rows("wall_spring", h.wall_spring.data(), 3), walls);
+}
+
+/// The snapshot table, rank 0's rows only; file names as null-terminated fixed-length strings.
+void write_snapshot_table(MPI_Comm comm, const H5Calls& h5, const ParallelFile& file,
+                          const std::vector<XdmfSnapshot>& table) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const std::vector<XdmfSnapshot> rows = rank == 0 ? table : std::vector<XdmfSnapshot>{};
+  const Slice slice = global_slice(comm, rows.size());
+  std::uint64_t local_width = 1, width = 1;
+  for (const XdmfSnapshot& s : rows)
+    local_width = std::max<std::uint64_t>(local_width, s.h5_file.size() + 1);
+  MPI_Allreduce(&local_width, &width, 1, MPI_UINT64_T, MPI_MAX, comm);
+  std::vector<char> names(rows.size() * width, '\0');
+  std::vector<double> times;
+  std::vector<std::uint64_t> counts;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    std::memcpy(names.data() + k * width, rows[k].h5_file.data(), rows[k].h5_file.size());
+    times.push_back(rows[k].time);
+    counts.push_back(rows[k].count);
+  }
+  H5Handle text = h5.handle(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy(snapshot_file)");
+  h5.check(H5Tset_size(text.id(), width), "H5Tset_size(snapshot_file)");
+  file.write_dataset({"snapshot_file", names.data(), text.id(), text.id(), 1, 1, 0}, slice);
+  file.write_dataset(real_rows("snapshot_time", times.data(), 1), slice);
+  file.write_dataset(id_rows("snapshot_count", counts.data()), slice);
+}
+
+void write_attributes(const ParallelFile& file, const Checkpoint& c) {
+  file.write_attribute("format_version", H5T_STD_U32LE, kCheckpointFormatVersion);
+  file.write_attribute("time", H5T_IEEE_F64LE, c.time);
+  file.write_attribute("step", H5T_STD_U64LE, c.step);
+  file.write_attribute("removed", H5T_STD_U64LE, c.removed);
+  file.write_attribute("dt", H5T_IEEE_F64LE, c.dt);
+  file.write_attribute("dt_fraction", H5T_IEEE_F64LE, c.dt_fraction);
+  file.write_attribute("skin", H5T_IEEE_F64LE, c.skin);
+}
+
+/// fsync on a file or directory; returns false when it cannot be done.
+bool sync_path(const std::string& path, int flags) {
+  const int fd = ::open(path.c_str(), flags);
+  if (fd < 0) return false;
+  const bool synced = ::fsync(fd) == 0;
+  return ::close(fd) == 0 && synced;
+}
+
+/// Puts the complete temporary file in place of the checkpoint: its data reach the disk
+/// before the rename, and the rename before this returns. Returns what went wrong, or "".
+std::string publish(const std::string& temporary, const std::string& path) {
+  if (!sync_path(temporary, O_RDONLY)) return "cannot sync '" + temporary + "'";
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) return "cannot rename '" + temporary + "' to '" + path + "': " + ec.message();
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  if (!sync_path(dir.empty() ? "." : dir, O_RDONLY | O_DIRECTORY))
+    return "cannot sync directory of '" + path + "'";
+  return {};
+}
+
+// ---- reading ------------------------------------------------------------------------------
+
+/// Turns HDF5's own error printing off for its lifetime: read failures are reported as
+/// InputError messages instead of library traces.
+class QuietHdf5 {
+ public:
+  QuietHdf5() {
+    H5Eget_auto2(H5E_DEFAULT, &print_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, print_, data_); }
+  QuietHdf5(const QuietHdf5&) = delete;
+  QuietHdf5& operator=(const QuietHdf5&) = delete;
+
+ private:
+  H5E_auto2_t print_ = nullptr;
+  void* data_ = nullptr;
+};
+
+/// Typed, checked reads of one checkpoint file; every problem is an InputError naming it.
+class Reader {
+ public:
+  explicit Reader(std::string path) : path_(std::move(path)), file_(open()) {}
+
+  [[noreturn]] void reject(const std::string& what) const { throw InputError(path_, 0, "", what); }
+
+  /// A scalar attribute stored with type `file_type`.
+  template <class T>
+  T attribute(const char* name, hid_t file_type) const {
+    if (H5Aexists(file_.id(), name) <= 0) reject(std::string("missing attribute '") + name + "'");
+    H5Handle attribute(H5Aopen(file_.id(), name, H5P_DEFAULT), H5Aclose);
+    H5Handle type(H5Aget_type(attribute.id()), H5Tclose);
+    H5Handle space(H5Aget_space(attribute.id()), H5Sclose);
+    if (H5Tequal(type.id(), file_type) <= 0 || H5Sget_simple_extent_npoints(space.id()) != 1)
+      reject(std::string("attribute '") + name + "' is not a scalar of the expected type");
+    T value{};
+    if (H5Aread(attribute.id(), native_type<T>(), &value) < 0)
+      reject(std::string("cannot read attribute '") + name + "'");
+    return value;
+  }
+
+  /// Dataset `name` as rows of type Row, each sizeof(Row)/sizeof(Value) values stored with
+  /// type `file_type` (1-D for one value per row, else rows × values).
+  template <class Row, class Value>
+  std::vector<Row> rows(const char* name, hid_t file_type) const {
+    static_assert(sizeof(Row) % sizeof(Value) == 0, "a row holds whole values");
+    constexpr hsize_t components = sizeof(Row) / sizeof(Value);
+    H5Handle dataset = open_dataset(name);
+    H5Handle type(H5Dget_type(dataset.id()), H5Tclose);
+    if (H5Tequal(type.id(), file_type) <= 0)
+      reject(std::string("dataset '") + name + "' has the wrong value type");
+    std::vector<Row> out(row_count(dataset.id(), name, components));
+    if (!out.empty() &&
+        H5Dread(dataset.id(), native_type<Value>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+      reject(std::string("cannot read dataset '") + name + "'");
+    return out;
+  }
+
+  /// A 1-D dataset of fixed-length strings.
+  std::vector<std::string> strings(const char* name) const {
+    H5Handle dataset = open_dataset(name);
+    H5Handle type(H5Dget_type(dataset.id()), H5Tclose);
+    if (H5Tget_class(type.id()) != H5T_STRING || H5Tis_variable_str(type.id()) != 0)
+      reject(std::string("dataset '") + name + "' does not hold fixed-length strings");
+    const std::size_t width = H5Tget_size(type.id());
+    const hsize_t n = row_count(dataset.id(), name, 1);
+    std::vector<char> text(n * width);
+    if (n > 0 && H5Dread(dataset.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()) < 0)
+      reject(std::string("cannot read dataset '") + name + "'");
+    std::vector<std::string> out;
+    for (hsize_t k = 0; k < n; ++k) {
+      const char* first = text.data() + k * width;
+      out.emplace_back(first, std::find(first, first + width, '\0'));
+    }
+    return out;
+  }
+
+ private:
+  H5Handle open() const {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path_, ec)) reject("no such checkpoint file");
+    H5Handle file(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+    if (file.id() < 0) reject("not a readable HDF5 file");
+    return file;
+  }
+
+  H5Handle open_dataset(const char* name) const {
+    if (H5Lexists(file_.id(), name, H5P_DEFAULT) <= 0)
+      reject(std::string("missing dataset '") + name + "'");
+    H5Handle dataset(H5Dopen2(file_.id(), name, H5P_DEFAULT), H5Dclose);
+    if (dataset.id() < 0) reject(std::string("'") + name + "' is not a dataset");
+    return dataset;
+  }
+
+  /// Rows of a dataset that must be 1-D (components 1) or rows × components.
+  hsize_t row_count(hid_t dataset, const char* name, hsize_t components) const {
+    H5Handle space(H5Dget_space(dataset), H5Sclose);
+    const int rank = H5Sget_simple_extent_ndims(space.id());
+    hsize_t dims[2] = {0, 0};
+    if (rank != (components > 1 ? 2 : 1) ||
+        H5Sget_simple_extent_dims(space.id(), dims, nullptr) < 0 ||
+        (components > 1 && dims[1] != components))
+      reject(
+          std::string("dataset '") + name + "' must have " +
+          (components > 1 ? std::to_string(components) + " columns" : std::string("one column")));
+    return dims[0];
+  }
+
+  std::string path_;
+  H5Handle file_;
+};
+
+/// Rejects datasets of one group whose lengths differ from the first one's.
+void check_same_length(const Reader& reader,
+                       const std::vector<std::pair<const char*, std::size_t>>& group) {
+  for (const auto& [name, length] : group)
+    if (length != group.front().second)
+      reader.reject(std::string("dataset '") + name + "' has " + std::to_string(length) +
+                    " rows but '" + group.front().first + "' has " +
+                    std::to_string(group.front().second));
+}
+
+void read_particles(const Reader& r, Checkpoint& c) {
+  ParticleStore& p = c.particles;
+  p.id = r.rows<ParticleId, ParticleId>("id", H5T_STD_U64LE);
+  p.position_radius = r.rows<Real4, Real>("position_radius", H5T_IEEE_F64LE);
+  p.velocity_inv_mass = r.rows<Real4, Real>("velocity_inv_mass", H5T_IEEE_F64LE);
+  p.angular_velocity = r.rows<Vec3, Real>("angular_velocity", H5T_IEEE_F64LE);
+  p.force = r.rows<Vec3, Real>("force", H5T_IEEE_F64LE);
+  p.torque = r.rows<Vec3, Real>("torque", H5T_IEEE_F64LE);
+  p.material = r.rows<MaterialId, MaterialId>("material", H5T_STD_U32LE);
+  c.list_position_radius = r.rows<Real4, Real>("list_position_radius", H5T_IEEE_F64LE);
+  check_same_length(r, {{"id", p.id.size()},
+                        {"position_radius", p.position_radius.size()},
+                        {"velocity_inv_mass", p.velocity_inv_mass.size()},
+                        {"angular_velocity", p.angular_velocity.size()},
+                        {"force", p.force.size()},
+                        {"torque", p.torque.size()},
+                        {"material", p.material.size()},
+                        {"list_position_radius", c.list_position_radius.size()}});
+  const auto positive = [](Real v) { return std::isfinite(v) && v > 0; };
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!positive(p.position_radius[i].w) || !positive(p.velocity_inv_mass[i].w))
+      r.reject("particle id " + std::to_string(p.id[i]) +
+               " has a radius or inverse mass that is not finite and > 0");
+}
+
+void read_history(const Reader& r, ContactHistory& h) {
+  h.pair_owner = r.rows<ParticleId, ParticleId>("pair_owner", H5T_STD_U64LE);
+  h.pair_partner = r.rows<ParticleId, ParticleId>("pair_partner", H5T_STD_U64LE);
+  h.pair_spring = r.rows<Vec3, Real>("pair_spring", H5T_IEEE_F64LE);
+  check_same_length(r, {{"pair_owner", h.pair_owner.size()},
+                        {"pair_partner", h.pair_partner.size()},
+                        {"pair_spring", h.pair_spring.size()}});
+  h.wall_owner = r.rows<ParticleId, ParticleId>("wall_owner", H5T_STD_U64LE);
+  h.wall_index = r.rows<std::uint32_t, std::uint32_t>("wall_index", H5T_STD_U32LE);
+  h.wall_spring = r.rows<Vec3, Real>("wall_spring", H5T_IEEE_F64LE);
+  check_same_length(r, {{"wall_owner", h.wall_owner.size()},
+                        {"wall_index", h.wall_index.size()},
+                        {"wall_spring", h.wall_spring.size()}});
+}
+
+void read_snapshot_table(const Reader& r, std::vector<XdmfSnapshot>& table) {
+  const std::vector<std::string> files = r.strings("snapshot_file");
+  const std::vector<double> times = r.rows<double, double>("snapshot_time", H5T_IEEE_F64LE);
+  const std::vector<std::uint64_t> counts =
+      r.rows<std::uint64_t, std::uint64_t>("snapshot_count", H5T_STD_U64LE);
+  check_same_length(r, {{"snapshot_file", files.size()},
+                        {"snapshot_time", times.size()},
+                        {"snapshot_count", counts.size()}});
+  for (std::size_t k = 0; k < files.size(); ++k) table.push_back({files[k], times[k], counts[k]});
+}
+
+void read_attributes(const Reader& r, Checkpoint& c) {
+  const auto version = r.attribute<std::uint32_t>("format_version", H5T_STD_U32LE);
+  if (version != kCheckpointFormatVersion)
+    r.reject("checkpoint format version " + std::to_string(version) +
+             "; this program reads version " + std::to_string(kCheckpointFormatVersion));
+  c.time = r.attribute<double>("time", H5T_IEEE_F64LE);
+  c.step = r.attribute<std::uint64_t>("step", H5T_STD_U64LE);
+  c.removed = r.attribute<std::uint64_t>("removed", H5T_STD_U64LE);
+  c.dt = r.attribute<double>("dt", H5T_IEEE_F64LE);
+  c.dt_fraction = r.attribute<double>("dt_fraction", H5T_IEEE_F64LE);
+  c.skin = r.attribute<double>("skin", H5T_IEEE_F64LE);
+  if (!(std::isfinite(c.dt) && c.dt > 0)) r.reject("attribute 'dt' is not finite and > 0");
+  if (!(std::isfinite(c.skin) && c.skin >= 0)) r.reject("attribute 'skin' is not finite and >= 0");
+}
+
+}  // namespace
+
+std::string checkpoint_path(const std::string& dir) {
+  return (std::filesystem::path(dir) / "checkpoint.h5").string();
+}
+
+void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& checkpoint) {
+  check_lengths(checkpoint);
+  const std::string path = checkpoint_path(dir);
+  const std::string temporary = path + ".tmp";
+  {
+    const H5Calls h5("checkpoint", temporary);
+    ParallelFile file(comm, h5, temporary);
+    write_particles(comm, file, checkpoint);
+    write_history(comm, file, checkpoint.history);
+    write_snapshot_table(comm, h5, file, checkpoint.snapshots);
+    write_attributes(file, checkpoint);
+    file.close();
+  }
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const std::string error = rank == 0 ? publish(temporary, path) : std::string();
+  int failed = error.empty() ? 0 : 1;
+  MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
+  if (failed)
+    throw std::runtime_error("checkpoint: " +
+                             (rank == 0 ? error : "rank 0 could not publish '" + path + "'"));
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  const QuietHdf5 quiet;
+  const Reader reader(path);
+  Checkpoint c;
+  read_attributes(reader, c);  // the version first: other versions may lay datasets out otherwise
+  read_particles(reader, c);
+  read_history(reader, c.history);
+  read_snapshot_table(reader, c.snapshots);
+  return c;
+}
+
+void check_checkpoint_fits_scene(const Checkpoint& c, const std::string& path, const Scene& scene) {
+  const ParticleStore& p = c.particles;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.material[i] >= scene.materials.size())
+      throw InputError(path, 0, "",
+                       "particle id " + std::to_string(p.id[i]) + " has material index " +
+                           std::to_string(p.material[i]) + " but the scene defines " +
+                           std::to_string(scene.materials.size()) + " material(s)");
+  for (const std::uint32_t wall : c.history.wall_index)
+    if (wall >= scene.walls.size())
+      throw InputError(path, 0, "",
+                       "contact history names wall index " + std::to_string(wall) +
+                           " but the scene defines " + std::to_string(scene.walls.size()) +
+                           " wall(s)");
+}
+
+}  // namespace gpudem

@@ -1,0 +1,68 @@
+#pragma once
+/// Checkpoints: everything a run needs to continue bit-for-bit from a step, in one HDF5 file
+/// `<dir>/checkpoint.h5`, written collectively through the MPI-IO driver and replaced
+/// atomically (written as `checkpoint.h5.tmp`, synced, then renamed), so the previous
+/// checkpoint stays intact until the new one is complete.
+///
+/// Layout (version kCheckpointFormatVersion). Per-particle datasets are global arrays of N
+/// rows, each rank writing its rows at an MPI_Exscan offset, so the layout does not depend on
+/// the rank count: position_radius (N×4 f64: x, y, z, radius), velocity_inv_mass (N×4 f64:
+/// vx, vy, vz, 1/m), angular_velocity, force, torque (N×3 f64), id (N u64), material (N u32),
+/// list_position_radius (N×4 f64: positions at the last neighbour-list build). Contact
+/// history, also by rank slices: pair_owner, pair_partner (P u64), pair_spring (P×3 f64),
+/// wall_owner (W u64), wall_index (W u32), wall_spring (W×3 f64). Snapshot table, written by
+/// rank 0: snapshot_file (S fixed-length strings), snapshot_time (S f64), snapshot_count
+/// (S u64). Attributes: format_version (u32), time, dt, dt_fraction, skin (f64), step,
+/// removed (u64).
+#include <mpi.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "comm/XdmfDocument.hpp"
+#include "core/ContactHistory.hpp"
+#include "core/ParticleStore.hpp"
+#include "core/Scene.hpp"
+
+namespace gpudem {
+
+constexpr std::uint32_t kCheckpointFormatVersion = 1;
+
+/// The state of a run at the end of one step.
+struct Checkpoint {
+  ParticleStore particles;                  ///< in the engine's order, with the step's forces
+  std::vector<Real4> list_position_radius;  ///< positions at the last neighbour-list build
+  ContactHistory history;
+  std::vector<XdmfSnapshot> snapshots;  ///< snapshots written so far (SnapshotWriter::table)
+  double time = 0;                      ///< [s]
+  std::uint64_t step = 0;
+  std::uint64_t removed = 0;  ///< particles removed so far for leaving the domain
+  double dt = 0;              ///< [s] time step of the run
+  double dt_fraction = 0;     ///< fraction of the critical step when dt was "auto", else 0
+  double skin = 0;            ///< [m] Verlet skin of the run
+};
+
+/// `<dir>/checkpoint.h5`.
+std::string checkpoint_path(const std::string& dir);
+
+/// Writes this rank's part of `checkpoint` (particles and history; the snapshot table and
+/// attributes from rank 0's values) to `<dir>/checkpoint.h5.tmp`, replacing any stale file
+/// there, then rank 0 syncs it and renames it to `<dir>/checkpoint.h5`. Collective; throws
+/// std::runtime_error naming the file when a step fails, leaving the previous checkpoint as
+/// it was.
+void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& checkpoint);
+
+/// Reads a whole checkpoint on one rank (a run on several ranks will read its rows by slices).
+/// Throws InputError naming `path` and what is wrong: a missing file, a file that is not
+/// HDF5, another format version, a missing or mistyped dataset or attribute, datasets of one
+/// group with different lengths, or a radius, inverse mass or time step that is not finite
+/// and > 0.
+Checkpoint read_checkpoint(const std::string& path);
+
+/// Throws InputError naming `path` when `checkpoint` refers to a material or a wall that
+/// `scene` does not define.
+void check_checkpoint_fits_scene(const Checkpoint& checkpoint, const std::string& path,
+                                 const Scene& scene);
+
+}  // namespace gpudem

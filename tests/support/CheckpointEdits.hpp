@@ -1,0 +1,88 @@
+#pragma once
+// Damage done to a valid checkpoint file with the HDF5 C API, for tests of the reader's
+// rejections: another format version, a dataset removed or shortened, values replaced; and
+// reads of whole datasets for comparisons.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gpudem::test {
+
+/// An HDF5 identifier closed at scope exit.
+template <herr_t (*Close)(hid_t)>
+struct H5Id {
+  explicit H5Id(hid_t value) : id(value) {}
+  H5Id(const H5Id&) = delete;
+  H5Id& operator=(const H5Id&) = delete;
+  ~H5Id() {
+    if (id >= 0) Close(id);
+  }
+  hid_t id;
+};
+
+/// Sets the u32 attribute `name` of the file's root group.
+inline void set_u32_attribute(const std::string& path, const char* name, std::uint32_t value) {
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  ASSERT_GE(file.id, 0) << path;
+  H5Id<H5Aclose> attribute(H5Aopen(file.id, name, H5P_DEFAULT));
+  ASSERT_GE(attribute.id, 0) << name;
+  ASSERT_GE(H5Awrite(attribute.id, H5T_NATIVE_UINT32, &value), 0);
+}
+
+inline void remove_dataset(const std::string& path, const char* name) {
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  ASSERT_GE(file.id, 0) << path;
+  ASSERT_GE(H5Ldelete(file.id, name, H5P_DEFAULT), 0) << name;
+}
+
+/// Replaces dataset `name` by a 1-D u32 dataset holding `values`.
+inline void replace_u32_dataset(const std::string& path, const char* name,
+                                const std::vector<std::uint32_t>& values) {
+  remove_dataset(path, name);
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  const hsize_t dims[1] = {values.size()};
+  H5Id<H5Sclose> space(H5Screate_simple(1, dims, nullptr));
+  H5Id<H5Dclose> dataset(
+      H5Dcreate2(file.id, name, H5T_STD_U32LE, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  ASSERT_GE(dataset.id, 0) << name;
+  ASSERT_GE(H5Dwrite(dataset.id, H5T_NATIVE_UINT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+            0);
+}
+
+/// Rows of a dataset (whole file, C API), as raw values of type T.
+template <class T>
+std::vector<T> read_values(const std::string& path, const char* name, hid_t memory_type) {
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  EXPECT_GE(file.id, 0) << path;
+  H5Id<H5Dclose> dataset(H5Dopen2(file.id, name, H5P_DEFAULT));
+  EXPECT_GE(dataset.id, 0) << path << ": " << name;
+  if (dataset.id < 0) return {};
+  H5Id<H5Sclose> space(H5Dget_space(dataset.id));
+  std::vector<T> values(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.id)));
+  if (!values.empty()) {
+    EXPECT_GE(H5Dread(dataset.id, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+  }
+  return values;
+}
+
+/// The stored bytes of a whole dataset, in its own type (no conversion).
+inline std::vector<unsigned char> raw_bytes(const std::string& path, const char* name) {
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  EXPECT_GE(file.id, 0) << path;
+  H5Id<H5Dclose> dataset(H5Dopen2(file.id, name, H5P_DEFAULT));
+  EXPECT_GE(dataset.id, 0) << path << ": " << name;
+  if (dataset.id < 0) return {};
+  H5Id<H5Tclose> type(H5Dget_type(dataset.id));
+  H5Id<H5Sclose> space(H5Dget_space(dataset.id));
+  std::vector<unsigned char> bytes(
+      static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.id)) * H5Tget_size(type.id));
+  if (!bytes.empty()) {
+    EXPECT_GE(H5Dread(dataset.id, type.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()), 0);
+  }
+  return bytes;
+}
+
+}  // namespace gpudem::test

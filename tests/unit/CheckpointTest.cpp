@@ -1,0 +1,348 @@
+// Checkpoint files: every field reads back bit-identical to what was written (at this run's
+// rank count, each rank writing its own rows), the file is replaced atomically (a stale
+// temporary is overwritten, a failed write leaves the previous checkpoint intact), and damaged
+// files are rejected with InputError naming the file and the problem. Also the two resumable
+// outputs a restart continues: the snapshot series and the time series.
+#include <gtest/gtest.h>
+#include <mpi.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "comm/Checkpoint.hpp"
+#include "comm/SnapshotWriter.hpp"
+#include "comm/TimeSeriesWriter.hpp"
+#include "core/InputError.hpp"
+#include "support/CheckpointEdits.hpp"
+
+namespace gpudem {
+namespace {
+
+namespace fs = std::filesystem;
+using test::read_values;
+
+int comm_rank() {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+
+int comm_size() {
+  int size = 0;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
+}
+
+/// Rank r's particles: none on rank 1 (a rank without particles still takes part).
+std::size_t particles_of(int rank) { return rank == 1 ? 0 : 40 + 13 * rank; }
+
+/// Rank r's part of a checkpoint, random in every field, the same for every caller.
+Checkpoint random_part(int rank) {
+  std::mt19937_64 rng(1000 + rank);
+  std::uniform_real_distribution<double> value(-1e3, 1e3), positive(1e-4, 1e-2);
+  Checkpoint c;
+  ParticleStore& p = c.particles;
+  for (std::size_t i = 0; i < particles_of(rank); ++i) {
+    const ParticleId id = (std::uint64_t(rank) << 40) + i * 7 + 3;
+    p.add(id, {value(rng), value(rng), value(rng)}, positive(rng), static_cast<MaterialId>(i % 3),
+          {value(rng), value(rng), value(rng)}, 1 / positive(rng));
+    p.angular_velocity.back() = {value(rng), value(rng), value(rng)};
+    p.force.back() = {value(rng), value(rng), value(rng)};
+    p.torque.back() = {value(rng), value(rng), value(rng)};
+    c.list_position_radius.push_back({value(rng), value(rng), value(rng), value(rng)});
+    c.history.add_pair(id, id + 1, {value(rng), value(rng), value(rng)});
+    if (i % 2 == 0) c.history.add_wall(id, static_cast<std::uint32_t>(i % 5), {value(rng), 0, 1});
+  }
+  c.snapshots = {{"particles_000000.h5", 0.0, 123}, {"particles_000001.h5", 1.0 / 3.0, 120}};
+  c.time = 0.1 + 1e-17;
+  c.step = (std::uint64_t(1) << 35) + 5;
+  c.removed = 3;
+  c.dt = 2.0 / 3.0 * 1e-5;
+  c.dt_fraction = 0.1;
+  c.skin = 1.0 / 7.0 * 1e-3;
+  return c;
+}
+
+template <class T>
+void append(std::vector<T>& to, const std::vector<T>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+
+/// What the file must hold: every rank's rows in rank order, rank 0's table and attributes.
+Checkpoint expected_whole(int ranks) {
+  Checkpoint whole = random_part(0);
+  for (int r = 1; r < ranks; ++r) {
+    const Checkpoint part = random_part(r);
+    append(whole.particles.position_radius, part.particles.position_radius);
+    append(whole.particles.velocity_inv_mass, part.particles.velocity_inv_mass);
+    append(whole.particles.angular_velocity, part.particles.angular_velocity);
+    append(whole.particles.force, part.particles.force);
+    append(whole.particles.torque, part.particles.torque);
+    append(whole.particles.id, part.particles.id);
+    append(whole.particles.material, part.particles.material);
+    append(whole.list_position_radius, part.list_position_radius);
+    append(whole.history.pair_owner, part.history.pair_owner);
+    append(whole.history.pair_partner, part.history.pair_partner);
+    append(whole.history.pair_spring, part.history.pair_spring);
+    append(whole.history.wall_owner, part.history.wall_owner);
+    append(whole.history.wall_index, part.history.wall_index);
+    append(whole.history.wall_spring, part.history.wall_spring);
+  }
+  return whole;
+}
+
+template <class T>
+::testing::AssertionResult same_bytes(const char* name, const std::vector<T>& a,
+                                      const std::vector<T>& b) {
+  if (a.size() != b.size())
+    return ::testing::AssertionFailure()
+           << name << ": " << a.size() << " vs " << b.size() << " rows";
+  if (!a.empty() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) != 0)
+    return ::testing::AssertionFailure() << name << " differs";
+  return ::testing::AssertionSuccess();
+}
+
+void expect_identical(const Checkpoint& a, const Checkpoint& b) {
+  EXPECT_TRUE(
+      same_bytes("position_radius", a.particles.position_radius, b.particles.position_radius));
+  EXPECT_TRUE(same_bytes("velocity_inv_mass", a.particles.velocity_inv_mass,
+                         b.particles.velocity_inv_mass));
+  EXPECT_TRUE(
+      same_bytes("angular_velocity", a.particles.angular_velocity, b.particles.angular_velocity));
+  EXPECT_TRUE(same_bytes("force", a.particles.force, b.particles.force));
+  EXPECT_TRUE(same_bytes("torque", a.particles.torque, b.particles.torque));
+  EXPECT_TRUE(same_bytes("id", a.particles.id, b.particles.id));
+  EXPECT_TRUE(same_bytes("material", a.particles.material, b.particles.material));
+  EXPECT_TRUE(same_bytes("list_position_radius", a.list_position_radius, b.list_position_radius));
+  EXPECT_TRUE(same_bytes("pair_owner", a.history.pair_owner, b.history.pair_owner));
+  EXPECT_TRUE(same_bytes("pair_partner", a.history.pair_partner, b.history.pair_partner));
+  EXPECT_TRUE(same_bytes("pair_spring", a.history.pair_spring, b.history.pair_spring));
+  EXPECT_TRUE(same_bytes("wall_owner", a.history.wall_owner, b.history.wall_owner));
+  EXPECT_TRUE(same_bytes("wall_index", a.history.wall_index, b.history.wall_index));
+  EXPECT_TRUE(same_bytes("wall_spring", a.history.wall_spring, b.history.wall_spring));
+  ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
+  for (std::size_t k = 0; k < a.snapshots.size(); ++k) {
+    EXPECT_EQ(a.snapshots[k].h5_file, b.snapshots[k].h5_file);
+    EXPECT_EQ(a.snapshots[k].time, b.snapshots[k].time);
+    EXPECT_EQ(a.snapshots[k].count, b.snapshots[k].count);
+  }
+  EXPECT_EQ(a.time, b.time);
+  EXPECT_EQ(a.step, b.step);
+  EXPECT_EQ(a.removed, b.removed);
+  EXPECT_EQ(a.dt, b.dt);
+  EXPECT_EQ(a.dt_fraction, b.dt_fraction);
+  EXPECT_EQ(a.skin, b.skin);
+}
+
+/// A fresh directory, the same on every rank, removed after the test.
+class CheckpointFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string path;
+    if (comm_rank() == 0) {
+      path = (fs::temp_directory_path() /
+              ("gpudem_checkpoint_" + std::to_string(::getpid()) + "_" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
+                 .string();
+      fs::remove_all(path);
+      fs::create_directories(path);
+    }
+    int length = static_cast<int>(path.size());
+    MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    path.resize(length);
+    MPI_Bcast(path.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
+    dir_ = path;
+  }
+  void TearDown() override {
+    MPI_Barrier(MPI_COMM_WORLD);
+    if (comm_rank() == 0) fs::remove_all(dir_);
+  }
+
+  std::string path() const { return checkpoint_path(dir_); }
+
+  /// Writes this rank's random part; rank 0 then reads the whole file back.
+  void write_random() const { write_checkpoint(MPI_COMM_WORLD, dir_, random_part(comm_rank())); }
+
+  /// The message of the InputError that reading `file` raises ("" and a failure if none).
+  static std::string rejection(const std::string& file) {
+    try {
+      read_checkpoint(file);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    ADD_FAILURE() << "'" << file << "' was accepted";
+    return "";
+  }
+
+  void expect_rejected(const std::string& needle) const {
+    const std::string message = rejection(path());
+    EXPECT_NE(message.find(path()), std::string::npos) << message;
+    EXPECT_NE(message.find(needle), std::string::npos)
+        << "expected '" << needle << "' in: " << message;
+  }
+
+  std::string dir_;
+};
+
+TEST_F(CheckpointFile, RoundTripIsBitIdenticalAtThisRankCount) {
+  write_random();
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (comm_rank() == 0) expect_identical(read_checkpoint(path()), expected_whole(comm_size()));
+}
+
+TEST_F(CheckpointFile, EmptyCheckpointRoundTrips) {
+  Checkpoint empty;
+  empty.dt = 1e-4;
+  write_checkpoint(MPI_COMM_WORLD, dir_, empty);
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (comm_rank() == 0) expect_identical(read_checkpoint(path()), empty);
+}
+
+TEST_F(CheckpointFile, StaleTemporaryFromAKilledWriterIsReplaced) {
+  if (comm_rank() == 0) std::ofstream(path() + ".tmp") << "half a checkpoint from a killed run";
+  MPI_Barrier(MPI_COMM_WORLD);
+  write_random();
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (comm_rank() != 0) return;
+  EXPECT_FALSE(fs::exists(path() + ".tmp"));
+  expect_identical(read_checkpoint(path()), expected_whole(comm_size()));
+}
+
+TEST_F(CheckpointFile, FailedWriteLeavesThePreviousCheckpointIntact) {
+  if (comm_size() > 1) GTEST_SKIP() << "one-rank case";
+  write_random();
+  fs::create_directory(path() + ".tmp");  // the temporary file cannot be created
+  Checkpoint other = random_part(0);
+  other.step += 1;
+  H5E_auto2_t print = nullptr;
+  void* print_data = nullptr;
+  H5Eget_auto2(H5E_DEFAULT, &print, &print_data);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // the expected failure need not print a trace
+  try {
+    write_checkpoint(MPI_COMM_WORLD, dir_, other);
+    ADD_FAILURE() << "writing over a directory did not throw";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path() + ".tmp"), std::string::npos) << e.what();
+  }
+  H5Eset_auto2(H5E_DEFAULT, print, print_data);
+  expect_identical(read_checkpoint(path()), random_part(0));
+}
+
+TEST_F(CheckpointFile, MissingFileIsRejected) {
+  if (comm_rank() != 0) return;
+  expect_rejected("no such checkpoint file");
+}
+
+TEST_F(CheckpointFile, FileThatIsNotHdf5IsRejected) {
+  if (comm_rank() != 0) return;
+  std::ofstream(path()) << "time,step\n0,0\n";
+  expect_rejected("not a readable HDF5 file");
+}
+
+class DamagedCheckpoint : public CheckpointFile {
+ protected:
+  void SetUp() override {
+    CheckpointFile::SetUp();
+    if (comm_size() > 1) GTEST_SKIP() << "one-rank case";
+    write_random();
+  }
+};
+
+TEST_F(DamagedCheckpoint, OtherFormatVersionIsRejected) {
+  test::set_u32_attribute(path(), "format_version", kCheckpointFormatVersion + 1);
+  expect_rejected("format version " + std::to_string(kCheckpointFormatVersion + 1));
+}
+
+TEST_F(DamagedCheckpoint, MissingDatasetIsRejected) {
+  test::remove_dataset(path(), "pair_spring");
+  expect_rejected("missing dataset 'pair_spring'");
+}
+
+TEST_F(DamagedCheckpoint, DatasetsOfDifferentLengthsAreRejected) {
+  test::replace_u32_dataset(path(), "material", {0, 1, 2});
+  expect_rejected("dataset 'material' has 3 rows but 'id' has " + std::to_string(particles_of(0)));
+}
+
+TEST_F(DamagedCheckpoint, DatasetOfTheWrongTypeIsRejected) {
+  test::replace_u32_dataset(path(), "id", std::vector<std::uint32_t>(particles_of(0), 1));
+  expect_rejected("dataset 'id' has the wrong value type");
+}
+
+TEST_F(DamagedCheckpoint, MaterialOrWallBeyondTheSceneIsRejected) {
+  const Checkpoint c = read_checkpoint(path());  // materials 0..2, walls 0..4
+  Scene scene;
+  scene.materials.resize(3);
+  scene.walls.resize(5);
+  EXPECT_NO_THROW(check_checkpoint_fits_scene(c, path(), scene));
+  scene.materials.resize(2);
+  try {
+    check_checkpoint_fits_scene(c, path(), scene);
+    ADD_FAILURE() << "a material index beyond the scene was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("material index 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path()), std::string::npos) << e.what();
+  }
+  scene.materials.resize(3);
+  scene.walls.resize(4);
+  EXPECT_THROW(check_checkpoint_fits_scene(c, path(), scene), InputError);
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST_F(CheckpointFile, SnapshotSeriesResumesAfterTheCheckpointsTable) {
+  ParticleStore two;
+  two.add(1, {0, 0, 0}, 1e-3, 0, {}, 1);
+  two.add(2, {1, 0, 0}, 1e-3, 0, {}, 1);
+  std::vector<XdmfSnapshot> table;
+  {
+    SnapshotWriter first(MPI_COMM_WORLD, dir_);
+    first.write(two, 0.0, 0);
+    first.write(two, 0.5, 50);
+    table = first.table();
+    first.write(two, 1.0, 100);  // after the checkpoint: dropped on resume
+  }
+  SnapshotWriter resumed(MPI_COMM_WORLD, dir_);
+  resumed.resume(table);
+  resumed.write(two, 0.75, 75);
+  MPI_Barrier(MPI_COMM_WORLD);
+  ASSERT_EQ(resumed.files().size(), 3u);
+  EXPECT_EQ(resumed.files()[2], (fs::path(dir_) / "particles_000002.h5").string());
+  const std::string xmf = read_text(resumed.xmf_path());
+  EXPECT_NE(xmf.find("<Time Value=\"0.5\"/>"), std::string::npos) << xmf;
+  EXPECT_NE(xmf.find("<Time Value=\"0.75\"/>"), std::string::npos) << xmf;
+  EXPECT_EQ(xmf.find("<Time Value=\"1\"/>"), std::string::npos) << xmf;
+  if (comm_rank() == 0) {
+    EXPECT_EQ(read_values<double>(resumed.files()[2], "position", H5T_NATIVE_DOUBLE).size(),
+              6u * static_cast<std::size_t>(comm_size()));
+  }
+}
+
+TEST_F(CheckpointFile, TimeSeriesResumesAfterTheCheckpointStep) {
+  if (comm_rank() != 0) return;
+  const std::string file = (fs::path(dir_) / "series.csv").string();
+  {
+    TimeSeriesWriter first(file, {"time", "step"}, true);
+    for (int step = 0; step <= 5; ++step) first.append({0.5 * step, double(step)});
+  }
+  TimeSeriesWriter resumed(file, {"time", "step"}, true, SeriesResume{"step", 3});
+  resumed.append({2.0, 4});
+  EXPECT_EQ(read_text(file), "time,step\n0,0\n0.5,1\n1,2\n1.5,3\n2,4\n");
+  EXPECT_FALSE(fs::exists(file + ".tmp"));
+
+  TimeSeriesWriter other_columns(file, {"time", "step", "energy"}, true, SeriesResume{"step", 3});
+  EXPECT_EQ(read_text(file), "time,step,energy\n") << "another header starts a new file";
+}
+
+}  // namespace
+}  // namespace gpudem

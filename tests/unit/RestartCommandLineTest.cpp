@@ -1,0 +1,366 @@
+// gpudem-mpi --restart end to end: a run of 2T equals, snapshot for snapshot and bit for bit,
+// a run of T continued from its checkpoint (same .xmf, same time series); a run killed with
+// SIGKILL while writing a checkpoint every step always leaves a checkpoint that reads back and
+// continues; a bad checkpoint or a restart that cannot continue exits 2 with a message naming
+// the problem and writes nothing.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "comm/Checkpoint.hpp"
+#include "core/InputError.hpp"
+#include "support/CheckpointEdits.hpp"
+
+extern char** environ;
+
+namespace gpudem {
+namespace {
+
+namespace fs = std::filesystem;
+using test::read_values;
+
+struct Result {
+  int exit_code;
+  std::string output;
+};
+
+Result run(const std::string& args) {
+  const std::string command = std::string(GPUDEM_BINARY) + " " + args + " 2>&1";
+  Result r{-1, ""};
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return r;
+  char buffer[4096];
+  while (fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// 300 frictional grains falling onto a floor: by T = 0.1 s they rest on it and on each other
+/// with loaded tangential springs. Snapshots every 0.05 s, checkpoints every T.
+const char* kBedScene = R"([simulation]
+end_time = 0.2
+dt = 5e-5
+
+[domain]
+min = [0.0, 0.0, 0.0]
+max = [0.05, 0.05, 0.2]
+periodic = [true, true, false]
+
+[[material]]
+name = "sand"
+density = 2500.0
+young = 1e7
+poisson = 0.3
+restitution = 0.2
+friction = 0.8
+
+[contact]
+stiffness = 2000
+
+[[wall]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+material = "sand"
+
+[[insert]]
+region = { min = [0.0, 0.0, 0.0], max = [0.05, 0.05, 0.05] }
+count = 300
+radius = { mean = 0.0025, spread = 0.0005 }
+material = "sand"
+
+[output]
+every = 0.05
+timeseries_every = 0.005
+
+[checkpoint]
+every = 0.1
+)";
+
+class RestartCommandLine : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("gpudem_restart_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string scene(const std::string& text) const {
+    const fs::path p = dir_ / "scene.toml";
+    std::ofstream(p) << text;
+    return p.string();
+  }
+
+  fs::path dir_;
+};
+
+/// Every dataset of two snapshot files holds the same bytes.
+void expect_same_snapshot(const fs::path& a, const fs::path& b) {
+  for (const char* name : {"position", "radius", "velocity", "angular_velocity", "force", "id"}) {
+    const auto in_a = test::raw_bytes(a.string(), name);
+    const auto in_b = test::raw_bytes(b.string(), name);
+    EXPECT_FALSE(in_a.empty()) << a << ": " << name;
+    EXPECT_TRUE(in_a == in_b) << name << " differs between " << a << " and " << b;
+  }
+}
+
+TEST_F(RestartCommandLine, RestartedRunEqualsStraightRun) {
+  const std::string bed = scene(kBedScene);
+  const fs::path straight = dir_ / "straight", legs = dir_ / "legs";
+  const Result whole =
+      run(bed + " --quiet --set checkpoint.every=0 --output-dir " + straight.string());
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  EXPECT_FALSE(fs::exists(straight / "checkpoint.h5")) << "checkpoint.every = 0 writes none";
+
+  const Result first =
+      run(bed + " --quiet --set simulation.end_time=0.1 --output-dir " + legs.string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const std::string checkpoint = (legs / "checkpoint.h5").string();
+  ASSERT_GT(read_values<double>(checkpoint, "pair_spring", H5T_NATIVE_DOUBLE).size(), 300u)
+      << "the bed must hold tangential springs at the checkpoint";
+  const Result second =
+      run(bed + " --quiet --restart " + checkpoint + " --output-dir " + legs.string());
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+
+  for (const char* file : {"particles_000003.h5", "particles_000004.h5"})
+    expect_same_snapshot(straight / file, legs / file);
+  EXPECT_FALSE(fs::exists(legs / "particles_000005.h5"));
+  EXPECT_EQ(read_text(legs / "particles.xmf"), read_text(straight / "particles.xmf"));
+  EXPECT_EQ(read_text(legs / "timeseries.csv"), read_text(straight / "timeseries.csv"));
+  EXPECT_EQ(read_checkpoint(checkpoint).step, 4000u) << "a checkpoint ends the run";
+}
+
+// ---- a writer killed at random moments -------------------------------------------------------
+
+/// An 8000-particle lattice written as CSV: large enough that a checkpoint takes a good part
+/// of each step, so kills land inside writes.
+void write_lattice(const fs::path& csv) {
+  std::ofstream out(csv);
+  out << "x,y,z,r\n";
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (int k = 0; k < 20; ++k)
+        out << 0.0025 + 0.005 * i << ',' << 0.0025 + 0.005 * j << ',' << 0.0025 + 0.005 * k
+            << ",0.002\n";
+}
+
+const char* kLatticeScene = R"([simulation]
+end_time = 10.0
+dt = 1e-4
+
+[domain]
+min = [0.0, 0.0, 0.0]
+max = [0.1, 0.1, 0.2]
+
+[[material]]
+name = "sand"
+density = 2500.0
+young = 1e7
+poisson = 0.3
+
+[contact]
+stiffness = 1e4
+
+[[wall]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+material = "sand"
+
+[[insert]]
+csv = "lattice.csv"
+
+[output]
+every = 10.0
+
+[checkpoint]
+every = 1e-4
+)";
+
+/// Starts gpudem-mpi with `args` (output discarded) and returns its pid.
+pid_t spawn(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  std::string binary = GPUDEM_BINARY;
+  argv.push_back(binary.data());
+  std::vector<std::string> copies = args;
+  for (std::string& a : copies) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  const int failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return failed ? -1 : pid;
+}
+
+/// Reads the checkpoint (every read must succeed) until `stop` has passed; returns its step.
+std::uint64_t read_repeatedly(const std::string& path, std::chrono::steady_clock::time_point stop) {
+  std::uint64_t step = 0;
+  do {
+    if (fs::exists(path)) {
+      try {
+        step = read_checkpoint(path).step;
+      } catch (const InputError& e) {
+        ADD_FAILURE() << "checkpoint observed broken while the writer runs: " << e.what();
+        return 0;
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(15));
+  } while (std::chrono::steady_clock::now() < stop);
+  return step;
+}
+
+TEST_F(RestartCommandLine, KilledWriterNeverLeavesAHalfWrittenCheckpoint) {
+  write_lattice(dir_ / "lattice.csv");
+  const std::string lattice = scene(kLatticeScene);
+  const fs::path out = dir_ / "out";
+  const std::string checkpoint = (out / "checkpoint.h5").string();
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> extra_ms(0, 400);
+  int killed_inside_a_write = 0;
+  std::uint64_t step = 0;
+  for (int round = 0; round < 4; ++round) {
+    std::vector<std::string> args = {lattice, "--quiet", "--output-dir", out.string()};
+    if (round > 0) args.insert(args.end(), {"--restart", checkpoint});
+    const pid_t pid = spawn(args);
+    ASSERT_GT(pid, 0);
+    const auto stop = std::chrono::steady_clock::now() +
+                      std::chrono::milliseconds(round == 0 ? 1500 : 600 + extra_ms(rng));
+    read_repeatedly(checkpoint, stop);
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    killed_inside_a_write += fs::exists(checkpoint + ".tmp") ? 1 : 0;
+    ASSERT_TRUE(fs::exists(checkpoint)) << "round " << round;
+    const std::uint64_t now = read_checkpoint(checkpoint).step;  // throws if damaged
+    EXPECT_GT(now, step) << "round " << round << " wrote no checkpoint";
+    step = now;
+  }
+  RecordProperty("kills_inside_a_write", killed_inside_a_write);
+
+  // A last restart runs to its end over whatever temporary file the last kill left.
+  const Result last =
+      run(lattice + " --quiet --output-dir " + out.string() + " --restart " + checkpoint +
+          " --set simulation.end_time=" + std::to_string((step + 3) * 1e-4));
+  ASSERT_EQ(last.exit_code, 0) << last.output;
+  EXPECT_EQ(read_checkpoint(checkpoint).step, step + 3);
+  EXPECT_FALSE(fs::exists(checkpoint + ".tmp"));
+}
+
+// ---- restarts that are refused ---------------------------------------------------------------
+
+/// A valid checkpoint of a small run (50 grains, 20 steps), made once for the refusals.
+class RefusedRestart : public RestartCommandLine {
+ protected:
+  static void SetUpTestSuite() {
+    source_dir_ = fs::temp_directory_path() / ("gpudem_refused_" + std::to_string(::getpid()));
+    fs::remove_all(source_dir_);
+    fs::create_directories(source_dir_);
+    std::string text = kBedScene;
+    std::ofstream(source_dir_ / "scene.toml") << text;
+    const Result r = run((source_dir_ / "scene.toml").string() +
+                         " --quiet --set insert.0.count=50 --set simulation.end_time=0.001 "
+                         "--set checkpoint.every=0.001 --output-dir " +
+                         (source_dir_ / "out").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  static void TearDownTestSuite() { fs::remove_all(source_dir_); }
+
+  void SetUp() override {
+    RestartCommandLine::SetUp();
+    fs::copy_file(source_dir_ / "out" / "checkpoint.h5", bad());
+  }
+
+  std::string bad() const { return (dir_ / "bad.h5").string(); }
+
+  /// Restarting from bad() exits 2, names `file` and `needle`, and writes nothing.
+  void expect_refused(const std::string& needle, const std::string& extra_args = "",
+                      const std::string& file = "") const {
+    const fs::path out = dir_ / "out";
+    const Result r = run(scene(kBedScene) + " --set insert.0.count=50 --restart " + bad() +
+                         " --output-dir " + out.string() + " " + extra_args);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("error"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(file.empty() ? bad() : file), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(needle), std::string::npos) << "expected '" << needle << "' in:\n"
+                                                        << r.output;
+    EXPECT_FALSE(fs::exists(out)) << "output written for a refused restart";
+  }
+
+  static fs::path source_dir_;
+};
+
+fs::path RefusedRestart::source_dir_;
+
+TEST_F(RefusedRestart, TheValidCheckpointIsAccepted) {
+  const Result r = run(scene(kBedScene) + " --quiet --restart " + bad() + " --output-dir " +
+                       (dir_ / "out").string() + " --set simulation.end_time=0.0015");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+TEST_F(RefusedRestart, MissingFile) {
+  fs::remove(bad());
+  expect_refused("no such checkpoint file");
+}
+
+TEST_F(RefusedRestart, NotHdf5) {
+  std::ofstream(bad(), std::ios::trunc) << "not a checkpoint\n";
+  expect_refused("not a readable HDF5 file");
+}
+
+TEST_F(RefusedRestart, OtherFormatVersion) {
+  test::set_u32_attribute(bad(), "format_version", 99);
+  expect_refused("format version 99");
+}
+
+TEST_F(RefusedRestart, MissingDataset) {
+  test::remove_dataset(bad(), "torque");
+  expect_refused("missing dataset 'torque'");
+}
+
+TEST_F(RefusedRestart, InconsistentLengths) {
+  test::replace_u32_dataset(bad(), "material", {0, 0});
+  expect_refused("dataset 'material' has 2 rows but 'id' has 50");
+}
+
+TEST_F(RefusedRestart, MaterialBeyondTheScene) {
+  test::replace_u32_dataset(bad(), "material", std::vector<std::uint32_t>(50, 3));
+  expect_refused("material index 3 but the scene defines 1 material");
+}
+
+TEST_F(RefusedRestart, OtherTimeStep) {
+  expect_refused("dt = 5e-05 s but the scene gives 1e-04 s", "--set simulation.dt=1e-4",
+                 "scene.toml");
+}
+
+TEST_F(RefusedRestart, CheckpointAtTheEndTime) {
+  expect_refused("nothing to continue", "--set simulation.end_time=0.001", "scene.toml");
+}
+
+}  // namespace
+}  // namespace gpudem
