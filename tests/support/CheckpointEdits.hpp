@@ -9,19 +9,9 @@
 #include <string>
 #include <vector>
 
-namespace gpudem::test {
+#include "support/H5Id.hpp"
 
-/// An HDF5 identifier closed at scope exit.
-template <herr_t (*Close)(hid_t)>
-struct H5Id {
-  explicit H5Id(hid_t value) : id(value) {}
-  H5Id(const H5Id&) = delete;
-  H5Id& operator=(const H5Id&) = delete;
-  ~H5Id() {
-    if (id >= 0) Close(id);
-  }
-  hid_t id;
-};
+namespace gpudem::test {
 
 /// Sets the u32 attribute `name` of the file's root group.
 inline void set_u32_attribute(const std::string& path, const char* name, std::uint32_t value) {

@@ -21,6 +21,8 @@
 #include "core/InputError.hpp"
 #include "support/CheckpointEdits.hpp"
 
+#include "support/SharedTempDir.hpp"
+
 namespace gpudem {
 namespace {
 
@@ -143,26 +145,8 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
 /// A fresh directory, the same on every rank, removed after the test.
 class CheckpointFile : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string path;
-    if (comm_rank() == 0) {
-      path = (fs::temp_directory_path() /
-              ("gpudem_checkpoint_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
-                 .string();
-      fs::remove_all(path);
-      fs::create_directories(path);
-    }
-    int length = static_cast<int>(path.size());
-    MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
-    path.resize(length);
-    MPI_Bcast(path.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
-    dir_ = path;
-  }
-  void TearDown() override {
-    MPI_Barrier(MPI_COMM_WORLD);
-    if (comm_rank() == 0) fs::remove_all(dir_);
-  }
+  void SetUp() override { dir_ = test::make_shared_temp_dir("gpudem_checkpoint_"); }
+  void TearDown() override { test::remove_shared_temp_dir(dir_); }
 
   std::string path() const { return checkpoint_path(dir_); }
 

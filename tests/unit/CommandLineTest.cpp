@@ -9,26 +9,15 @@
 #include <fstream>
 #include <string>
 
+#include "support/RunBinary.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exit_code;
-  std::string output;
-};
+using Result = gpudem::test::RunResult;
 
-Result run(const std::string& args) {
-  const std::string command = std::string(GPUDEM_BINARY) + " " + args + " 2>&1";
-  Result r{-1, ""};
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  while (fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+Result run(const std::string& args) { return gpudem::test::run_binary(args); }
 
 const char* kValidScene = R"([simulation]
 end_time = 0.002

@@ -27,28 +27,17 @@
 
 extern char** environ;
 
+#include "support/RunBinary.hpp"
+
 namespace gpudem {
 namespace {
 
 namespace fs = std::filesystem;
 using test::read_values;
 
-struct Result {
-  int exit_code;
-  std::string output;
-};
+using Result = test::RunResult;
 
-Result run(const std::string& args) {
-  const std::string command = std::string(GPUDEM_BINARY) + " " + args + " 2>&1";
-  Result r{-1, ""};
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  while (fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+Result run(const std::string& args) { return test::run_binary(args); }
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path);

@@ -17,6 +17,9 @@
 
 #include "comm/SnapshotWriter.hpp"
 
+#include "support/H5Id.hpp"
+#include "support/SharedTempDir.hpp"
+
 namespace gpudem {
 namespace {
 
@@ -34,17 +37,7 @@ int comm_size() {
   return size;
 }
 
-/// An HDF5 identifier closed at scope exit.
-template <herr_t (*Close)(hid_t)>
-struct H5Id {
-  explicit H5Id(hid_t value) : id(value) {}
-  H5Id(const H5Id&) = delete;
-  H5Id& operator=(const H5Id&) = delete;
-  ~H5Id() {
-    if (id >= 0) Close(id);
-  }
-  hid_t id;
-};
+using test::H5Id;
 
 /// `count` particles with random values in every field; ids are unique over ranks (the seed
 /// differs per rank), not contiguous, and above 2^40.
@@ -201,26 +194,8 @@ std::string read_text(const std::string& path) {
 /// A fresh directory, the same on every rank, removed after the test.
 class SnapshotWriterTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string path;
-    if (comm_rank() == 0) {
-      path = (fs::temp_directory_path() /
-              ("gpudem_snapshot_" + std::to_string(::getpid()) + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
-                 .string();
-      fs::remove_all(path);
-      fs::create_directories(path);
-    }
-    int length = static_cast<int>(path.size());
-    MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
-    path.resize(length);
-    MPI_Bcast(path.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
-    dir_ = path;
-  }
-  void TearDown() override {
-    MPI_Barrier(MPI_COMM_WORLD);
-    if (comm_rank() == 0) fs::remove_all(dir_);
-  }
+  void SetUp() override { dir_ = test::make_shared_temp_dir("gpudem_snapshot_"); }
+  void TearDown() override { test::remove_shared_temp_dir(dir_); }
 
   std::string dir_;
 };
