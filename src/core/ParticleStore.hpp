@@ -21,7 +21,7 @@ struct ParticleStore {
 
   std::size_t size() const { return id.size(); }
 
-  /// Appends one particle at rest force-wise; mass comes from the caller (density known there).
+  /// Appends one particle with zero spin, force and torque; the caller gives 1/mass.
   void add(ParticleId global_id, Vec3 position, Real radius, MaterialId mat, Vec3 velocity,
            Real inv_mass) {
     position_radius.push_back({position.x, position.y, position.z, radius});
