@@ -92,8 +92,7 @@ void measure(const ParticleStore& bed, int tx, int ty, int threads) {
   const double rebuild =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   std::printf("| %zu | %d | %d | %.3g | %.1f | %llu | %.3g |\n", bed.size(), threads, steps,
-              steps * double(bed.size()) / seconds,
-              double(engine->memory_bytes()) / bed.size(),
+              steps * double(bed.size()) / seconds, double(engine->memory_bytes()) / bed.size(),
               static_cast<unsigned long long>(engine->rebuild_count() - rebuilds0), rebuild);
   std::fflush(stdout);
 }
@@ -143,8 +142,9 @@ int main(int argc, char** argv) {
   std::printf("settling the 10^4 seed bed...\n");
   std::fflush(stdout);
   const ParticleStore seed = settled_seed_bed();
-  std::printf("| particles | threads | steps | particle-steps/s | bytes/particle | rebuilds in "
-              "timed steps | one rebuild [s] |\n");
+  std::printf(
+      "| particles | threads | steps | particle-steps/s | bytes/particle | rebuilds in "
+      "timed steps | one rebuild [s] |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   const int tiles[][2] = {{1, 1}, {5, 2}, {10, 10}};
   for (int e = 4; e <= max_exponent && e <= 6; ++e) {

@@ -11,8 +11,12 @@ class Progress {
  public:
   /// `first_step`: the step the run starts from (a restart's checkpoint step).
   Progress(bool enabled, double interval_s, std::uint64_t total_steps, std::uint64_t first_step = 0)
-      : enabled_(enabled), interval_(interval_s), total_(total_steps),
-        start_(Clock::now()), last_(start_), last_step_(first_step) {}
+      : enabled_(enabled),
+        interval_(interval_s),
+        total_(total_steps),
+        start_(Clock::now()),
+        last_(start_),
+        last_step_(first_step) {}
 
   /// Prints when the interval has passed or `force` is set.
   void update(double time, std::uint64_t step, std::size_t particles, bool force = false) {
@@ -23,10 +27,11 @@ class Progress {
     const double rate = since_last > 0 ? (step - last_step_) / since_last : 0;
     const double elapsed = seconds(start_, now);
     const double eta = rate > 0 ? (total_ - step) / rate : 0;
-    std::printf("t = %.6g s  step %llu/%llu  %.4g steps/s  %.4g particle-steps/s  "
-                "elapsed %.1f s  ETA %.1f s\n",
-                time, static_cast<unsigned long long>(step), static_cast<unsigned long long>(total_),
-                rate, rate * static_cast<double>(particles), elapsed, eta);
+    std::printf(
+        "t = %.6g s  step %llu/%llu  %.4g steps/s  %.4g particle-steps/s  "
+        "elapsed %.1f s  ETA %.1f s\n",
+        time, static_cast<unsigned long long>(step), static_cast<unsigned long long>(total_), rate,
+        rate * static_cast<double>(particles), elapsed, eta);
     std::fflush(stdout);
     last_ = now;
     last_step_ = step;

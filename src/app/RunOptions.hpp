@@ -13,8 +13,8 @@ struct RunOptions {
   std::string output_dir;              ///< --output-dir (empty: the scene's output.dir)
   std::string restart_file;            ///< --restart: checkpoint to continue from (empty: none)
   BackendChoice backend = BackendChoice::Auto;
-  bool check_only = false;             ///< --check
-  bool quiet = false;                  ///< --quiet
+  bool check_only = false;  ///< --check
+  bool quiet = false;       ///< --quiet
 };
 
 }  // namespace gpudem

@@ -62,10 +62,16 @@ std::string exact(double value) {
 }
 
 std::vector<std::string> timeseries_columns(const Scene& scene) {
-  std::vector<std::string> c = {"time",          "step",          "particles",
-                                "contacts",      "kinetic_translational",
-                                "kinetic_rotational", "potential_gravity",
-                                "potential_elastic",  "max_overlap_ratio", "removed"};
+  std::vector<std::string> c = {"time",
+                                "step",
+                                "particles",
+                                "contacts",
+                                "kinetic_translational",
+                                "kinetic_rotational",
+                                "potential_gravity",
+                                "potential_elastic",
+                                "max_overlap_ratio",
+                                "removed"};
   for (const WallSettings& w : scene.walls)
     for (const char* axis_name : {"fx", "fy", "fz"}) c.push_back(w.name + "_" + axis_name);
   return c;
@@ -96,11 +102,12 @@ void print_summary(const Scene& scene, const ParticleStore& particles, const Eng
   const TimeStepLimits limits = time_step_limits(scene, particles);
   std::printf("scene %s: %zu particles, %zu materials, %zu walls\n", scene.file.c_str(),
               particles.size(), scene.materials.size(), scene.walls.size());
-  std::printf("dt = %.4g s (%s; contact duration %.4g s, Rayleigh time %.4g s), %llu steps to "
-              "t = %.4g s, skin %.4g m\n",
-              setup.dt, scene.simulation.dt_auto ? "auto" : "explicit", limits.contact_duration,
-              limits.rayleigh, static_cast<unsigned long long>(steps), scene.simulation.end_time,
-              setup.skin);
+  std::printf(
+      "dt = %.4g s (%s; contact duration %.4g s, Rayleigh time %.4g s), %llu steps to "
+      "t = %.4g s, skin %.4g m\n",
+      setup.dt, scene.simulation.dt_auto ? "auto" : "explicit", limits.contact_duration,
+      limits.rayleigh, static_cast<unsigned long long>(steps), scene.simulation.end_time,
+      setup.skin);
   if (engine)
     std::printf("backend %s, %.1f bytes per particle\n", engine->backend_name().c_str(),
                 particles.size() ? double(engine->memory_bytes()) / particles.size() : 0.0);
@@ -126,7 +133,11 @@ class TimeLoop {
  public:
   TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine, const EngineSetup& setup,
            bool quiet, const LoopStart& start)
-      : scene_(scene), mpi_(mpi), engine_(engine), dt_(setup.dt), skin_(setup.skin),
+      : scene_(scene),
+        mpi_(mpi),
+        engine_(engine),
+        dt_(setup.dt),
+        skin_(setup.skin),
         first_step_(start.step),
         total_steps_(step_count(scene.simulation.end_time, setup.dt)),
         snapshot_every_(scene.output.every > 0 ? steps_between(scene.output.every, dt_)
@@ -158,11 +169,12 @@ class TimeLoop {
       progress_.update(step * dt_, step, engine_.particle_count(), last);
     }
     if (mpi_.is_root())
-      std::printf("done: %llu steps in %.2f s; %llu particles removed (left the domain); output "
-                  "in %s (open %s in ParaView)\n",
-                  static_cast<unsigned long long>(total_steps_ - first_step_), progress_.elapsed(),
-                  static_cast<unsigned long long>(engine_.removed_count()),
-                  scene_.output.dir.c_str(), snapshots_.xmf_path().c_str());
+      std::printf(
+          "done: %llu steps in %.2f s; %llu particles removed (left the domain); output "
+          "in %s (open %s in ParaView)\n",
+          static_cast<unsigned long long>(total_steps_ - first_step_), progress_.elapsed(),
+          static_cast<unsigned long long>(engine_.removed_count()), scene_.output.dir.c_str(),
+          snapshots_.xmf_path().c_str());
     return kExitOk;
   }
 
@@ -246,12 +258,12 @@ void adopt_checkpoint_step(EngineSetup& setup, const Scene& scene, const Checkpo
                            const std::string& path) {
   const SimulationSettings& sim = scene.simulation;
   const std::string written = "checkpoint '" + path + "' was written with ";
-  const std::string fix = "; a restart continues with the same time step: set simulation.dt = " +
-                          exact(c.dt);
+  const std::string fix =
+      "; a restart continues with the same time step: set simulation.dt = " + exact(c.dt);
   if (!sim.dt_auto && sim.dt != c.dt)
-    throw InputError(scene.file, 0, "simulation.dt",
-                     written + "dt = " + exact(c.dt) + " s but the scene gives " + exact(sim.dt) +
-                         " s" + fix);
+    throw InputError(
+        scene.file, 0, "simulation.dt",
+        written + "dt = " + exact(c.dt) + " s but the scene gives " + exact(sim.dt) + " s" + fix);
   if (sim.dt_auto && c.dt_fraction == 0)
     throw InputError(scene.file, 0, "simulation.dt",
                      written + "an explicit dt = " + exact(c.dt) + " s" + fix);

@@ -8,9 +8,9 @@ namespace gpudem {
 /// Exit codes of gpudem-mpi.
 enum ExitCode : int {
   kExitOk = 0,
-  kExitFailure = 1,    ///< internal or system error
-  kExitBadInput = 2,   ///< scene, CSV or command line rejected; nothing written
-  kExitUnstable = 3,   ///< the run blew up (NaN or excessive overlap); last snapshot written
+  kExitFailure = 1,   ///< internal or system error
+  kExitBadInput = 2,  ///< scene, CSV or command line rejected; nothing written
+  kExitUnstable = 3,  ///< the run blew up (NaN or excessive overlap); last snapshot written
 };
 
 /// Runs (or, with --check, validates) the scene. Throws InputError for bad input before any

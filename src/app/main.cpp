@@ -53,8 +53,9 @@ int main(int argc, char** argv) {
   }
 
   if (mpi.size() > 1) {
-    print_error(mpi, "this version runs on one MPI rank (the domain is not decomposed yet); "
-                     "start it with mpirun -np 1");
+    print_error(mpi,
+                "this version runs on one MPI rank (the domain is not decomposed yet); "
+                "start it with mpirun -np 1");
     return gpudem::kExitBadInput;
   }
   try {

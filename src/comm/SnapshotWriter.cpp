@@ -51,9 +51,15 @@ void write_connectivity(const ParallelFile& file, const Slice& slice) {
       narrow_index[k] = static_cast<std::uint32_t>(slice.offset + k);
   }
   const FieldSource field =
-      wide ? FieldSource{"connectivity", wide_index.data(), H5T_NATIVE_UINT64, H5T_STD_U64LE, 1, 1, 0}
-           : FieldSource{"connectivity", narrow_index.data(), H5T_NATIVE_UINT32, H5T_STD_U32LE, 1,
-                         1, 0};
+      wide ? FieldSource{"connectivity",
+                         wide_index.data(),
+                         H5T_NATIVE_UINT64,
+                         H5T_STD_U64LE,
+                         1,
+                         1,
+                         0}
+           : FieldSource{
+                 "connectivity", narrow_index.data(), H5T_NATIVE_UINT32, H5T_STD_U32LE, 1, 1, 0};
   file.write_dataset(field, slice);
 }
 

@@ -16,7 +16,8 @@ namespace gpudem {
 
 class SnapshotWriter {
  public:
-  /// `dir` must exist. Files are `<dir>/<basename>_<index, 6 digits>.h5` and `<dir>/<basename>.xmf`.
+  /// `dir` must exist. Files are `<dir>/<basename>_<index, 6 digits>.h5` and
+  /// `<dir>/<basename>.xmf`.
   SnapshotWriter(MPI_Comm comm, std::string dir, std::string basename = "particles");
 
   /// Writes this rank's particles [0, particles.size()) as the next snapshot: datasets

@@ -31,12 +31,9 @@ struct XdmfField {
 /// geometry (dataset "position", N×3 float64) and not repeated here.
 inline const std::vector<XdmfField>& xdmf_particle_fields() {
   static const std::vector<XdmfField> fields = {
-      {"radius", "Scalar", "Float", 8, 1},
-      {"velocity", "Vector", "Float", 8, 3},
-      {"angular_velocity", "Vector", "Float", 8, 3},
-      {"force", "Vector", "Float", 8, 3},
-      {"material", "Scalar", "UInt", 4, 1},
-      {"id", "Scalar", "UInt", 8, 1},
+      {"radius", "Scalar", "Float", 8, 1},           {"velocity", "Vector", "Float", 8, 3},
+      {"angular_velocity", "Vector", "Float", 8, 3}, {"force", "Vector", "Float", 8, 3},
+      {"material", "Scalar", "UInt", 4, 1},          {"id", "Scalar", "UInt", 8, 1},
   };
   return fields;
 }

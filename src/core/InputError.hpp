@@ -11,7 +11,9 @@ class InputError : public std::runtime_error {
   /// `file` and `key` may be empty; `line` is 1-based, 0 when unknown.
   InputError(std::string file, int line, std::string key, const std::string& what)
       : std::runtime_error(compose(file, line, key, what)),
-        file_(std::move(file)), line_(line), key_(std::move(key)) {}
+        file_(std::move(file)),
+        line_(line),
+        key_(std::move(key)) {}
 
   const std::string& file() const { return file_; }
   int line() const { return line_; }

@@ -32,8 +32,7 @@ toml::value parse_scene_file(const std::string& path) {
 }
 
 /// "auto" (returned as 0) or a number > 0 in `unit`; absent means "auto".
-double auto_or_positive(const TableReader& table, const std::string& key,
-                        const std::string& unit) {
+double auto_or_positive(const TableReader& table, const std::string& key, const std::string& unit) {
   if (!table.has(key)) return 0;
   const toml::value& v = table.value(key);
   if (v.is_string() && v.as_string().str == "auto") return 0;
@@ -49,8 +48,8 @@ void require_extent(const TableReader& table, const std::string& key, Vec3 min, 
   for (int k = 0; k < 3; ++k) {
     if (!(axis(max, k) > axis(min, k))) {
       table.fail(key, what + ": max must exceed min on every axis, got max = " +
-                          format_number(axis(max, k)) + " <= min = " +
-                          format_number(axis(min, k)) + " on " + "xyz"[k]);
+                          format_number(axis(max, k)) + " <= min = " + format_number(axis(min, k)) +
+                          " on " + "xyz"[k]);
     }
   }
 }
@@ -217,9 +216,8 @@ RadiusDistribution read_discrete_radius(const TableReader& table) {
   r.weights = table.has("weights") ? table.numbers("weights", positive())
                                    : std::vector<double>(r.values.size(), 1.0);
   if (r.weights.size() != r.values.size()) {
-    table.fail("weights", "expected as many weights as values (" +
-                              std::to_string(r.values.size()) + "), got " +
-                              std::to_string(r.weights.size()));
+    table.fail("weights", "expected as many weights as values (" + std::to_string(r.values.size()) +
+                              "), got " + std::to_string(r.weights.size()));
   }
   return r;
 }
@@ -259,7 +257,7 @@ void read_region(const TableReader& source, const DomainSettings& domain, Partic
 
 /// Keys that only box (region) sources take.
 const std::vector<std::string> kBoxOnlyKeys = {"region", "count", "volume_fraction", "radius",
-                                              "velocity"};
+                                               "velocity"};
 
 ParticleSource read_box_source(const TableReader& table, const Scene& scene) {
   ParticleSource s;
@@ -285,8 +283,9 @@ ParticleSource read_box_source(const TableReader& table, const Scene& scene) {
 ParticleSource read_csv_source(const TableReader& table, const Scene& scene) {
   for (const std::string& key : kBoxOnlyKeys) {
     if (table.has(key)) {
-      table.fail(key, "'" + key + "' belongs to region sources; a csv source takes only csv "
-                                  "and material");
+      table.fail(key, "'" + key +
+                          "' belongs to region sources; a csv source takes only csv "
+                          "and material");
     }
   }
   ParticleSource s;
@@ -301,14 +300,15 @@ ParticleSource read_csv_source(const TableReader& table, const Scene& scene) {
 std::vector<ParticleSource> read_sources(const TableReader& root, const Scene& scene) {
   std::vector<ParticleSource> sources;
   for (const TableReader& table : root.array_of_tables("insert")) {
-    table.allow_only({"csv", "region", "count", "volume_fraction", "radius", "material",
-                      "velocity"});
+    table.allow_only(
+        {"csv", "region", "count", "volume_fraction", "radius", "material", "velocity"});
     const bool csv = table.has("csv");
     const bool box = table.has("region");
     if (csv && box) table.fail("csv", "an [[insert]] takes either csv or region, not both");
     if (!csv && !box) {
-      table.fail("region", "missing 'region' (random insertion in a box) or 'csv' (particles "
-                           "from a file) in [[insert]]");
+      table.fail("region",
+                 "missing 'region' (random insertion in a box) or 'csv' (particles "
+                 "from a file) in [[insert]]");
     }
     sources.push_back(csv ? read_csv_source(table, scene) : read_box_source(table, scene));
   }

@@ -36,8 +36,9 @@ inline toml::value parse_value(const std::string& key, const std::string& text) 
     parsed = toml::parse(in, "--set");
   } catch (const std::exception&) {
     throw InputError("--set", 0, key,
-                     "cannot read '" + text + "' as a TOML value (strings need quotes: "
-                     "key=\"text\")");
+                     "cannot read '" + text +
+                         "' as a TOML value (strings need quotes: "
+                         "key=\"text\")");
   }
   if (parsed.as_table().size() != 1) {
     throw InputError("--set", 0, key, "expected a single TOML value, got '" + text + "'");
@@ -89,9 +90,9 @@ inline void assign(toml::value& root, const std::vector<std::string>& parts,
         table[part] = value;
       } else if (table.count(part) == 0) {
         if (is_index(parts[i + 1])) {
-          throw InputError("--set", 0, key, "there is no array '" + walked +
-                                                (walked.empty() ? "" : ".") + part +
-                                                "' to index");
+          throw InputError(
+              "--set", 0, key,
+              "there is no array '" + walked + (walked.empty() ? "" : ".") + part + "' to index");
         }
         table.emplace(part, toml::table{});
       }

@@ -73,12 +73,15 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   s.integrator = scene.simulation.integrator;
   s.material_count = static_cast<std::uint32_t>(scene.materials.size());
   s.pair_params = pair_table(scene);
-  for (const WallSettings& w : scene.walls) s.walls.push_back(PlaneWall{w.point, w.normal, w.material});
+  for (const WallSettings& w : scene.walls)
+    s.walls.push_back(PlaneWall{w.point, w.normal, w.material});
   const double r_min = smallest_radius(particles);
-  s.skin = scene.neighbor.skin > 0 ? scene.neighbor.skin : (std::isfinite(r_min) ? 0.5 * r_min : 0.0);
+  s.skin =
+      scene.neighbor.skin > 0 ? scene.neighbor.skin : (std::isfinite(r_min) ? 0.5 * r_min : 0.0);
   if (scene.simulation.dt_auto) {
     const double critical = time_step_limits(scene, particles).critical();
-    s.dt = std::isfinite(critical) ? scene.simulation.dt_fraction * critical : scene.simulation.end_time;
+    s.dt = std::isfinite(critical) ? scene.simulation.dt_fraction * critical
+                                   : scene.simulation.end_time;
   } else {
     s.dt = scene.simulation.dt;
   }

@@ -10,7 +10,8 @@ namespace gpudem {
 /// Time-step limits of a scene [s].
 struct TimeStepLimits {
   double contact_duration = 0;  ///< t_c = π √(m*_min / k_n), lightest particle pair
-  double rayleigh = 0;          ///< T_R = π R_min √(ρ/G) / (0.1631 ν + 0.8766), smallest over materials in use
+  double rayleigh =
+      0;  ///< T_R = π R_min √(ρ/G) / (0.1631 ν + 0.8766), smallest over materials in use
   double critical() const { return contact_duration < rayleigh ? contact_duration : rayleigh; }
 };
 

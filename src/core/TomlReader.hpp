@@ -92,17 +92,23 @@ inline std::string describe_array(const toml::array& elements) {
 /// How an error message shows a value that was found: `-3`, `2.0`, `the string "abc"`.
 inline std::string describe(const toml::value& v) {
   switch (v.type()) {
-    case toml::value_t::boolean: return v.as_boolean() ? "true" : "false";
-    case toml::value_t::integer: return std::to_string(v.as_integer());
+    case toml::value_t::boolean:
+      return v.as_boolean() ? "true" : "false";
+    case toml::value_t::integer:
+      return std::to_string(v.as_integer());
     case toml::value_t::floating: {
       const double x = v.as_floating();
       const bool integral = std::isfinite(x) && x == std::floor(x) && std::abs(x) < 1e15;
       return format_number(x) + (integral ? ".0" : "");
     }
-    case toml::value_t::string: return "the string \"" + v.as_string().str + "\"";
-    case toml::value_t::array: return describe_array(v.as_array());
-    case toml::value_t::table: return "a table";
-    default: return "a date or time";
+    case toml::value_t::string:
+      return "the string \"" + v.as_string().str + "\"";
+    case toml::value_t::array:
+      return describe_array(v.as_array());
+    case toml::value_t::table:
+      return "a table";
+    default:
+      return "a date or time";
   }
 }
 
@@ -201,8 +207,8 @@ class TableReader {
       }
     }
     if (unknown.empty()) return;
-    const auto first = std::min_element(unknown.begin(), unknown.end(),
-        [this](const std::string& a, const std::string& b) {
+    const auto first = std::min_element(
+        unknown.begin(), unknown.end(), [this](const std::string& a, const std::string& b) {
           return std::make_pair(line(a), a) < std::make_pair(line(b), b);
         });
     const std::string noun = key_.empty() ? "table" : "key";

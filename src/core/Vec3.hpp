@@ -23,11 +23,15 @@ GPUDEM_HD inline Vec3 operator-(Vec3 a) { return {-a.x, -a.y, -a.z}; }
 GPUDEM_HD inline Vec3 operator*(Real s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
 GPUDEM_HD inline Vec3 operator*(Vec3 a, Real s) { return {s * a.x, s * a.y, s * a.z}; }
 GPUDEM_HD inline Vec3& operator+=(Vec3& a, Vec3 b) {
-  a.x += b.x; a.y += b.y; a.z += b.z;
+  a.x += b.x;
+  a.y += b.y;
+  a.z += b.z;
   return a;
 }
 GPUDEM_HD inline Vec3& operator-=(Vec3& a, Vec3 b) {
-  a.x -= b.x; a.y -= b.y; a.z -= b.z;
+  a.x -= b.x;
+  a.y -= b.y;
+  a.z -= b.z;
   return a;
 }
 GPUDEM_HD inline Real dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }

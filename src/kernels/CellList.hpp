@@ -144,7 +144,8 @@ class CellList {
     for (int k = 0; k < 3; ++k)
       if (box.periodic[k] && !(axis(box.length, k) >= 2 * cutoff)) {
         std::ostringstream what;
-        what << "CellList: periodic length along " << "xyz"[k] << " (" << axis(box.length, k)
+        what << "CellList: periodic length along "
+             << "xyz"[k] << " (" << axis(box.length, k)
              << " m) must be at least 2 (2 r_max + skin) = " << 2 * cutoff << " m";
         throw std::invalid_argument(what.str());
       }
@@ -163,8 +164,8 @@ class CellList {
       const cell_list_kernels::InClass member{position_radius, r_max, grids_.class_count, c};
       const auto particles = static_cast<std::uint32_t>(reduce_sum(Space{}, n_, member));
       if (particles > 0) {
-        const Real radius = reduce_max(Space{}, n_, Real(0),
-                                       cell_list_kernels::RadiusInClass{member});
+        const Real radius =
+            reduce_max(Space{}, n_, Real(0), cell_list_kernels::RadiusInClass{member});
         const std::size_t max_cells = std::min<std::size_t>(
             kMaxCellsPerParticle * particles, std::numeric_limits<int>::max());  // int per axis
         g = make_cell_grid(box, 2 * radius + skin, Real(max_cells));
@@ -182,9 +183,9 @@ class CellList {
   void sort_into_cells(const Real4* position_radius) {
     cell_.resize(n_);
     order_.resize(n_);
-    parallel_for(Space{}, n_,
-                 cell_list_kernels::AssignCell{grids_, position_radius, cell_.data(),
-                                               order_.data()});
+    parallel_for(
+        Space{}, n_,
+        cell_list_kernels::AssignCell{grids_, position_radius, cell_.data(), order_.data()});
     sort_by_key(Space{}, cell_.data(), order_.data(), n_);
   }
 

@@ -48,12 +48,12 @@ struct IgnoreSeparated {
 /// One touching contact as seen from particle i.
 struct ContactSample {
   ContactKinematics kinematics;
-  Real arm;                 ///< lever arm on i: r_i − δ/2, along kinematics.normal [m]
-  Real min_radius;          ///< smaller radius of the pair (r_i for walls) [m]
+  Real arm;         ///< lever arm on i: r_i − δ/2, along kinematics.normal [m]
+  Real min_radius;  ///< smaller radius of the pair (r_i for walls) [m]
   const LinearPairParams* params;
-  std::int32_t wall;        ///< wall index, or −1 for a particle partner
-  std::uint32_t slot;       ///< index of this contact's history (pair or wall spring array)
-  Vec3 spring;              ///< tangential spring ξ stored at the end of the last step
+  std::int32_t wall;   ///< wall index, or −1 for a particle partner
+  std::uint32_t slot;  ///< index of this contact's history (pair or wall spring array)
+  Vec3 spring;         ///< tangential spring ξ stored at the end of the last step
 };
 
 /// Calls visit(sample) for each contact of particle i with positive overlap.

@@ -34,13 +34,13 @@ constexpr double kTangentialStiffnessRatio = 2.0 / 7.0;
 
 /// Geometry and kinematics of one contact, seen from particle i.
 struct ContactKinematics {
-  Vec3 normal;        ///< unit vector from i towards its partner
-  Real overlap;       ///< δ > 0 [m]
-  Vec3 velocity;      ///< relative velocity of i w.r.t. partner at the contact point [m/s]
-  Real reduced_mass;  ///< m* [kg]
-  Vec3 relative_spin;     ///< ω_i − ω_j (ω_i on walls) [rad/s]
-  Real rolling_radius;    ///< R* = r_i r_j / (r_i + r_j) (r_i on walls) [m]
-  Real reduced_inertia;   ///< I* = I_i I_j / (I_i + I_j) (I_i on walls) [kg m²]
+  Vec3 normal;           ///< unit vector from i towards its partner
+  Real overlap;          ///< δ > 0 [m]
+  Vec3 velocity;         ///< relative velocity of i w.r.t. partner at the contact point [m/s]
+  Real reduced_mass;     ///< m* [kg]
+  Vec3 relative_spin;    ///< ω_i − ω_j (ω_i on walls) [rad/s]
+  Real rolling_radius;   ///< R* = r_i r_j / (r_i + r_j) (r_i on walls) [m]
+  Real reduced_inertia;  ///< I* = I_i I_j / (I_i + I_j) (I_i on walls) [kg m²]
 };
 
 /// β = ln e / √(ln² e + π²) as a magnitude; 0 for e = 1.
@@ -58,8 +58,8 @@ GPUDEM_HD inline Real damping_coefficient(const LinearPairParams& p, const Conta
 
 /// F_n = max(0, k_n δ + γ_n δ̇) [N].
 GPUDEM_HD inline Real normal_force(const LinearPairParams& p, const ContactKinematics& c) {
-  const Real fn = p.stiffness * c.overlap +
-                  damping_coefficient(p, c, p.stiffness) * dot(c.velocity, c.normal);
+  const Real fn =
+      p.stiffness * c.overlap + damping_coefficient(p, c, p.stiffness) * dot(c.velocity, c.normal);
   return fn > 0 ? fn : Real(0);
 }
 
@@ -110,8 +110,8 @@ GPUDEM_HD inline Vec3 linear_contact_force(const LinearPairParams& p, const Cont
 }
 
 /// Rolling resistance torque on particle i [N m].
-GPUDEM_HD inline Vec3 rolling_torque(const LinearPairParams& p, const ContactKinematics& c,
-                                     Real fn, Real dt) {
+GPUDEM_HD inline Vec3 rolling_torque(const LinearPairParams& p, const ContactKinematics& c, Real fn,
+                                     Real dt) {
   const Real spin = norm(c.relative_spin);
   if (p.rolling_friction == 0 || spin == 0) return Vec3{};
   const Real full = p.rolling_friction * fn * c.rolling_radius;

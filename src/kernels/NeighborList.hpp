@@ -149,10 +149,9 @@ class NeighborList {
                                                    static_cast<std::uint32_t>(pairs_kept_)});
     neighbors_.resize(pairs_kept_);
     parallel_for(Space{}, n,
-                 neighbor_list_kernels::WriteNeighbors{search, offsets_.data(),
-                                                       neighbors_.data()});
-    candidates_examined_ = static_cast<std::uint64_t>(reduce_sum(
-        Space{}, n, neighbor_list_kernels::ValueOf{candidates_per_particle_.data()}));
+                 neighbor_list_kernels::WriteNeighbors{search, offsets_.data(), neighbors_.data()});
+    candidates_examined_ = static_cast<std::uint64_t>(
+        reduce_sum(Space{}, n, neighbor_list_kernels::ValueOf{candidates_per_particle_.data()}));
   }
 
   /// Number of particles in the list.

@@ -8,8 +8,8 @@
 namespace gpudem {
 
 struct PeriodicBox {
-  Vec3 lo;                           ///< [m] lower corner
-  Vec3 length;                       ///< [m] edge lengths
+  Vec3 lo;      ///< [m] lower corner
+  Vec3 length;  ///< [m] edge lengths
   bool periodic[3] = {false, false, false};
 
   /// Displacement d reduced to its nearest periodic image on each periodic axis.

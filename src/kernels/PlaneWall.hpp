@@ -7,8 +7,8 @@
 namespace gpudem {
 
 struct PlaneWall {
-  Vec3 point;               ///< any point of the plane [m]
-  Vec3 normal;              ///< unit normal pointing into the particles' side
+  Vec3 point;   ///< any point of the plane [m]
+  Vec3 normal;  ///< unit normal pointing into the particles' side
   MaterialId material = 0;
 };
 

@@ -49,11 +49,11 @@ GPUDEM_HD inline int size_class(Real r, Real r_top, int class_count) {
 /// a periodic image of a point lies a whole number of grid lengths away from the point's cell;
 /// on a non-periodic axis, points outside the box belong to the edge cells.
 struct CellGrid {
-  int cells[3] = {1, 1, 1};       ///< cells along x, y, z
-  Real side[3] = {1, 1, 1};       ///< [m] cell edge along x, y, z
-  std::uint32_t first_cell = 0;   ///< index of this grid's cell (0,0,0) among all grids' cells
-  std::uint32_t particles = 0;    ///< particles binned in this grid
-  Real radius_max = 0;            ///< [m] largest radius binned in this grid
+  int cells[3] = {1, 1, 1};      ///< cells along x, y, z
+  Real side[3] = {1, 1, 1};      ///< [m] cell edge along x, y, z
+  std::uint32_t first_cell = 0;  ///< index of this grid's cell (0,0,0) among all grids' cells
+  std::uint32_t particles = 0;   ///< particles binned in this grid
+  Real radius_max = 0;           ///< [m] largest radius binned in this grid
 
   GPUDEM_HD std::uint32_t cell_count() const {
     return static_cast<std::uint32_t>(cells[0]) * cells[1] * cells[2];
@@ -147,15 +147,13 @@ inline CellGrid make_cell_grid(const PeriodicBox& box, Real min_side, Real max_c
 /// The class grids of one binning, with everything a search thread needs to use them.
 struct SizeClassGrids {
   PeriodicBox box;
-  Real skin = 0;                   ///< [m] added to every pair's contact distance
-  Real radius_top = 0;             ///< [m] largest radius, upper bound of class 0
+  Real skin = 0;        ///< [m] added to every pair's contact distance
+  Real radius_top = 0;  ///< [m] largest radius, upper bound of class 0
   int class_count = 1;
   CellGrid grid[kMaxSizeClasses];  ///< grid of each class, cells numbered class after class
   std::uint32_t total_cells = 1;   ///< cells of all grids
 
-  GPUDEM_HD int class_of(Real radius) const {
-    return size_class(radius, radius_top, class_count);
-  }
+  GPUDEM_HD int class_of(Real radius) const { return size_class(radius, radius_top, class_count); }
 
   /// Index, among all grids' cells, of the cell that holds particle p (x, y, z, radius).
   GPUDEM_HD std::uint32_t cell_of(const Real4& p) const {

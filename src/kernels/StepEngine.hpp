@@ -23,7 +23,7 @@ struct EngineSetup {
   Vec3 gravity;
   Real dt = 0;
   IntegratorKind integrator = IntegratorKind::VelocityVerlet;
-  Real skin = 0;                              ///< Verlet skin [m]
+  Real skin = 0;  ///< Verlet skin [m]
   std::uint32_t material_count = 0;
   std::vector<LinearPairParams> pair_params;  ///< material_count² entries, row-major
   std::vector<PlaneWall> walls;
@@ -33,7 +33,7 @@ struct EngineSetup {
 /// particles exert on each wall [N].
 struct Diagnostics {
   std::uint64_t particle_count = 0;
-  std::uint64_t contact_count = 0;  ///< particle–particle plus particle–wall contacts
+  std::uint64_t contact_count = 0;   ///< particle–particle plus particle–wall contacts
   double kinetic_translational = 0;  ///< Σ ½ m v² [J]
   double kinetic_rotational = 0;     ///< Σ ½ I ω² [J]
   double potential_gravity = 0;      ///< Σ −m g·x [J]

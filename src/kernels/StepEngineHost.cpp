@@ -10,8 +10,9 @@ std::unique_ptr<StepEngine> make_host_engine(const EngineSetup& setup) {
 
 #if !defined(GPUDEM_HAVE_CUDA)
 std::unique_ptr<StepEngine> make_cuda_engine(const EngineSetup&) {
-  throw std::runtime_error("this gpudem-mpi was built without the CUDA backend "
-                           "(rebuild with -DGPUDEM_ENABLE_CUDA=ON)");
+  throw std::runtime_error(
+      "this gpudem-mpi was built without the CUDA backend "
+      "(rebuild with -DGPUDEM_ENABLE_CUDA=ON)");
 }
 #endif
 

@@ -218,12 +218,15 @@ class StepEngineImpl final : public StepEngine {
     const ParticleView view = particle_view();
     const ContactScene scene = contact_scene();
     d.particle_count = n;
-    d.kinetic_translational = reduce_sum(Space{}, n, TranslationalEnergy{velocity_inv_mass_.data()});
-    d.kinetic_rotational = reduce_sum(
-        Space{}, n,
-        RotationalEnergy{velocity_inv_mass_.data(), position_radius_.data(), angular_velocity_.data()});
+    d.kinetic_translational =
+        reduce_sum(Space{}, n, TranslationalEnergy{velocity_inv_mass_.data()});
+    d.kinetic_rotational =
+        reduce_sum(Space{}, n,
+                   RotationalEnergy{velocity_inv_mass_.data(), position_radius_.data(),
+                                    angular_velocity_.data()});
     d.potential_gravity = reduce_sum(
-        Space{}, n, GravityEnergy{velocity_inv_mass_.data(), position_radius_.data(), setup_.gravity});
+        Space{}, n,
+        GravityEnergy{velocity_inv_mass_.data(), position_radius_.data(), setup_.gravity});
     d.potential_elastic = reduce_sum(Space{}, n, ContactShare{view, scene, true});
     d.contact_count = static_cast<std::uint64_t>(
         std::llround(reduce_sum(Space{}, n, ContactShare{view, scene, false})));
@@ -245,8 +248,8 @@ class StepEngineImpl final : public StepEngine {
     return position_radius_.bytes() + velocity_inv_mass_.bytes() + angular_velocity_.bytes() +
            force_.bytes() + torque_.bytes() + id_.bytes() + material_.bytes() +
            overlap_ratio_.bytes() + position_at_build_.bytes() + pair_spring_.bytes() +
-           wall_spring_.bytes() + scratch_bytes() +
-           cells_.memory_bytes() + neighbors_.memory_bytes();
+           wall_spring_.bytes() + scratch_bytes() + cells_.memory_bytes() +
+           neighbors_.memory_bytes();
   }
 
   std::string backend_name() const override { return Space::name; }
@@ -320,9 +323,10 @@ class StepEngineImpl final : public StepEngine {
   }
 
   ContactScene contact_scene() const {
-    return ContactScene{neighbors_.offsets(), neighbors_.neighbors(), pair_params_.data(),
-                        setup_.material_count, walls_.data(),         wall_count(),
-                        setup_.box,            pair_spring_.data(),   wall_spring_.data()};
+    return ContactScene{
+        neighbors_.offsets(), neighbors_.neighbors(), pair_params_.data(), setup_.material_count,
+        walls_.data(),        wall_count(),           setup_.box,          pair_spring_.data(),
+        wall_spring_.data()};
   }
 
   void kick(Real h) {
@@ -342,9 +346,9 @@ class StepEngineImpl final : public StepEngine {
 
   /// The Verlet list stays valid while no particle moved more than skin/2.
   bool needs_rebuild() const {
-    const Real moved2 = reduce_max(Space{}, size(), Real(0),
-                                   DisplacementSquared{position_radius_.data(),
-                                                       position_at_build_.data()});
+    const Real moved2 =
+        reduce_max(Space{}, size(), Real(0),
+                   DisplacementSquared{position_radius_.data(), position_at_build_.data()});
     const Real half_skin = Real(0.5) * setup_.skin;
     return moved2 > half_skin * half_skin;
   }
@@ -392,8 +396,9 @@ class StepEngineImpl final : public StepEngine {
     if (leavers == 0) return;
     sort_key_.resize(n);
     sort_index_.resize(n);
-    parallel_for(Space{}, n,
-                 LeaverKey{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
+    parallel_for(
+        Space{}, n,
+        LeaverKey{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
     sort_by_key(Space{}, sort_key_.data(), sort_index_.data(), n);
     reorder(sort_index_.data(), n);
     resize(n - leavers);
@@ -453,8 +458,8 @@ class StepEngineImpl final : public StepEngine {
   DeviceArray<Real4, Space> position_at_build_;
   DeviceArray<std::uint64_t, Space> sort_key_;
   DeviceArray<std::uint32_t, Space> sort_index_;
-  DeviceArray<Vec3, Space> pair_spring_;   ///< tangential spring per neighbour-list entry
-  DeviceArray<Vec3, Space> wall_spring_;   ///< tangential spring per (particle, wall)
+  DeviceArray<Vec3, Space> pair_spring_;  ///< tangential spring per neighbour-list entry
+  DeviceArray<Vec3, Space> wall_spring_;  ///< tangential spring per (particle, wall)
   DeviceArray<std::uint32_t, Space> previous_index_;  ///< index before this rebuild's reorders
   DeviceArray<ParticleId, Space> previous_id_;
   CellList<Space> cells_;

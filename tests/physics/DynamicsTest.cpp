@@ -210,7 +210,7 @@ TEST_P(Rolling, ConstantTorqueStopsSphereAtClosedFormDistance) {
   ParticleStore particles = single_particle(scene, {0, 0, -0.5 + r}, {v0, 0, 0}, r);
   const double m = 1.0 / particles.velocity_inv_mass[0].w;
   particles.position_radius[0].z -= m * 9.81 / 1e4;  // start at the static overlap
-  particles.angular_velocity[0] = {0, v0 / r, 0};   // rolling without slip
+  particles.angular_velocity[0] = {0, v0 / r, 0};    // rolling without slip
   auto engine = make_engine(make_engine_setup(scene, particles));
   engine->set_particles(particles);
   const double stop_time = v0 / (5.0 / 7.0 * mu_r * 9.81);

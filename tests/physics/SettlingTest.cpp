@@ -52,7 +52,8 @@ TEST_P(Settling, BedComesToRestWithRandomPacking) {
   }
   RecordProperty("kinetic_over_initial_potential", significant(kinetic / initial_potential));
   RecordProperty("steps", significant(blocks * 200));
-  EXPECT_LT(kinetic, 1e-6 * initial_potential) << "bed still moving after " << blocks * 200 << " steps";
+  EXPECT_LT(kinetic, 1e-6 * initial_potential)
+      << "bed still moving after " << blocks * 200 << " steps";
   EXPECT_EQ(engine->removed_count(), 0u);
   HealthFailure failure;
   EXPECT_FALSE(engine->find_unhealthy(0.05, failure)) << "overlap ratio " << failure.overlap_ratio;

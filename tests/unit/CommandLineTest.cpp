@@ -56,7 +56,8 @@ class CommandLine : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("gpudem_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("gpudem_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -143,22 +144,30 @@ TEST_F(CommandLine, UnknownKeySuggestsNearest) {
 
 TEST_F(CommandLine, WrongType) { expect_rejected(edit("young = 1e7", "young = \"big\""), "young"); }
 
-TEST_F(CommandLine, MissingRequiredKey) { expect_rejected(edit("end_time = 0.002", ""), "end_time"); }
+TEST_F(CommandLine, MissingRequiredKey) {
+  expect_rejected(edit("end_time = 0.002", ""), "end_time");
+}
 
 TEST_F(CommandLine, NegativeRadius) {
   expect_rejected(edit("mean = 0.004, spread = 0.001", "mean = -0.004, spread = 0.001"), "radius");
 }
 
-TEST_F(CommandLine, ZeroRadius) { expect_rejected(edit("{ mean = 0.004, spread = 0.001 }", "0.0"), "radius"); }
+TEST_F(CommandLine, ZeroRadius) {
+  expect_rejected(edit("{ mean = 0.004, spread = 0.001 }", "0.0"), "radius");
+}
 
-TEST_F(CommandLine, PoissonOutOfRange) { expect_rejected(edit("poisson = 0.3", "poisson = 0.5"), "poisson"); }
+TEST_F(CommandLine, PoissonOutOfRange) {
+  expect_rejected(edit("poisson = 0.3", "poisson = 0.5"), "poisson");
+}
 
 TEST_F(CommandLine, RestitutionOutOfRange) {
   expect_rejected(edit("restitution = 0.5", "restitution = 0.0"), "restitution");
   expect_rejected(edit("restitution = 0.5", "restitution = 1.5"), "restitution");
 }
 
-TEST_F(CommandLine, NonPositiveDensity) { expect_rejected(edit("density = 2500.0", "density = 0.0"), "density"); }
+TEST_F(CommandLine, NonPositiveDensity) {
+  expect_rejected(edit("density = 2500.0", "density = 0.0"), "density");
+}
 
 TEST_F(CommandLine, EmptyDomain) {
   expect_rejected(edit("max = [0.1, 0.1, 0.1]", "max = [0.1, 0.0, 0.1]"), "domain");
@@ -170,8 +179,7 @@ TEST_F(CommandLine, SourceOutsideDomain) {
 
 TEST_F(CommandLine, CsvRowThatDoesNotParseNamesItsLine) {
   std::ofstream(dir_ / "bed.csv") << "x,y,z,r\n0.05,0.05,0.05,0.004\n0.02,0.02,zero,0.004\n";
-  const std::string insert =
-      "[[insert]]\ncsv = \"bed.csv\"\nmaterial = \"sand\"\n\n[output]";
+  const std::string insert = "[[insert]]\ncsv = \"bed.csv\"\nmaterial = \"sand\"\n\n[output]";
   std::string s = kValidScene;
   s = s.substr(0, s.find("[[insert]]")) + insert + s.substr(s.find("[output]") + 8);
   expect_rejected(s, "bed.csv:3");

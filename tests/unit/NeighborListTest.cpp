@@ -140,8 +140,8 @@ struct Built {
   std::uint64_t candidates = 0, kept = 0;
 };
 
-Built build(CellList<HostSpace>& cells, NeighborList<HostSpace>& list,
-            const std::vector<Real4>& p, const PeriodicBox& box, Real skin) {
+Built build(CellList<HostSpace>& cells, NeighborList<HostSpace>& list, const std::vector<Real4>& p,
+            const PeriodicBox& box, Real skin) {
   cells.bin(p.data(), p.size(), box, skin);
   std::vector<Real4> sorted(p.size());
   permute(HostSpace{}, cells.order(), p.data(), sorted.data(), p.size());
@@ -243,8 +243,8 @@ TEST_P(NeighborSearchCase, CellOrderGroupsParticlesByCell) {
           const bool open = !box.periodic[k];
           const Real lo = axis(box.lo, k) + index[k] * g.side[k];
           const Real lower = open && index[k] == 0 ? -INFINITY : lo - tolerance;
-          const Real upper = open && index[k] + 1 == g.cells[k] ? INFINITY
-                                                                : lo + g.side[k] + tolerance;
+          const Real upper =
+              open && index[k] + 1 == g.cells[k] ? INFINITY : lo + g.side[k] + tolerance;
           const Real x = axis(xyz(q), k);
           const Real image = open ? x : x - axis(box.length, k);  // a point at lo + L is at lo
           ASSERT_TRUE((x >= lower && x <= upper) || (image >= lower && image <= upper))

@@ -263,8 +263,8 @@ TEST_F(SceneLoaderTest, MinimalSceneTakesDefaults) {
 }
 
 TEST_F(SceneLoaderTest, SceneWithoutParticlesIsAllowed) {
-  const std::string no_insert = std::string(kBaseScene).substr(
-      0, std::string(kBaseScene).find("[[insert]]"));
+  const std::string no_insert =
+      std::string(kBaseScene).substr(0, std::string(kBaseScene).find("[[insert]]"));
   EXPECT_TRUE(load_text(no_insert).sources.empty());
 }
 
@@ -320,8 +320,8 @@ TEST_F(SceneLoaderTest, WrongTypeNamesExpectedType) {
                "expected an integer > 0, got 1.5");
   expect_error(load_error(base_with(kDomainSlot, "periodic = [1, 0, 0]")), kDomainSlot,
                "domain.periodic", "expected an array of 3 booleans, got [1, 0, 0]");
-  expect_error(load_error(base_with(kDomainMaxLine, "max = [1, 1]")), kDomainMaxLine,
-               "domain.max", "expected an array of 3 numbers [m], got [1, 1]");
+  expect_error(load_error(base_with(kDomainMaxLine, "max = [1, 1]")), kDomainMaxLine, "domain.max",
+               "expected an array of 3 numbers [m], got [1, 1]");
   expect_error(load_error(base_with(kDomainMaxLine, "max = [1, \"a\", 1]")), kDomainMaxLine,
                "domain.max", "got the string \"a\" at index 1");
   expect_error(load_error(base_with(kMaterialLine, "[material]")), kMaterialLine, "material",
@@ -357,10 +357,9 @@ TEST_F(SceneLoaderTest, RadiusMustBePositive) {
                "insert[0].radius.mean", "expected a number > 0 [m], got -0.001");
   expect_error(load_error(base_with(kRadiusLine, "radius = {mean = 1e-3, spread = 1e-3}")),
                kRadiusLine, "insert[0].radius.spread", "so that every radius is > 0");
-  expect_error(
-      load_error(base_with(kRadiusLine,
-                           "radius = {distribution = \"discrete\", values = [1e-3, 0]}")),
-      kRadiusLine, "insert[0].radius.values", "got 0 at index 1");
+  expect_error(load_error(base_with(kRadiusLine,
+                                    "radius = {distribution = \"discrete\", values = [1e-3, 0]}")),
+               kRadiusLine, "insert[0].radius.values", "got 0 at index 1");
   expect_error(load_error(base_with(kRadiusLine,
                                     "radius = {distribution = \"normal\", mean = 1e-3, "
                                     "stddev = 1e-4, min = 0, max = 2e-3}")),
@@ -404,12 +403,10 @@ TEST_F(SceneLoaderTest, EmptyDomain) {
 }
 
 TEST_F(SceneLoaderTest, SourceRegionMustLieInsideDomain) {
-  expect_error(
-      load_error(base_with(kRegionLine, "region = {min = [0, 0, 0], max = [1, 1, 1.5]}")),
-      kRegionLine, "insert[0].region", "source region lies outside the domain on z");
-  expect_error(
-      load_error(base_with(kRegionLine, "region = {min = [-0.1, 0, 0], max = [1, 1, 1]}")),
-      kRegionLine, "insert[0].region", "source region lies outside the domain on x");
+  expect_error(load_error(base_with(kRegionLine, "region = {min = [0, 0, 0], max = [1, 1, 1.5]}")),
+               kRegionLine, "insert[0].region", "source region lies outside the domain on z");
+  expect_error(load_error(base_with(kRegionLine, "region = {min = [-0.1, 0, 0], max = [1, 1, 1]}")),
+               kRegionLine, "insert[0].region", "source region lies outside the domain on x");
   expect_error(
       load_error(base_with(kRegionLine, "region = {min = [0, 0.5, 0], max = [1, 0.5, 1]}")),
       kRegionLine, "insert[0].region.max", "the source region is empty");
@@ -429,8 +426,8 @@ TEST_F(SceneLoaderTest, UnknownMaterialName) {
 
 TEST_F(SceneLoaderTest, DuplicateMaterialName) {
   const std::string second = "[[material]]\nname = \"soil\"\ndensity = 1\nyoung = 1";
-  expect_error(load_error(base_with(kMaterialSlot, second)), kMaterialSlot + 1,
-               "material[1].name", "duplicate material name 'soil'");
+  expect_error(load_error(base_with(kMaterialSlot, second)), kMaterialSlot + 1, "material[1].name",
+               "duplicate material name 'soil'");
 }
 
 TEST_F(SceneLoaderTest, DuplicateWallName) {
@@ -473,10 +470,10 @@ TEST_F(SceneLoaderTest, WallNormalMustBeNonZero) {
 }
 
 TEST_F(SceneLoaderTest, OverridesChangeValues) {
-  const Scene s = load_text(kBaseScene, {"simulation.end_time=0.5", "output.dir=\"run2\"",
-                                         "material.0.density = 2000",
-                                         "domain.periodic=[true,false,false]",
-                                         "simulation.dt=1e-5", "insert.0.region.max.2=1"});
+  const Scene s =
+      load_text(kBaseScene, {"simulation.end_time=0.5", "output.dir=\"run2\"",
+                             "material.0.density = 2000", "domain.periodic=[true,false,false]",
+                             "simulation.dt=1e-5", "insert.0.region.max.2=1"});
   EXPECT_DOUBLE_EQ(s.simulation.end_time, 0.5);
   EXPECT_EQ(s.output.dir, "run2");
   EXPECT_DOUBLE_EQ(s.materials[0].density, 2000);
