@@ -8,14 +8,14 @@
 #include <filesystem>
 #include <string>
 
+#include "support/MpiRank.hpp"
+
 namespace gpudem::test {
 
 inline std::string make_shared_temp_dir(const std::string& prefix) {
   namespace fs = std::filesystem;
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   std::string path;
-  if (rank == 0) {
+  if (comm_rank() == 0) {
     path = (fs::temp_directory_path() /
             (prefix + std::to_string(::getpid()) + "_" +
              ::testing::UnitTest::GetInstance()->current_test_info()->name()))
@@ -32,10 +32,8 @@ inline std::string make_shared_temp_dir(const std::string& prefix) {
 
 /// Removes the directory once every rank is done with it.
 inline void remove_shared_temp_dir(const std::string& path) {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Barrier(MPI_COMM_WORLD);
-  if (rank == 0) std::filesystem::remove_all(path);
+  if (comm_rank() == 0) std::filesystem::remove_all(path);
 }
 
 }  // namespace gpudem::test

@@ -21,6 +21,7 @@
 #include "core/InputError.hpp"
 #include "support/CheckpointEdits.hpp"
 
+#include "support/MpiRank.hpp"
 #include "support/SharedTempDir.hpp"
 
 namespace gpudem {
@@ -29,17 +30,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::read_values;
 
-int comm_rank() {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  return rank;
-}
-
-int comm_size() {
-  int size = 0;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  return size;
-}
+using test::comm_rank;
+using test::comm_size;
 
 /// Rank r's particles: none on rank 1 (a rank without particles still takes part).
 std::size_t particles_of(int rank) { return rank == 1 ? 0 : 40 + 13 * rank; }

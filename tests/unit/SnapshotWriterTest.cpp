@@ -18,6 +18,7 @@
 #include "comm/SnapshotWriter.hpp"
 
 #include "support/H5Id.hpp"
+#include "support/MpiRank.hpp"
 #include "support/SharedTempDir.hpp"
 
 namespace gpudem {
@@ -25,17 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int comm_rank() {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  return rank;
-}
-
-int comm_size() {
-  int size = 0;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  return size;
-}
+using test::comm_rank;
+using test::comm_size;
 
 using test::H5Id;
 
