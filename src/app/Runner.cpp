@@ -1,6 +1,5 @@
 #include "app/Runner.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -13,6 +12,7 @@
 #include "comm/OutputDirectory.hpp"
 #include "comm/SnapshotWriter.hpp"
 #include "comm/TimeSeriesWriter.hpp"
+#include "core/ExactDecimal.hpp"
 #include "core/InputError.hpp"
 #include "core/ParticleSources.hpp"
 #include "core/SceneLoader.hpp"
@@ -52,13 +52,6 @@ std::uint64_t steps_between(double every, double dt) {
 /// Steps to reach end_time: ⌈end_time / dt⌉.
 std::uint64_t step_count(double end_time, double dt) {
   return static_cast<std::uint64_t>(std::ceil(end_time / dt - 1e-9));
-}
-
-/// Shortest decimal text that reads back to exactly `value`.
-std::string exact(double value) {
-  char text[32];
-  const auto result = std::to_chars(text, text + sizeof text, value);
-  return std::string(text, result.ptr);
 }
 
 std::vector<std::string> timeseries_columns(const Scene& scene) {
@@ -108,9 +101,13 @@ void print_summary(const Scene& scene, const ParticleStore& particles, const Eng
       setup.dt, scene.simulation.dt_auto ? "auto" : "explicit", limits.contact_duration,
       limits.rayleigh, static_cast<unsigned long long>(steps), scene.simulation.end_time,
       setup.skin);
-  if (engine)
-    std::printf("backend %s, %.1f bytes per particle\n", engine->backend_name().c_str(),
+  if (engine) {
+    const std::string device =
+        engine->backend_name() == "cuda" ? " (" + cuda::device_description() + ")" : "";
+    std::printf("backend %s%s, %.1f bytes per particle\n", engine->backend_name().c_str(),
+                device.c_str(),
                 particles.size() ? double(engine->memory_bytes()) / particles.size() : 0.0);
+  }
   std::fflush(stdout);
 }
 
@@ -154,8 +151,6 @@ class TimeLoop {
         resumed_(start.resumed) {
     if (resumed_) snapshots_.resume(start.snapshots);
   }
-
-  std::uint64_t total_steps() const { return total_steps_; }
 
   int run() {
     if (!resumed_) record(first_step_, true);
@@ -259,24 +254,24 @@ void adopt_checkpoint_step(EngineSetup& setup, const Scene& scene, const Checkpo
   const SimulationSettings& sim = scene.simulation;
   const std::string written = "checkpoint '" + path + "' was written with ";
   const std::string fix =
-      "; a restart continues with the same time step: set simulation.dt = " + exact(c.dt);
+      "; a restart continues with the same time step: set simulation.dt = " + exact_decimal(c.dt);
   if (!sim.dt_auto && sim.dt != c.dt)
-    throw InputError(
-        scene.file, 0, "simulation.dt",
-        written + "dt = " + exact(c.dt) + " s but the scene gives " + exact(sim.dt) + " s" + fix);
+    throw InputError(scene.file, 0, "simulation.dt",
+                     written + "dt = " + exact_decimal(c.dt) + " s but the scene gives " +
+                         exact_decimal(sim.dt) + " s" + fix);
   if (sim.dt_auto && c.dt_fraction == 0)
     throw InputError(scene.file, 0, "simulation.dt",
-                     written + "an explicit dt = " + exact(c.dt) + " s" + fix);
+                     written + "an explicit dt = " + exact_decimal(c.dt) + " s" + fix);
   if (sim.dt_auto && sim.dt_fraction != c.dt_fraction)
     throw InputError(scene.file, 0, "simulation.dt_fraction",
-                     written + "dt_fraction = " + exact(c.dt_fraction) + " but the scene gives " +
-                         exact(sim.dt_fraction) + fix);
+                     written + "dt_fraction = " + exact_decimal(c.dt_fraction) +
+                         " but the scene gives " + exact_decimal(sim.dt_fraction) + fix);
   setup.dt = c.dt;
   if (scene.neighbor.skin <= 0) setup.skin = c.skin;
   if (c.step >= step_count(sim.end_time, c.dt))
     throw InputError(scene.file, 0, "simulation.end_time",
-                     "checkpoint '" + path + "' is at t = " + exact(c.time) +
-                         " s, not before end_time = " + exact(sim.end_time) +
+                     "checkpoint '" + path + "' is at t = " + exact_decimal(c.time) +
+                         " s, not before end_time = " + exact_decimal(sim.end_time) +
                          " s: nothing to continue");
 }
 

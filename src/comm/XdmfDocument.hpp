@@ -3,11 +3,11 @@
 /// Polyvertex grid whose heavy data are the datasets SnapshotWriter puts at the root of that
 /// snapshot's HDF5 file. Files are named relative to the .xmf, so an output folder can be moved
 /// as a whole. Keys are the ones both ParaView readers accept (Xdmf3 and the legacy Xdmf2).
-#include <charconv>
 #include <cstdint>
 #include <string>
-#include <system_error>
 #include <vector>
+
+#include "core/ExactDecimal.hpp"
 
 namespace gpudem {
 
@@ -58,14 +58,6 @@ inline std::string escape(const std::string& text) {
       out += c;
   }
   return out;
-}
-
-/// Shortest decimal text that reads back to exactly `value`.
-inline std::string exact_decimal(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  if (result.ec != std::errc()) return std::to_string(value);
-  return std::string(buffer, result.ptr);
 }
 
 inline std::string dimensions(std::uint64_t count, int components) {

@@ -41,4 +41,9 @@ inline Real sphere_mass(Real density, Real radius) {
   return Real(4.0 / 3.0 * 3.14159265358979323846) * radius * radius * radius * density;
 }
 
+/// Moment of inertia of a solid sphere, I = 2/5 m r², from its radius and inverse mass.
+GPUDEM_HD inline Real sphere_inertia(Real radius, Real inv_mass) {
+  return Real(0.4) * radius * radius / inv_mass;
+}
+
 }  // namespace gpudem

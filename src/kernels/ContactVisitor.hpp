@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/Config.hpp"
+#include "core/ParticleStore.hpp"
 #include "core/Vec3.hpp"
 #include "kernels/LinearContact.hpp"
 #include "kernels/PeriodicBox.hpp"
@@ -33,11 +34,6 @@ struct ContactScene {
   const Vec3* pair_spring;  ///< tangential spring per neighbour-list entry
   const Vec3* wall_spring;  ///< tangential spring per (particle, wall): slot i·wall_count + w
 };
-
-/// Moment of inertia of a solid sphere, I = 2/5 m r², from its radius and inverse mass.
-GPUDEM_HD inline Real sphere_inertia(Real radius, Real inv_mass) {
-  return Real(0.4) * radius * radius / inv_mass;
-}
 
 /// Base for visitors that ignore partners out of contact.
 struct IgnoreSeparated {

@@ -18,6 +18,5 @@ void release(void* ptr);
 void copy_to_device(void* dst, const void* src, std::size_t bytes);
 void copy_to_host(void* dst, const void* src, std::size_t bytes);
 void copy_on_device(void* dst, const void* src, std::size_t bytes);
-void synchronize();
 
 }  // namespace gpudem::cuda

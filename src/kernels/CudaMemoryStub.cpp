@@ -22,6 +22,5 @@ void release(void* ptr) {
 void copy_to_device(void*, const void*, std::size_t) { unavailable(); }
 void copy_to_host(void*, const void*, std::size_t) { unavailable(); }
 void copy_on_device(void*, const void*, std::size_t) { unavailable(); }
-void synchronize() {}
 
 }  // namespace gpudem::cuda

@@ -22,8 +22,8 @@ struct RotationalEnergy {
   const Real4* position_radius;
   const Vec3* angular_velocity;
   GPUDEM_HD Real operator()(std::size_t i) const {
-    const Real r = position_radius[i].w;
-    return Real(0.2) * r * r / velocity_inv_mass[i].w * norm2(angular_velocity[i]);
+    const Real inertia = sphere_inertia(position_radius[i].w, velocity_inv_mass[i].w);
+    return Real(0.5) * inertia * norm2(angular_velocity[i]);
   }
 };
 
@@ -81,8 +81,11 @@ struct WallForceComponent {
   }
 };
 
-/// A number that flags particle i for the health check: its worst overlap ratio, or a huge
-/// value when its position or velocity is not finite.
+/// The health score of a particle whose position, velocity or overlap is not finite.
+constexpr Real kNonFiniteScore = Real(1e300);
+
+/// A number that flags particle i for the health check: its worst overlap ratio, or
+/// kNonFiniteScore when its position or velocity is not finite.
 struct HealthScore {
   const Real4* position_radius;
   const Real4* velocity_inv_mass;
@@ -93,7 +96,7 @@ struct HealthScore {
     using std::isfinite;
     const bool finite = isfinite(x.x) && isfinite(x.y) && isfinite(x.z) && isfinite(v.x) &&
                         isfinite(v.y) && isfinite(v.z) && isfinite(overlap_ratio[i]);
-    return finite ? overlap_ratio[i] : Real(1e300);
+    return finite ? overlap_ratio[i] : kNonFiniteScore;
   }
 };
 

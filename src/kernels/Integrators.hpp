@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/Config.hpp"
+#include "core/ParticleStore.hpp"
 #include "core/Vec3.hpp"
 
 namespace gpudem {
@@ -24,9 +25,7 @@ struct Kick {
     v.x += h * v.w * force[i].x;
     v.y += h * v.w * force[i].y;
     v.z += h * v.w * force[i].z;
-    const Real r = position_radius[i].w;
-    const Real inv_inertia = Real(2.5) * v.w / (r * r);
-    angular_velocity[i] += (h * inv_inertia) * torque[i];
+    angular_velocity[i] += (h / sphere_inertia(position_radius[i].w, v.w)) * torque[i];
   }
 };
 

@@ -75,7 +75,4 @@ inline void sort_by_key(HostSpace, std::uint64_t* keys, std::uint32_t* values, s
   std::copy(v.begin(), v.end(), values);
 }
 
-/// Makes queued work visible to the host (no-op on the host backend).
-inline void fence(HostSpace) {}
-
 }  // namespace gpudem

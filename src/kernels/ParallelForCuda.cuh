@@ -89,6 +89,4 @@ inline void sort_by_key(CudaSpace, std::uint64_t* keys, std::uint32_t* values, s
   thrust::stable_sort_by_key(thrust::device, keys, keys + n, values);
 }
 
-inline void fence(CudaSpace) { detail::check_cuda(cudaDeviceSynchronize(), "fence"); }
-
 }  // namespace gpudem

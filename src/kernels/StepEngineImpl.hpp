@@ -199,14 +199,13 @@ class StepEngineImpl final : public StepEngine {
     get_particles(host);
     std::vector<Real> ratio;
     overlap_ratio_.download(ratio);
+    const HealthScore host_score{host.position_radius.data(), host.velocity_inv_mass.data(),
+                                 ratio.data()};
     for (std::size_t i = 0; i < host.size(); ++i) {
-      const Real4 x = host.position_radius[i];
-      const Real4 v = host.velocity_inv_mass[i];
-      const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z) &&
-                          std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) &&
-                          std::isfinite(ratio[i]);
-      if (finite && ratio[i] <= limit) continue;
-      failure = HealthFailure{host.id[i], xyz(x), ratio[i], !finite};
+      const Real s = host_score(i);
+      if (s <= limit) continue;
+      failure =
+          HealthFailure{host.id[i], xyz(host.position_radius[i]), ratio[i], s == kNonFiniteScore};
       return true;
     }
     return false;
