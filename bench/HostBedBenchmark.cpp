@@ -9,71 +9,10 @@
 #include <string>
 #include <vector>
 
-#if defined(GPUDEM_HAVE_OPENMP)
-#include <omp.h>
-#endif
-
-#include "core/ParticleSources.hpp"
-#include "core/SceneSetup.hpp"
-#include "support/SceneBuilder.hpp"
+#include "SettledBed.hpp"
 
 namespace gpudem {
 namespace {
-
-constexpr double kSide = 0.12;  // periodic cell of the seed bed [m]
-
-Scene bed_scene(double side_x, double side_y) {
-  Scene s = test::basic_scene({0, 0, 0}, {side_x, side_y, 0.3}, 2000, 0.2, 0.5);
-  s.materials[0].density = 1850;
-  s.materials[0].young = 1e6;
-  s.domain.periodic = {true, true, false};
-  test::add_floor(s);
-  return s;
-}
-
-/// A settled periodic bed of 10^4 particles (poured, then stepped until nearly at rest).
-ParticleStore settled_seed_bed() {
-  Scene scene = bed_scene(kSide, kSide);
-  test::add_box_source(scene, {0, 0, 0}, {kSide, kSide, 0.3}, 10000, 2.5e-3, 0.5e-3);
-  ParticleStore particles;
-  create_particles(scene, particles);
-  auto engine = make_host_engine(make_engine_setup(scene, particles));
-  engine->set_particles(particles);
-  const double potential = engine->diagnostics().potential_gravity;
-  for (int block = 0; block < 400; ++block) {
-    for (int n = 0; n < 200; ++n) engine->step();
-    const Diagnostics d = engine->diagnostics();
-    if (block > 20 && d.kinetic_translational + d.kinetic_rotational < 1e-6 * potential) break;
-  }
-  const Diagnostics d = engine->diagnostics();
-  std::printf("seed bed: kinetic / initial potential energy %.2e, max overlap %.3f of a radius\n",
-              (d.kinetic_translational + d.kinetic_rotational) / potential, d.max_overlap_ratio);
-  engine->get_particles(particles);
-  return particles;
-}
-
-/// The seed bed repeated tx × ty times in x and y.
-ParticleStore tile(const ParticleStore& seed, int tx, int ty) {
-  ParticleStore out;
-  ParticleId next = 0;
-  for (int a = 0; a < tx; ++a)
-    for (int b = 0; b < ty; ++b)
-      for (std::size_t i = 0; i < seed.size(); ++i) {
-        const Real4 p = seed.position_radius[i];
-        const Real4 v = seed.velocity_inv_mass[i];
-        out.add(next++, {p.x + a * kSide, p.y + b * kSide, p.z}, p.w, seed.material[i],
-                {v.x, v.y, v.z}, v.w);
-      }
-  return out;
-}
-
-void set_threads(int n) {
-#if defined(GPUDEM_HAVE_OPENMP)
-  omp_set_num_threads(n);
-#else
-  (void)n;
-#endif
-}
 
 void measure(const ParticleStore& bed, int tx, int ty, int threads) {
   set_threads(threads);
@@ -117,7 +56,7 @@ void write_lammps_bed(const ParticleStore& bed, int tx, int ty, const std::strin
   }
   std::fclose(data);
   const EngineSetup setup = make_engine_setup(scene, bed);
-  const LinearPairParams& pair = setup.pair_params[0];
+  const ContactPairParams& pair = setup.pair_params[0];
   const double reduced_mass = mean_mass / 2;
   std::FILE* params = std::fopen((path + ".params").c_str(), "w");
   if (!params) throw std::runtime_error("cannot write " + path + ".params");
@@ -125,10 +64,10 @@ void write_lammps_bed(const ParticleStore& bed, int tx, int ty, const std::strin
                "variable dt equal %.9g\nvariable kn equal %.9g\nvariable kt equal %.9g\n"
                "variable gn equal %.9g\nvariable gt equal %.9g\nvariable mu equal %.9g\n"
                "variable skin equal %.9g\n",
-               setup.dt, pair.stiffness, pair.tangential_stiffness,
-               2 * pair.damping_beta * std::sqrt(pair.stiffness / reduced_mass),
-               2 * pair.damping_beta * std::sqrt(pair.tangential_stiffness / reduced_mass),
-               pair.friction, setup.skin);
+               setup.dt, pair.hooke_stiffness, pair.hooke_tangential_stiffness,
+               2 * pair.restitution_beta * std::sqrt(pair.hooke_stiffness / reduced_mass),
+               2 * pair.restitution_beta * std::sqrt(pair.hooke_tangential_stiffness / reduced_mass),
+               pair.friction_static, setup.skin);
   std::fclose(params);
 }
 

@@ -10,8 +10,11 @@
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #include "comm/Hdf5Io.hpp"
+#include "core/ContactModel.hpp"
 #include "core/InputError.hpp"
 
 namespace gpudem {
@@ -42,9 +45,22 @@ void check_lengths(const Checkpoint& c) {
       p.material.size() != n || c.list_position_radius.size() != n)
     throw std::logic_error("checkpoint: particle arrays differ in length");
   const ContactHistory& h = c.history;
-  if (h.pair_partner.size() != h.pair_owner.size() || h.pair_spring.size() != h.pair_owner.size() ||
-      h.wall_index.size() != h.wall_owner.size() || h.wall_spring.size() != h.wall_owner.size())
+  if (h.pair_partner.size() != h.pair_owner.size() ||
+      h.pair_values.size() != h.pair_owner.size() * h.width ||
+      h.wall_index.size() != h.wall_owner.size() ||
+      h.wall_values.size() != h.wall_owner.size() * h.width)
     throw std::logic_error("checkpoint: contact history arrays differ in length");
+}
+
+/// The value datasets have `width` columns on every rank, so the ranks must agree on it.
+/// Collective.
+void check_same_width(MPI_Comm comm, std::uint32_t width) {
+  std::uint32_t lowest = 0, highest = 0;
+  MPI_Allreduce(&width, &lowest, 1, MPI_UINT32_T, MPI_MIN, comm);
+  MPI_Allreduce(&width, &highest, 1, MPI_UINT32_T, MPI_MAX, comm);
+  if (lowest != highest)
+    throw std::logic_error("checkpoint: ranks hold contact history of " + std::to_string(lowest) +
+                           " and " + std::to_string(highest) + " values per contact");
 }
 
 void write_particles(MPI_Comm comm, const ParallelFile& file, const Checkpoint& c) {
@@ -60,15 +76,18 @@ void write_particles(MPI_Comm comm, const ParallelFile& file, const Checkpoint& 
     file.write_dataset(field, slice);
 }
 
+/// The history records, and their values (h.width per record) when the law keeps any.
 void write_history(MPI_Comm comm, const ParallelFile& file, const ContactHistory& h) {
   const Slice pairs = global_slice(comm, h.pair_owner.size());
   file.write_dataset(id_rows("pair_owner", h.pair_owner.data()), pairs);
   file.write_dataset(id_rows("pair_partner", h.pair_partner.data()), pairs);
-  file.write_dataset(real_rows("pair_spring", h.pair_spring.data(), 3), pairs);
+  if (h.width > 0)
+    file.write_dataset(real_rows("pair_history", h.pair_values.data(), h.width), pairs);
   const Slice walls = global_slice(comm, h.wall_owner.size());
   file.write_dataset(id_rows("wall_owner", h.wall_owner.data()), walls);
   file.write_dataset(index_rows("wall_index", h.wall_index.data()), walls);
-  file.write_dataset(real_rows("wall_spring", h.wall_spring.data(), 3), walls);
+  if (h.width > 0)
+    file.write_dataset(real_rows("wall_history", h.wall_values.data(), h.width), walls);
 }
 
 /// The snapshot table, rank 0's rows only; file names as null-terminated fixed-length strings.
@@ -99,6 +118,7 @@ void write_snapshot_table(MPI_Comm comm, const H5Calls& h5, const ParallelFile& 
 
 void write_attributes(const ParallelFile& file, const Checkpoint& c) {
   file.write_attribute("format_version", H5T_STD_U32LE, kCheckpointFormatVersion);
+  file.write_attribute("history_width", H5T_STD_U32LE, c.history.width);
   file.write_attribute("time", H5T_IEEE_F64LE, c.time);
   file.write_attribute("step", H5T_STD_U64LE, c.step);
   file.write_attribute("removed", H5T_STD_U64LE, c.removed);
@@ -174,15 +194,18 @@ class Reader {
   template <class Row, class Value>
   std::vector<Row> rows(const char* name, hid_t file_type) const {
     static_assert(sizeof(Row) % sizeof(Value) == 0, "a row holds whole values");
-    constexpr hsize_t components = sizeof(Row) / sizeof(Value);
-    H5Handle dataset = open_dataset(name);
-    H5Handle type(H5Dget_type(dataset.id()), H5Tclose);
-    if (H5Tequal(type.id(), file_type) <= 0)
-      reject(std::string("dataset '") + name + "' has the wrong value type");
-    std::vector<Row> out(row_count(dataset.id(), name, components));
-    if (!out.empty() &&
-        H5Dread(dataset.id(), native_type<Value>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-      reject(std::string("cannot read dataset '") + name + "'");
+    const H5Handle dataset = open_typed(name, file_type);
+    std::vector<Row> out(row_count(dataset.id(), name, sizeof(Row) / sizeof(Value)));
+    read_all(dataset.id(), name, native_type<Value>(), out.data(), out.size());
+    return out;
+  }
+
+  /// Dataset `name` of f64 values, `width` per row (1-D for one), flattened row by row.
+  std::vector<Real> columns(const char* name, hsize_t width) const {
+    const H5Handle dataset = open_typed(name, H5T_IEEE_F64LE);
+    const hsize_t rows = row_count(dataset.id(), name, width);
+    std::vector<Real> out(rows * width);
+    read_all(dataset.id(), name, native_type<Real>(), out.data(), rows);
     return out;
   }
 
@@ -222,6 +245,22 @@ class Reader {
     return dataset;
   }
 
+  /// Dataset `name`, whose values must be stored with type `file_type`.
+  H5Handle open_typed(const char* name, hid_t file_type) const {
+    H5Handle dataset = open_dataset(name);
+    H5Handle type(H5Dget_type(dataset.id()), H5Tclose);
+    if (H5Tequal(type.id(), file_type) <= 0)
+      reject(std::string("dataset '") + name + "' has the wrong value type");
+    return dataset;
+  }
+
+  /// Reads the whole dataset, `rows` rows (none to read when 0), as `memory_type` into `out`.
+  void read_all(hid_t dataset, const char* name, hid_t memory_type, void* out,
+                std::size_t rows) const {
+    if (rows > 0 && H5Dread(dataset, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0)
+      reject(std::string("cannot read dataset '") + name + "'");
+  }
+
   /// Rows of a dataset that must be 1-D (components 1) or rows × components.
   hsize_t row_count(hid_t dataset, const char* name, hsize_t components) const {
     H5Handle space(H5Dget_space(dataset), H5Sclose);
@@ -240,9 +279,11 @@ class Reader {
   H5Handle file_;
 };
 
+/// Datasets of one group and their row counts.
+using LengthGroup = std::vector<std::pair<const char*, std::size_t>>;
+
 /// Rejects datasets of one group whose lengths differ from the first one's.
-void check_same_length(const Reader& reader,
-                       const std::vector<std::pair<const char*, std::size_t>>& group) {
+void check_same_length(const Reader& reader, const LengthGroup& group) {
   for (const auto& [name, length] : group)
     if (length != group.front().second)
       reader.reject(std::string("dataset '") + name + "' has " + std::to_string(length) +
@@ -275,19 +316,28 @@ void read_particles(const Reader& r, Checkpoint& c) {
                " has a radius or inverse mass that is not finite and > 0");
 }
 
+/// The history values of one kind of record, `width` per record, flat; none (and no dataset)
+/// at width 0. Adds the dataset's row count to the records' `group`.
+std::vector<Real> read_history_values(const Reader& r, const char* name, std::uint32_t width,
+                                      LengthGroup& group) {
+  if (width == 0) return {};
+  std::vector<Real> values = r.columns(name, width);
+  group.emplace_back(name, values.size() / width);
+  return values;
+}
+
 void read_history(const Reader& r, ContactHistory& h) {
+  h.width = r.attribute<std::uint32_t>("history_width", H5T_STD_U32LE);
   h.pair_owner = r.rows<ParticleId, ParticleId>("pair_owner", H5T_STD_U64LE);
   h.pair_partner = r.rows<ParticleId, ParticleId>("pair_partner", H5T_STD_U64LE);
-  h.pair_spring = r.rows<Vec3, Real>("pair_spring", H5T_IEEE_F64LE);
-  check_same_length(r, {{"pair_owner", h.pair_owner.size()},
-                        {"pair_partner", h.pair_partner.size()},
-                        {"pair_spring", h.pair_spring.size()}});
+  LengthGroup pairs{{"pair_owner", h.pair_owner.size()}, {"pair_partner", h.pair_partner.size()}};
+  h.pair_values = read_history_values(r, "pair_history", h.width, pairs);
+  check_same_length(r, pairs);
   h.wall_owner = r.rows<ParticleId, ParticleId>("wall_owner", H5T_STD_U64LE);
   h.wall_index = r.rows<std::uint32_t, std::uint32_t>("wall_index", H5T_STD_U32LE);
-  h.wall_spring = r.rows<Vec3, Real>("wall_spring", H5T_IEEE_F64LE);
-  check_same_length(r, {{"wall_owner", h.wall_owner.size()},
-                        {"wall_index", h.wall_index.size()},
-                        {"wall_spring", h.wall_spring.size()}});
+  LengthGroup walls{{"wall_owner", h.wall_owner.size()}, {"wall_index", h.wall_index.size()}};
+  h.wall_values = read_history_values(r, "wall_history", h.width, walls);
+  check_same_length(r, walls);
 }
 
 void read_snapshot_table(const Reader& r, std::vector<XdmfSnapshot>& table) {
@@ -324,6 +374,7 @@ std::string checkpoint_path(const std::string& dir) {
 
 void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& checkpoint) {
   check_lengths(checkpoint);
+  check_same_width(comm, checkpoint.history.width);
   const std::string path = checkpoint_path(dir);
   const std::string temporary = path + ".tmp";
   {
@@ -370,6 +421,14 @@ void check_checkpoint_fits_scene(const Checkpoint& c, const std::string& path, c
                        "contact history names wall index " + std::to_string(wall) +
                            " but the scene defines " + std::to_string(scene.walls.size()) +
                            " wall(s)");
+  const std::uint32_t width = contact_history_width(scene.contact.model);
+  if (c.history.width != width)
+    throw InputError(path, 0, "",
+                     "contact history of " + std::to_string(c.history.width) +
+                         " values per contact, but the scene's contact law keeps " +
+                         std::to_string(width) +
+                         " (tangential linear_history or mindlin: 4, rolling epsd: 3): the "
+                         "checkpoint was written with another contact law");
 }
 
 }  // namespace gpudem

@@ -9,11 +9,13 @@
 /// the rank count: position_radius (N×4 f64: x, y, z, radius), velocity_inv_mass (N×4 f64:
 /// vx, vy, vz, 1/m), angular_velocity, force, torque (N×3 f64), id (N u64), material (N u32),
 /// list_position_radius (N×4 f64: positions at the last neighbour-list build). Contact
-/// history, also by rank slices: pair_owner, pair_partner (P u64), pair_spring (P×3 f64),
-/// wall_owner (W u64), wall_index (W u32), wall_spring (W×3 f64). Snapshot table, written by
-/// rank 0: snapshot_file (S fixed-length strings), snapshot_time (S f64), snapshot_count
-/// (S u64). Attributes: format_version (u32), time, dt, dt_fraction, skin (f64), step,
-/// removed (u64).
+/// history, also by rank slices, `history_width` values per contact (the contact law's history
+/// size): pair_owner, pair_partner (P u64), pair_history (P×width f64), wall_owner (W u64),
+/// wall_index (W u32), wall_history (W×width f64). The two value datasets exist only when the
+/// width is > 0 (a law without history has no values to store) and are 1-D when it is 1.
+/// Snapshot table, written by rank 0: snapshot_file (S fixed-length strings), snapshot_time
+/// (S f64), snapshot_count (S u64). Attributes: format_version, history_width (u32), time, dt,
+/// dt_fraction, skin (f64), step, removed (u64).
 #include <mpi.h>
 
 #include <cstdint>
@@ -27,7 +29,7 @@
 
 namespace gpudem {
 
-constexpr std::uint32_t kCheckpointFormatVersion = 1;
+constexpr std::uint32_t kCheckpointFormatVersion = 2;
 
 /// The state of a run at the end of one step.
 struct Checkpoint {
@@ -50,18 +52,19 @@ std::string checkpoint_path(const std::string& dir);
 /// attributes from rank 0's values) to `<dir>/checkpoint.h5.tmp`, replacing any stale file
 /// there, then rank 0 syncs it and renames it to `<dir>/checkpoint.h5`. Collective; throws
 /// std::runtime_error naming the file when a step fails, leaving the previous checkpoint as
-/// it was.
+/// it was, and std::logic_error on every rank when the ranks' histories differ in width.
 void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& checkpoint);
 
 /// Reads a whole checkpoint on one rank (a run on several ranks will read its rows by slices).
 /// Throws InputError naming `path` and what is wrong: a missing file, a file that is not
-/// HDF5, another format version, a missing or mistyped dataset or attribute, datasets of one
-/// group with different lengths, or a radius, inverse mass or time step that is not finite
-/// and > 0.
+/// HDF5, another format version, a missing or mistyped dataset or attribute, a history
+/// dataset without history_width columns, datasets of one group with different lengths, or a
+/// radius, inverse mass or time step that is not finite and > 0.
 Checkpoint read_checkpoint(const std::string& path);
 
 /// Throws InputError naming `path` when `checkpoint` refers to a material or a wall that
-/// `scene` does not define.
+/// `scene` does not define, or holds another number of history values per contact than the
+/// scene's contact law keeps (contact_history_width): it was written with another law.
 void check_checkpoint_fits_scene(const Checkpoint& checkpoint, const std::string& path,
                                  const Scene& scene);
 

@@ -1,8 +1,9 @@
 #pragma once
-/// Contact history independent of particle order and memory space: the tangential springs ξ
-/// of the contacts that hold one, keyed by global particle ids (DESIGN §3). This is what
-/// checkpoints store and what a later migration of particles between ranks will carry. The
-/// engine converts it to and from its spring arrays (one per neighbour-list entry, one per
+/// Contact history independent of particle order and memory space: the history values of
+/// the contacts that hold any (tangential spring, sliding flag, rolling spring, as the
+/// contact law declares), keyed by global particle ids (DESIGN §3). This is what checkpoints
+/// store and what a later migration of particles between ranks will carry. The engine
+/// converts it to and from its history arrays (one record per neighbour-list entry, one per
 /// particle and wall) with collect_history and scatter_history on host copies.
 #include <cstddef>
 #include <cstdint>
@@ -12,39 +13,40 @@
 #include <vector>
 
 #include "core/Config.hpp"
-#include "core/Vec3.hpp"
 
 namespace gpudem {
 
 struct ContactHistory {
-  /// Particle–particle springs, one per ordered pair: each particle owns the spring of its
+  /// History values per contact: the contact law's history size (0: the law keeps none).
+  std::uint32_t width = 0;
+  /// Particle–particle records, one per ordered pair: each particle owns the history of its
   /// own side of a contact, so a touching pair appears twice (owner, partner) and (partner,
-  /// owner). Entry k is (pair_owner[k], pair_partner[k], pair_spring[k]).
+  /// owner). Record k is (pair_owner[k], pair_partner[k], pair_values[k·width .. +width)).
   std::vector<ParticleId> pair_owner;
   std::vector<ParticleId> pair_partner;
-  std::vector<Vec3> pair_spring;  ///< [m]
-  /// Particle–wall springs: entry k is (wall_owner[k], wall_index[k], wall_spring[k]), the
-  /// wall index being its position in Scene::walls.
+  std::vector<Real> pair_values;
+  /// Particle–wall records: (wall_owner[k], wall_index[k], wall_values[k·width .. +width)),
+  /// the wall index being its position in Scene::walls.
   std::vector<ParticleId> wall_owner;
   std::vector<std::uint32_t> wall_index;
-  std::vector<Vec3> wall_spring;  ///< [m]
+  std::vector<Real> wall_values;
 
-  void add_pair(ParticleId owner, ParticleId partner, Vec3 spring) {
+  void add_pair(ParticleId owner, ParticleId partner, const Real* values) {
     pair_owner.push_back(owner);
     pair_partner.push_back(partner);
-    pair_spring.push_back(spring);
+    pair_values.insert(pair_values.end(), values, values + width);
   }
-  void add_wall(ParticleId owner, std::uint32_t wall, Vec3 spring) {
+  void add_wall(ParticleId owner, std::uint32_t wall, const Real* values) {
     wall_owner.push_back(owner);
     wall_index.push_back(wall);
-    wall_spring.push_back(spring);
+    wall_values.insert(wall_values.end(), values, values + width);
   }
 };
 
-/// Where the springs of an engine live, as host copies: global ids in the engine's particle
-/// order, the full neighbour list in CSR form (the partners of particle i are slots
-/// neighbors[offsets[i] .. offsets[i + 1])) and the number of walls. Pair spring e belongs to
-/// list entry e, wall spring i·wall_count + w to particle i and wall w.
+/// Where the history records of an engine live, as host copies: global ids in the engine's
+/// particle order, the full neighbour list in CSR form (the partners of particle i are slots
+/// neighbors[offsets[i] .. offsets[i + 1])) and the number of walls. Pair record e belongs to
+/// list entry e, wall record i·wall_count + w to particle i and wall w.
 struct ContactSlots {
   std::vector<ParticleId> id;
   std::vector<std::uint32_t> offsets;
@@ -52,27 +54,16 @@ struct ContactSlots {
   std::uint32_t wall_count = 0;
 };
 
-/// The non-zero springs of `pair_spring` and `wall_spring`, keyed by global ids.
-inline ContactHistory collect_history(const ContactSlots& slots,
-                                      const std::vector<Vec3>& pair_spring,
-                                      const std::vector<Vec3>& wall_spring) {
-  const auto nonzero = [](const Vec3& s) { return s.x != 0 || s.y != 0 || s.z != 0; };
-  ContactHistory history;
-  for (std::size_t i = 0; i < slots.id.size(); ++i) {
-    for (std::uint32_t e = slots.offsets[i]; e < slots.offsets[i + 1]; ++e)
-      if (nonzero(pair_spring[e]))
-        history.add_pair(slots.id[i], slots.id[slots.neighbors[e]], pair_spring[e]);
-    for (std::uint32_t w = 0; w < slots.wall_count; ++w)
-      if (nonzero(wall_spring[i * slots.wall_count + w]))
-        history.add_wall(slots.id[i], w, wall_spring[i * slots.wall_count + w]);
-  }
-  return history;
-}
-
 namespace history_detail {
 
 [[noreturn]] inline void reject(const std::string& what) {
   throw std::invalid_argument("contact history: " + what);
+}
+
+inline bool nonzero(const Real* values, std::uint32_t width) {
+  for (std::uint32_t k = 0; k < width; ++k)
+    if (values[k] != 0) return true;
+  return false;
 }
 
 inline std::uint32_t slot_of(const std::unordered_map<ParticleId, std::uint32_t>& slots,
@@ -92,35 +83,68 @@ inline std::uint32_t pair_entry(const ContactSlots& slots, std::uint32_t owner,
 }
 
 inline void check_lengths(const ContactHistory& h) {
-  if (h.pair_partner.size() != h.pair_owner.size() || h.pair_spring.size() != h.pair_owner.size() ||
-      h.wall_index.size() != h.wall_owner.size() || h.wall_spring.size() != h.wall_owner.size())
+  if (h.pair_partner.size() != h.pair_owner.size() ||
+      h.pair_values.size() != h.pair_owner.size() * h.width ||
+      h.wall_index.size() != h.wall_owner.size() ||
+      h.wall_values.size() != h.wall_owner.size() * h.width)
     reject("the arrays of one kind of contact differ in length");
 }
 
 }  // namespace history_detail
 
-/// Spring arrays for `slots` holding the springs of `history` and zero elsewhere. Throws
-/// std::invalid_argument for an unknown particle id, a pair that is not in the neighbour list
-/// or a wall index >= slots.wall_count.
-inline void scatter_history(const ContactSlots& slots, const ContactHistory& history,
-                            std::vector<Vec3>& pair_spring, std::vector<Vec3>& wall_spring) {
+/// The records of `pair_values` and `wall_values` (`width` values per contact, flat) that
+/// are not all zero, keyed by global ids.
+inline ContactHistory collect_history(const ContactSlots& slots, std::uint32_t width,
+                                      const std::vector<Real>& pair_values,
+                                      const std::vector<Real>& wall_values) {
+  using history_detail::nonzero;
+  ContactHistory history;
+  history.width = width;
+  if (width == 0) return history;
+  for (std::size_t i = 0; i < slots.id.size(); ++i) {
+    for (std::uint32_t e = slots.offsets[i]; e < slots.offsets[i + 1]; ++e)
+      if (nonzero(&pair_values[e * width], width))
+        history.add_pair(slots.id[i], slots.id[slots.neighbors[e]], &pair_values[e * width]);
+    for (std::uint32_t w = 0; w < slots.wall_count; ++w) {
+      const Real* values = &wall_values[(i * slots.wall_count + w) * width];
+      if (nonzero(values, width)) history.add_wall(slots.id[i], w, values);
+    }
+  }
+  return history;
+}
+
+/// Flat history arrays (`width` values per contact) for `slots`, holding the records of
+/// `history` and zero elsewhere. Throws std::invalid_argument for a history of another width
+/// (written under another contact law), an unknown particle id, a pair that is not in the
+/// neighbour list or a wall index >= slots.wall_count.
+inline void scatter_history(const ContactSlots& slots, std::uint32_t width,
+                            const ContactHistory& history, std::vector<Real>& pair_values,
+                            std::vector<Real>& wall_values) {
   using namespace history_detail;
+  const bool empty = history.pair_owner.empty() && history.wall_owner.empty();
+  if (history.width != width && !empty)
+    reject("it holds " + std::to_string(history.width) +
+           " values per contact but this contact law keeps " + std::to_string(width));
   check_lengths(history);
   std::unordered_map<ParticleId, std::uint32_t> slot;
   for (std::size_t i = 0; i < slots.id.size(); ++i)
     slot[slots.id[i]] = static_cast<std::uint32_t>(i);
-  pair_spring.assign(slots.neighbors.size(), Vec3{});
-  wall_spring.assign(slots.id.size() * slots.wall_count, Vec3{});
+  pair_values.assign(slots.neighbors.size() * width, 0);
+  wall_values.assign(slots.id.size() * slots.wall_count * width, 0);
   for (std::size_t k = 0; k < history.pair_owner.size(); ++k) {
     const std::uint32_t owner = slot_of(slot, history.pair_owner[k]);
-    pair_spring[pair_entry(slots, owner, history.pair_partner[k])] = history.pair_spring[k];
+    const std::size_t e = pair_entry(slots, owner, history.pair_partner[k]);
+    for (std::uint32_t v = 0; v < width; ++v)
+      pair_values[e * width + v] = history.pair_values[k * width + v];
   }
   for (std::size_t k = 0; k < history.wall_owner.size(); ++k) {
     if (history.wall_index[k] >= slots.wall_count)
       reject("wall index " + std::to_string(history.wall_index[k]) + " but there are " +
              std::to_string(slots.wall_count) + " walls");
-    const std::size_t owner = slot_of(slot, history.wall_owner[k]);
-    wall_spring[owner * slots.wall_count + history.wall_index[k]] = history.wall_spring[k];
+    const std::size_t record = slot_of(slot, history.wall_owner[k]) * slots.wall_count +
+                               history.wall_index[k];
+    for (std::uint32_t v = 0; v < width; ++v)
+      wall_values[record * width + v] = history.wall_values[k * width + v];
   }
 }
 

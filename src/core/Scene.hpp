@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "core/Config.hpp"
+#include "core/ContactModel.hpp"
+#include "core/MixingRule.hpp"
 #include "core/Vec3.hpp"
 
 namespace gpudem {
@@ -16,11 +18,16 @@ enum class IntegratorKind { VelocityVerlet, SymplecticEuler };
 struct SimulationSettings {
   bool dt_auto = true;       ///< dt = "auto": dt_fraction of the critical time step
   double dt = 0;             ///< [s] explicit step (when dt_auto is false)
+  int dt_line = 0;           ///< line of `dt` in the scene file (0: absent or from --set)
   double dt_fraction = 0.1;  ///< fraction of the critical step used by "auto" [-]
   double end_time = 0;       ///< [s] simulated time to reach (required)
   IntegratorKind integrator = IntegratorKind::VelocityVerlet;
   std::uint64_t seed = 1;     ///< random seed for particle insertion
   Vec3 gravity{0, 0, -9.81};  ///< [m/s^2]
+  /// [m/s] largest expected impact speed, for the Hertz contact duration; 0 = "auto":
+  /// free fall over the domain height plus the fastest inserted particle
+  double impact_speed = 0;
+  bool allow_unstable_dt = false;  ///< accept an explicit dt above the stable limit
 };
 
 struct DomainSettings {
@@ -31,22 +38,36 @@ struct DomainSettings {
 
 struct Material {
   std::string name;
-  double density = 0;           ///< [kg/m^3]
-  double young = 0;             ///< Young's modulus [Pa]
-  double poisson = 0.3;         ///< Poisson ratio [-], in (-1, 0.5)
-  double restitution = 0.5;     ///< coefficient of restitution [-], in (0, 1]
-  double friction = 0.5;        ///< Coulomb (sliding) friction coefficient [-], >= 0
-  double rolling_friction = 0;  ///< rolling friction coefficient μ_r [-], >= 0
+  double density = 0;            ///< [kg/m^3]
+  double young = 0;              ///< Young's modulus [Pa]
+  double poisson = 0.3;          ///< Poisson ratio [-], in (-1, 0.5)
+  double restitution = 0.5;      ///< coefficient of restitution [-], in (0, 1]
+  double friction = 0.5;         ///< static Coulomb friction coefficient μ_s [-], >= 0
+  double friction_dynamic = -1;  ///< sliding friction μ_d [-], in [0, μ_s]; < 0 = same as μ_s
+  double rolling_friction = 0;   ///< rolling friction coefficient μ_r [-], >= 0
+  double rolling_damping = 0.3;  ///< EPSD rolling dashpot ratio η_r [-], >= 0
+  double viscoelastic_time = 0;  ///< A of the viscoelastic damping law [s], >= 0
+  double cohesion_energy_density = 0;  ///< k_c of simplified JKR [J/m^3], >= 0
 };
 
-/// Contact law selection. The skeleton ships one law: linear spring, restitution-based
-/// dashpot and a tangential spring with a Coulomb limit (LinearContact.hpp).
+/// An explicit [[pair]] entry: values that replace the mixing rule for one material pair (in
+/// both orders). A negative value means "not given, use the mixing rule".
+struct PairOverride {
+  MaterialId a = 0, b = 0;
+  double restitution = -1;
+  double friction = -1;
+  double friction_dynamic = -1;
+  double rolling_friction = -1;
+  double cohesion_energy_density = -1;
+};
+
+/// Contact law selection: one choice per slot, validated against valid_contact_models().
 struct ContactSettings {
-  std::string normal = "hooke";               ///< normal spring law
-  std::string damping = "restitution";        ///< "restitution" | "none"
-  std::string tangential = "linear_history";  ///< "linear_history" | "none"
-  std::string rolling = "none";               ///< "constant_torque" | "none"
-  double stiffness = 0;                       ///< Hooke normal stiffness k_n [N/m] (required)
+  ContactModel model;
+  double stiffness = 0;  ///< Hooke normal stiffness k_n [N/m] (required for hooke)
+  /// Turns two materials' restitution, friction, rolling and cohesion values into a pair value
+  MixingRule mixing = MixingRule::Mean;
+  std::vector<PairOverride> pairs;
 };
 
 struct NeighborSettings {

@@ -2,6 +2,7 @@
 // of the schema documented in docs/input.md.
 #include "core/SceneLoader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -56,11 +57,13 @@ void require_extent(const TableReader& table, const std::string& key, Vec3 min, 
 
 SimulationSettings read_simulation(const TableReader& root) {
   const TableReader table = root.table("simulation");
-  table.allow_only({"end_time", "dt", "dt_fraction", "integrator", "seed", "gravity"});
+  table.allow_only({"end_time", "dt", "dt_fraction", "integrator", "seed", "gravity",
+                    "impact_speed", "allow_unstable_dt"});
   SimulationSettings s;
   s.end_time = table.number("end_time", positive("s"));
   s.dt = auto_or_positive(table, "dt", "s");
   s.dt_auto = s.dt == 0;
+  s.dt_line = table.has("dt") ? table.line("dt") : 0;
   s.dt_fraction = table.number("dt_fraction", interval(0, true, 1, false), s.dt_fraction);
   const std::string integrator =
       table.choice("integrator", {"velocity_verlet", "symplectic_euler"}, "velocity_verlet");
@@ -68,6 +71,8 @@ SimulationSettings read_simulation(const TableReader& root) {
                                                  : IntegratorKind::SymplecticEuler;
   s.seed = static_cast<std::uint64_t>(table.integer("seed", non_negative(), 1));
   s.gravity = table.vec3("gravity", "m/s^2", s.gravity);
+  s.impact_speed = auto_or_positive(table, "impact_speed", "m/s");
+  s.allow_unstable_dt = table.boolean("allow_unstable_dt", s.allow_unstable_dt);
   return s;
 }
 
@@ -82,9 +87,20 @@ DomainSettings read_domain(const TableReader& root) {
   return d;
 }
 
+/// A friction coefficient `key` >= 0 that may not exceed the static coefficient `friction`.
+double dynamic_friction(const TableReader& table, const std::string& key, double friction) {
+  const double dynamic = table.number(key, non_negative(), friction);
+  if (dynamic > friction) {
+    table.fail_found(key, "a number <= friction = " + format_number(friction) +
+                              " (sliding friction cannot exceed static friction)");
+  }
+  return dynamic;
+}
+
 Material read_material(const TableReader& table) {
-  table.allow_only(
-      {"name", "density", "young", "poisson", "restitution", "friction", "rolling_friction"});
+  table.allow_only({"name", "density", "young", "poisson", "restitution", "friction",
+                    "friction_dynamic", "rolling_friction", "rolling_damping", "viscoelastic_time",
+                    "cohesion_energy_density"});
   Material m;
   m.name = table.string("name");
   m.density = table.number("density", positive("kg/m^3"));
@@ -92,7 +108,12 @@ Material read_material(const TableReader& table) {
   m.poisson = table.number("poisson", interval(-1, true, 0.5, true), m.poisson);
   m.restitution = table.number("restitution", interval(0, true, 1, false), m.restitution);
   m.friction = table.number("friction", non_negative(), m.friction);
+  m.friction_dynamic = dynamic_friction(table, "friction_dynamic", m.friction);
   m.rolling_friction = table.number("rolling_friction", non_negative(), m.rolling_friction);
+  m.rolling_damping = table.number("rolling_damping", non_negative(), m.rolling_damping);
+  m.viscoelastic_time = table.number("viscoelastic_time", non_negative("s"), m.viscoelastic_time);
+  m.cohesion_energy_density =
+      table.number("cohesion_energy_density", non_negative("J/m^3"), m.cohesion_energy_density);
   return m;
 }
 
@@ -113,15 +134,56 @@ std::vector<Material> read_materials(const TableReader& root) {
   return materials;
 }
 
+/// The enum value whose name (in `names`, enum order) `key` gives, or `fallback` when absent.
+template <class Enum>
+Enum named_choice(const TableReader& table, const std::string& key,
+                  const std::vector<std::string>& names, Enum fallback) {
+  const std::string name = table.choice(key, names, names[static_cast<std::size_t>(fallback)]);
+  return static_cast<Enum>(std::find(names.begin(), names.end(), name) - names.begin());
+}
+
+ContactModel read_contact_model(const TableReader& table) {
+  ContactModel m;
+  m.normal = named_choice(table, "normal", normal_law_names(), m.normal);
+  m.damping = named_choice(table, "damping", damping_law_names(), m.damping);
+  m.tangential = named_choice(table, "tangential", tangential_law_names(), m.tangential);
+  m.rolling = named_choice(table, "rolling", rolling_law_names(), m.rolling);
+  m.cohesion = named_choice(table, "cohesion", cohesion_law_names(), m.cohesion);
+  return m;
+}
+
+/// Fails unless `m` is one of valid_contact_models(), naming the slot that does not go with
+/// the normal law (damping or tangential; every normal law takes tangential = "none").
+void require_valid_model(const TableReader& table, const ContactModel& m) {
+  if (is_valid_contact_model(m)) return;
+  ContactModel without_tangential = m;
+  without_tangential.tangential = TangentialLaw::None;
+  const bool damping_wrong = !is_valid_contact_model(without_tangential);
+  const std::string key = damping_wrong ? "damping" : "tangential";
+  const std::string choice = damping_wrong
+                                 ? damping_law_names()[static_cast<std::size_t>(m.damping)]
+                                 : tangential_law_names()[static_cast<std::size_t>(m.tangential)];
+  const std::string normal = normal_law_names()[static_cast<std::size_t>(m.normal)];
+  table.fail(key, "normal = \"" + normal + "\" does not go with " + key + " = \"" + choice + "\"" +
+                      (table.has(key) ? "" : " (the default)") + "; valid combinations are " +
+                      valid_contact_models_text());
+}
+
 ContactSettings read_contact(const TableReader& root) {
   const TableReader table = root.optional_table("contact");
-  table.allow_only({"normal", "damping", "tangential", "rolling", "stiffness"});
+  table.allow_only(
+      {"normal", "damping", "tangential", "rolling", "cohesion", "stiffness", "mixing"});
   ContactSettings c;
-  c.normal = table.choice("normal", {"hooke"}, c.normal);
-  c.damping = table.choice("damping", {"restitution", "none"}, c.damping);
-  c.tangential = table.choice("tangential", {"linear_history", "none"}, c.tangential);
-  c.rolling = table.choice("rolling", {"constant_torque", "none"}, c.rolling);
-  if (c.normal == "hooke") c.stiffness = table.number("stiffness", positive("N/m"));
+  c.model = read_contact_model(table);
+  c.mixing = named_choice(table, "mixing", mixing_rule_names(), c.mixing);
+  require_valid_model(table, c.model);
+  if (c.model.normal == NormalLaw::Hooke) {
+    c.stiffness = table.number("stiffness", positive("N/m"));
+  } else if (table.has("stiffness")) {
+    table.fail("stiffness",
+               "stiffness belongs to normal = \"hooke\"; normal = \"hertz\" takes its stiffness "
+               "from the materials' young and poisson");
+  }
   return c;
 }
 
@@ -133,16 +195,83 @@ NeighborSettings read_neighbor(const TableReader& root) {
   return n;
 }
 
-/// Index of the material named by string `key`.
-MaterialId material_index(const TableReader& table, const std::string& key,
+/// Index of the material called `name`, given by `key`.
+MaterialId material_named(const TableReader& table, const std::string& key, const std::string& name,
                           const std::vector<Material>& materials) {
-  const std::string name = table.string(key);
   std::vector<std::string> names;
   for (std::size_t i = 0; i < materials.size(); ++i) {
     if (materials[i].name == name) return static_cast<MaterialId>(i);
     names.push_back(materials[i].name);
   }
   table.fail(key, "unknown material '" + name + "'; " + suggest(name, names, "materials"));
+}
+
+/// Index of the material named by string `key`.
+MaterialId material_index(const TableReader& table, const std::string& key,
+                          const std::vector<Material>& materials) {
+  return material_named(table, key, table.string(key), materials);
+}
+
+/// The pair `materials` = ["a", "b"] of a [[pair]] entry, as material indices.
+PairOverride read_pair_materials(const TableReader& table, const std::vector<Material>& materials) {
+  const std::vector<std::string> names = table.strings("materials", 2);
+  PairOverride p;
+  p.a = material_named(table, "materials", names[0], materials);
+  p.b = material_named(table, "materials", names[1], materials);
+  return p;
+}
+
+/// μ_s and μ_d of a [[pair]] entry (p.a, p.b set). μ_d defaults to the entry's μ_s when that is
+/// given, and may not exceed the pair's μ_s, given or mixed.
+void read_pair_friction(const TableReader& table, const std::vector<Material>& materials,
+                        MixingRule mixing, PairOverride& p) {
+  if (table.has("friction")) p.friction = table.number("friction", non_negative());
+  const bool given = p.friction >= 0;
+  const double static_friction =
+      given ? p.friction : mix(mixing, materials[p.a].friction, materials[p.b].friction);
+  if (table.has("friction_dynamic")) {
+    p.friction_dynamic = dynamic_friction(table, "friction_dynamic", static_friction);
+  } else if (given) {
+    p.friction_dynamic = p.friction;
+  }
+}
+
+/// One [[pair]] entry; values it does not give stay negative ("use the mixing rule").
+PairOverride read_pair(const TableReader& table, const std::vector<Material>& materials,
+                       MixingRule mixing) {
+  table.allow_only({"materials", "restitution", "friction", "friction_dynamic", "rolling_friction",
+                    "cohesion_energy_density"});
+  PairOverride p = read_pair_materials(table, materials);
+  p.restitution = table.number("restitution", interval(0, true, 1, false), p.restitution);
+  read_pair_friction(table, materials, mixing, p);
+  p.rolling_friction = table.number("rolling_friction", non_negative(), p.rolling_friction);
+  p.cohesion_energy_density =
+      table.number("cohesion_energy_density", non_negative("J/m^3"), p.cohesion_energy_density);
+  return p;
+}
+
+/// "'soil'-'steel'", the unordered pair as messages name it.
+std::string pair_name(const PairOverride& p, const std::vector<Material>& materials) {
+  return "'" + materials[p.a].name + "'-'" + materials[p.b].name + "'";
+}
+
+std::vector<PairOverride> read_pairs(const TableReader& root,
+                                     const std::vector<Material>& materials, MixingRule mixing) {
+  std::vector<PairOverride> pairs;
+  const std::vector<TableReader> tables = root.array_of_tables("pair");
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    const PairOverride pair = read_pair(tables[i], materials, mixing);
+    for (std::size_t j = 0; j < pairs.size(); ++j) {
+      const bool same = (pairs[j].a == pair.a && pairs[j].b == pair.b) ||
+                        (pairs[j].a == pair.b && pairs[j].b == pair.a);
+      if (same) {
+        tables[i].fail("materials", "duplicate pair " + pair_name(pair, materials) +
+                                        " (also given by pair[" + std::to_string(j) + "])");
+      }
+    }
+    pairs.push_back(pair);
+  }
+  return pairs;
 }
 
 WallSettings read_wall(const TableReader& table, std::size_t index,
@@ -339,14 +468,15 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   toml::value tree = parse_scene_file(path);
   apply_overrides(tree, overrides);
   const TableReader root(tree, path, "", "");
-  root.allow_only({"simulation", "domain", "material", "contact", "neighbor", "wall", "insert",
-                   "output", "checkpoint"});
+  root.allow_only({"simulation", "domain", "material", "contact", "pair", "neighbor", "wall",
+                   "insert", "output", "checkpoint"});
   Scene scene;
   scene.file = path;
   scene.simulation = read_simulation(root);
   scene.domain = read_domain(root);
   scene.materials = read_materials(root);
   scene.contact = read_contact(root);
+  scene.contact.pairs = read_pairs(root, scene.materials, scene.contact.mixing);
   scene.neighbor = read_neighbor(root);
   scene.walls = read_walls(root, scene.materials);
   scene.sources = read_sources(root, scene);

@@ -1,24 +1,41 @@
 #pragma once
-/// Turns a validated scene and its particles into the engine's plain setup: pair constants,
-/// walls, Verlet skin and time step.
+/// Turns a validated scene and its particles into the engine's plain setup: the contact pair
+/// table, walls, Verlet skin and time step (docs/input.md, "Time step").
 #include "core/ParticleStore.hpp"
 #include "core/Scene.hpp"
 #include "kernels/StepEngine.hpp"
 
 namespace gpudem {
 
-/// Time-step limits of a scene [s].
+/// Time-step limits of a scene and its particles [s]; +infinity when there are no particles.
 struct TimeStepLimits {
-  double contact_duration = 0;  ///< t_c = π √(m*_min / k_n), lightest particle pair
-  double rayleigh =
-      0;  ///< T_R = π R_min √(ρ/G) / (0.1631 ν + 0.8766), smallest over materials in use
+  /// t_c of one collision. hooke: π √(m*/k_n) for the two lightest particles. hertz:
+  /// 2.87 (m*² / (R* E*² v))^{1/5} (Johnson 1985, ch. 11) at the impact speed v, smallest over
+  /// the material pairs present (each material by its smallest particle) and the
+  /// particle–wall pairs (R* = r, m* = m)
+  double contact_duration = 0;
+  /// T_R = π R √(ρ/G) / (0.1631 ν + 0.8766), G = E / (2(1 + ν)), smallest over the particles
+  double rayleigh = 0;
+  /// Largest explicit dt accepted: min(T_R, 2/ω), ω the angular frequency of the stiffest
+  /// contact (velocity Verlet on an oscillator is stable for ω dt < 2). hooke: ω = √(k_n/m*);
+  /// hertz: ω = √(S_max/m*) with the tangent stiffness at the peak overlap of an impact at v,
+  /// S_max = 2 E* √(R* δ_max), δ_max = (15 m* v² / (16 E* √R*))^{2/5}
+  double stable = 0;
   double critical() const { return contact_duration < rayleigh ? contact_duration : rayleigh; }
 };
 
-/// Limits for the particles present (empty store: +infinity for both).
+/// Impact speed v of the Hertz limits [m/s]: simulation.impact_speed, or for "auto"
+/// √(2 |g| H) plus the largest particle speed, H the extent of the domain along g; 1 m/s when
+/// both terms are 0.
+double impact_speed(const Scene& scene, const ParticleStore& particles);
+
+/// Limits for the particles present.
 TimeStepLimits time_step_limits(const Scene& scene, const ParticleStore& particles);
 
-/// The engine setup; dt = dt_fraction × critical step when the scene says "auto".
+/// The engine setup: contact model, pair table (material_count² entries, row-major,
+/// symmetric), walls, skin and dt (dt_fraction × critical step when the scene says "auto",
+/// end_time when there are no particles). Throws InputError naming simulation.dt when an
+/// explicit dt exceeds the stable limit and simulation.allow_unstable_dt is false.
 EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles);
 
 }  // namespace gpudem

@@ -254,6 +254,27 @@ class TableReader {
     return has(key) ? string(key) : fallback;
   }
 
+  /// `true` or `false`, or `fallback` when absent.
+  bool boolean(const std::string& key, bool fallback) const {
+    if (!has(key)) return fallback;
+    const toml::value& v = value(key);
+    if (!v.is_boolean()) fail_found(key, "true or false");
+    return v.as_boolean();
+  }
+
+  /// Exactly `size` non-empty strings.
+  std::vector<std::string> strings(const std::string& key, std::size_t size) const {
+    const toml::value& v = value(key);
+    const std::string expected = "an array of " + std::to_string(size) + " non-empty strings";
+    if (!v.is_array() || v.as_array().size() != size) fail_found(key, expected);
+    std::vector<std::string> result;
+    for (const toml::value& e : v.as_array()) {
+      if (!e.is_string() || e.as_string().str.empty()) fail_found(key, expected);
+      result.push_back(e.as_string().str);
+    }
+    return result;
+  }
+
   /// One of `options` (strings), or `fallback` when absent.
   std::string choice(const std::string& key, const std::vector<std::string>& options,
                      const std::string& fallback) const {

@@ -1,2 +1,2 @@
 add_library(gpudem_scene STATIC core/SceneLoader.cpp)
-target_link_libraries(gpudem_scene PUBLIC gpudem_base toml11::toml11)
+target_link_libraries(gpudem_scene PUBLIC gpudem_contact_model toml11::toml11)

@@ -1,49 +1,61 @@
 #pragma once
 /// Per-particle force, torque and worst overlap: one thread per particle sums all its
 /// contacts from the full neighbour list (no atomics), walls and gravity, and advances the
-/// tangential springs it owns (its own neighbour-list entries and wall slots).
+/// contact history it owns (its own neighbour-list entries and wall slots).
 #include "kernels/ContactVisitor.hpp"
 
 namespace gpudem {
 
+/// Torque of a contact force about i's centre plus the law's rolling torque.
+template <class Law>
+GPUDEM_HD Vec3 contact_torque(const ContactSample<Law>& c, const ContactForce& f) {
+  Vec3 torque = f.rolling_torque;
+  if constexpr (Law::has_tangential_force) torque += cross(c.arm * c.point.normal, f.force);
+  return torque;
+}
+
+template <class Law>
 struct ForceSum {
-  Vec3* pair_spring;
-  Vec3* wall_spring;
+  typename Law::State* pair_history;
+  typename Law::State* wall_history;
   Real dt;
   Vec3 force;
   Vec3 torque;
   Real worst_overlap_ratio = 0;
-  GPUDEM_HD void operator()(const ContactSample& c) {
-    const Vec3 spring = advance_tangential_spring(*c.params, c.kinematics, c.spring, dt);
-    (c.wall < 0 ? pair_spring : wall_spring)[c.slot] = spring;
-    const Vec3 f = linear_contact_force(*c.params, c.kinematics, spring);
-    force += f;
-    torque += cross(c.arm * c.kinematics.normal, f) +
-              rolling_torque(*c.params, c.kinematics, normal_force(*c.params, c.kinematics), dt);
-    const Real ratio = c.kinematics.overlap / c.min_radius;
+  GPUDEM_HD void operator()(ContactSample<Law>& c) {
+    const ContactForce f = Law::evaluate(*c.params, c.point, c.state.value, dt);
+    if constexpr (Law::history_size > 0) (c.wall < 0 ? pair_history : wall_history)[c.slot] = c.state;
+    force += f.force;
+    if constexpr (Law::needs_spin) torque += contact_torque(c, f);
+    const Real ratio = c.point.overlap / c.min_radius;
     if (ratio > worst_overlap_ratio) worst_overlap_ratio = ratio;
   }
-  /// A contact that opened forgets its spring.
-  GPUDEM_HD void separated(std::uint32_t slot) { pair_spring[slot] = Vec3{}; }
-  GPUDEM_HD void separated_from_wall(std::uint32_t slot) { wall_spring[slot] = Vec3{}; }
+  /// A contact that opened forgets its history.
+  GPUDEM_HD void separated(std::uint32_t slot) {
+    if constexpr (Law::history_size > 0) pair_history[slot] = typename Law::State{};
+  }
+  GPUDEM_HD void separated_from_wall(std::uint32_t slot) {
+    if constexpr (Law::history_size > 0) wall_history[slot] = typename Law::State{};
+  }
 };
 
-/// F_i = m_i g + Σ contacts, T_i = Σ arm × F (one thread per particle).
+/// F_i = m_i g + Σ contacts, T_i = Σ (arm × F + rolling torque) (one thread per particle).
+template <class Law>
 struct ComputeForces {
   ParticleView particles;
-  ContactScene scene;
+  ContactScene<Law> scene;
   Vec3 gravity;
   Real dt;
-  Vec3* pair_spring;  ///< the same arrays as scene.pair_spring / wall_spring, writable
-  Vec3* wall_spring;
+  typename Law::State* pair_history;  ///< scene.pair_history / wall_history, writable
+  typename Law::State* wall_history;
   Vec3* force;
   Vec3* torque;
   Real* overlap_ratio;
   GPUDEM_HD void operator()(std::size_t i) const {
-    ForceSum sum{pair_spring, wall_spring, dt, Vec3{}, Vec3{}, Real(0)};
+    ForceSum<Law> sum{pair_history, wall_history, dt, Vec3{}, Vec3{}, Real(0)};
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, sum);
     force[i] = sum.force + (Real(1) / particles.velocity_inv_mass[i].w) * gravity;
-    torque[i] = sum.torque;
+    if constexpr (Law::needs_spin) torque[i] = sum.torque;
     overlap_ratio[i] = sum.worst_overlap_ratio;
   }
 };

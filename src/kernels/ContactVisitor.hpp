@@ -2,19 +2,22 @@
 /// Walks every contact of one particle — neighbours from the Verlet list, then plane walls —
 /// and hands each touching one to a visitor (`visit(sample)`), and each listed partner that
 /// is not touching to `visit.separated(slot)`. Forces, energies and counters are all
-/// visitors, so the contact geometry lives in one place.
+/// visitors, so the contact geometry lives in one place. The sweep loads only what the
+/// contact law's capability flags ask for (spins, inertias, history).
 #include <cstdint>
 
 #include "core/Config.hpp"
+#include "core/ContactParams.hpp"
 #include "core/ParticleStore.hpp"
 #include "core/Vec3.hpp"
-#include "kernels/LinearContact.hpp"
 #include "kernels/PeriodicBox.hpp"
 #include "kernels/PlaneWall.hpp"
+#include "kernels/contact/ContactLaw.hpp"
 
 namespace gpudem {
 
 /// Read-only particle arrays a contact evaluation needs (pointers into one memory space).
+/// angular_velocity may be null for a law that does not need spin.
 struct ParticleView {
   const Real4* position_radius;
   const Real4* velocity_inv_mass;
@@ -22,17 +25,19 @@ struct ParticleView {
   const MaterialId* material;
 };
 
-/// Everything besides particles that a contact sweep needs.
+/// Everything besides particles that a contact sweep needs; the history arrays hold
+/// Law::history_size values per contact and are null for a law without history.
+template <class Law>
 struct ContactScene {
   const std::uint32_t* neighbor_offsets;  ///< CSR offsets, n + 1
   const std::uint32_t* neighbor_index;    ///< full neighbour list
-  const LinearPairParams* pair_params;    ///< material_count² entries
+  const ContactPairParams* pair_params;   ///< material_count² entries
   std::uint32_t material_count;
   const PlaneWall* walls;
   std::uint32_t wall_count;
   PeriodicBox box;
-  const Vec3* pair_spring;  ///< tangential spring per neighbour-list entry
-  const Vec3* wall_spring;  ///< tangential spring per (particle, wall): slot i·wall_count + w
+  const typename Law::State* pair_history;  ///< per neighbour-list entry
+  const typename Law::State* wall_history;  ///< per (particle, wall): slot i·wall_count + w
 };
 
 /// Base for visitors that ignore partners out of contact.
@@ -42,23 +47,78 @@ struct IgnoreSeparated {
 };
 
 /// One touching contact as seen from particle i.
+template <class Law>
 struct ContactSample {
-  ContactKinematics kinematics;
-  Real arm;         ///< lever arm on i: r_i − δ/2, along kinematics.normal [m]
+  ContactPoint point;
+  Real arm;         ///< lever arm on i: r_i − δ/2, along point.normal [m]
   Real min_radius;  ///< smaller radius of the pair (r_i for walls) [m]
-  const LinearPairParams* params;
-  std::int32_t wall;   ///< wall index, or −1 for a particle partner
-  std::uint32_t slot;  ///< index of this contact's history (pair or wall spring array)
-  Vec3 spring;         ///< tangential spring ξ stored at the end of the last step
+  const ContactPairParams* params;
+  std::int32_t wall;          ///< wall index, or −1 for a particle partner
+  std::uint32_t slot;         ///< index of this contact's history (pair or wall array)
+  typename Law::State state;  ///< history stored at the end of the last step
 };
 
+/// Moment of inertia about the contact point, I + m r², of a sphere (for I_r).
+GPUDEM_HD inline Real inertia_about_contact(Real radius, Real inv_mass) {
+  return sphere_inertia(radius, inv_mass) + radius * radius / inv_mass;
+}
+
+/// Fills the fields of a pair contact that the law's flags ask for.
+template <class Law>
+GPUDEM_HD void describe_pair(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi, Real4 xj,
+                             Real4 vj, Vec3 wj) {
+  ContactPoint& k = c.point;
+  const Real arm_j = xj.w - Real(0.5) * k.overlap;
+  Vec3 ui = xyz(vi), uj = xyz(vj);
+  if constexpr (Law::needs_spin) {
+    ui += cross(wi, c.arm * k.normal);
+    uj += cross(wj, -arm_j * k.normal);
+    k.relative_spin = wi - wj;
+  }
+  k.velocity = ui - uj;
+  k.overlap_rate = dot(k.velocity, k.normal);
+  k.reduced_mass = Real(1) / (vi.w + vj.w);
+  if constexpr (Law::needs_effective_radius) k.effective_radius = xi.w * xj.w / (xi.w + xj.w);
+  if constexpr (Law::needs_inertia) {
+    const Real inertia_i = sphere_inertia(xi.w, vi.w), inertia_j = sphere_inertia(xj.w, vj.w);
+    k.reduced_inertia = inertia_i * inertia_j / (inertia_i + inertia_j);
+    k.rolling_inertia = Real(1) / (Real(1) / inertia_about_contact(xi.w, vi.w) +
+                                   Real(1) / inertia_about_contact(xj.w, vj.w));
+  }
+  if constexpr (Law::needs_contact_area)
+    k.contact_radius_sq = sphere_contact_radius_sq(xi.w + xj.w - k.overlap, xi.w, xj.w);
+}
+
+/// Fills the fields of a wall contact that the law's flags ask for (wall: infinite mass
+/// and radius, at rest).
+template <class Law>
+GPUDEM_HD void describe_wall(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi) {
+  ContactPoint& k = c.point;
+  Vec3 ui = xyz(vi);
+  if constexpr (Law::needs_spin) {
+    ui += cross(wi, c.arm * k.normal);
+    k.relative_spin = wi;
+  }
+  k.velocity = ui;
+  k.overlap_rate = dot(k.velocity, k.normal);
+  k.reduced_mass = Real(1) / vi.w;
+  if constexpr (Law::needs_effective_radius) k.effective_radius = xi.w;
+  if constexpr (Law::needs_inertia) {
+    k.reduced_inertia = sphere_inertia(xi.w, vi.w);
+    k.rolling_inertia = inertia_about_contact(xi.w, vi.w);
+  }
+  if constexpr (Law::needs_contact_area)
+    k.contact_radius_sq = wall_contact_radius_sq(xi.w, k.overlap);
+}
+
 /// Calls visit(sample) for each contact of particle i with positive overlap.
-template <class Visitor>
-GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p, const ContactScene& s,
-                                Visitor& visit) {
+template <class Law, class Visitor>
+GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p,
+                                const ContactScene<Law>& s, Visitor& visit) {
   const Real4 xi = p.position_radius[i];
   const Real4 vi = p.velocity_inv_mass[i];
-  const Vec3 wi = p.angular_velocity[i];
+  Vec3 wi{};
+  if constexpr (Law::needs_spin) wi = p.angular_velocity[i];
   const MaterialId mi = p.material[i];
   for (std::uint32_t k = s.neighbor_offsets[i]; k < s.neighbor_offsets[i + 1]; ++k) {
     const std::uint32_t j = s.neighbor_index[k];
@@ -71,25 +131,18 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p, const Co
       continue;
     }
     const Real dist = sqrt(dist2);
-    ContactSample c;
-    c.kinematics.normal = (Real(1) / dist) * d;
-    c.kinematics.overlap = reach - dist;
-    c.arm = xi.w - Real(0.5) * c.kinematics.overlap;
-    const Real arm_j = xj.w - Real(0.5) * c.kinematics.overlap;
-    const Real4 vj = p.velocity_inv_mass[j];
-    const Vec3 ui = xyz(vi) + cross(wi, c.arm * c.kinematics.normal);
-    const Vec3 uj = xyz(vj) + cross(p.angular_velocity[j], -arm_j * c.kinematics.normal);
-    c.kinematics.velocity = ui - uj;
-    c.kinematics.reduced_mass = Real(1) / (vi.w + vj.w);
-    c.kinematics.relative_spin = wi - p.angular_velocity[j];
-    c.kinematics.rolling_radius = xi.w * xj.w / (xi.w + xj.w);
-    const Real inertia_i = sphere_inertia(xi.w, vi.w), inertia_j = sphere_inertia(xj.w, vj.w);
-    c.kinematics.reduced_inertia = inertia_i * inertia_j / (inertia_i + inertia_j);
+    ContactSample<Law> c;
+    c.point.normal = (Real(1) / dist) * d;
+    c.point.overlap = reach - dist;
+    c.arm = xi.w - Real(0.5) * c.point.overlap;
+    Vec3 wj{};
+    if constexpr (Law::needs_spin) wj = p.angular_velocity[j];
+    describe_pair(c, xi, vi, wi, xj, p.velocity_inv_mass[j], wj);
     c.min_radius = xi.w < xj.w ? xi.w : xj.w;
     c.params = &s.pair_params[mi * s.material_count + p.material[j]];
     c.wall = -1;
     c.slot = k;
-    c.spring = s.pair_spring[k];
+    if constexpr (Law::history_size > 0) c.state = s.pair_history[k];
     visit(c);
   }
   for (std::uint32_t w = 0; w < s.wall_count; ++w) {
@@ -100,20 +153,16 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p, const Co
       visit.separated_from_wall(slot);
       continue;
     }
-    ContactSample c;
-    c.kinematics.normal = -wall.normal;
-    c.kinematics.overlap = overlap;
+    ContactSample<Law> c;
+    c.point.normal = -wall.normal;
+    c.point.overlap = overlap;
     c.arm = xi.w - Real(0.5) * overlap;
-    c.kinematics.velocity = xyz(vi) + cross(wi, c.arm * c.kinematics.normal);
-    c.kinematics.reduced_mass = Real(1) / vi.w;
-    c.kinematics.relative_spin = wi;
-    c.kinematics.rolling_radius = xi.w;
-    c.kinematics.reduced_inertia = sphere_inertia(xi.w, vi.w);
+    describe_wall(c, xi, vi, wi);
     c.min_radius = xi.w;
     c.params = &s.pair_params[mi * s.material_count + wall.material];
     c.wall = static_cast<std::int32_t>(w);
     c.slot = slot;
-    c.spring = s.wall_spring[slot];
+    if constexpr (Law::history_size > 0) c.state = s.wall_history[slot];
     visit(c);
   }
 }

@@ -24,8 +24,8 @@ class DeviceArray<T, HostSpace> {
   std::size_t size() const { return data_.size(); }
   /// Resizes keeping the first min(old, new) elements.
   void resize(std::size_t n) { data_.resize(n); }
-  void upload(const std::vector<T>& host) { data_ = host; }
-  void download(std::vector<T>& host) const { host = data_; }
+  void upload(const std::vector<T>& host) { data_.assign(host.begin(), host.end()); }
+  void download(std::vector<T>& host) const { host.assign(data_.begin(), data_.end()); }
   void swap(DeviceArray& other) { data_.swap(other.data_); }
   std::size_t bytes() const { return data_.capacity() * sizeof(T); }
 

@@ -37,47 +37,47 @@ struct GravityEnergy {
   }
 };
 
-/// Contact count and elastic energy; a particle pair is seen from both sides, so it adds ½.
-struct ContactTally : IgnoreSeparated {
-  Real contacts = 0;
-  Real elastic_energy = 0;
-  GPUDEM_HD void operator()(const ContactSample& c) {
-    const Real share = c.wall < 0 ? Real(0.5) : Real(1);
-    contacts += share;
-    elastic_energy += share * linear_contact_energy(*c.params, c.kinematics.overlap, c.spring);
-  }
-};
-
-/// Particle i's share of the contact count, or of the elastic energy when `energy` is set.
-struct ContactShare {
+/// Particle i's contact terms, written per particle so that the sums need no law-specific
+/// reduction: its share of the contact count and of the elastic energy (a particle pair is
+/// seen from both sides, so each side adds ½), and the force it exerts on each wall. The
+/// stored history is read, not advanced (dt = 0).
+template <class Law>
+struct ContactTerms {
   ParticleView particles;
-  ContactScene scene;
-  bool energy;
-  GPUDEM_HD Real operator()(std::size_t i) const {
-    ContactTally t;
-    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, t);
-    return energy ? t.elastic_energy : t.contacts;
-  }
-};
-
-/// Component `axis` of the force particle i exerts on wall `wall` [N].
-struct WallForceComponent {
-  ParticleView particles;
-  ContactScene scene;
-  std::int32_t wall;
-  int component;
-  struct Pick : IgnoreSeparated {
-    std::int32_t wall = -1;
-    Vec3 force;
-    GPUDEM_HD void operator()(const ContactSample& c) {
-      if (c.wall == wall) force -= linear_contact_force(*c.params, c.kinematics, c.spring);
+  ContactScene<Law> scene;
+  Real* contacts;      ///< per particle
+  Real* energy;        ///< per particle [J]
+  Vec3* wall_force;    ///< per (particle, wall): i·wall_count + w [N]
+  struct Tally : IgnoreSeparated {
+    Real contacts = 0;
+    Real energy = 0;
+    Vec3* wall_force;
+    GPUDEM_HD void operator()(ContactSample<Law>& c) {
+      const Real share = c.wall < 0 ? Real(0.5) : Real(1);
+      contacts += share;
+      energy += share * Law::energy(*c.params, c.point, c.state.value);
+      if (c.wall >= 0) wall_force[c.wall] = -Law::evaluate(*c.params, c.point, c.state.value, 0).force;
     }
   };
+  GPUDEM_HD void operator()(std::size_t i) const {
+    Vec3* walls = wall_force + i * scene.wall_count;
+    for (std::uint32_t w = 0; w < scene.wall_count; ++w) walls[w] = Vec3{};
+    Tally t;
+    t.wall_force = walls;
+    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, t);
+    contacts[i] = t.contacts;
+    energy[i] = t.energy;
+  }
+};
+
+/// Component `component` of the force particle i exerts on wall `wall`, from ContactTerms.
+struct WallForceComponent {
+  const Vec3* wall_force;
+  std::uint32_t wall_count;
+  std::uint32_t wall;
+  int component;
   GPUDEM_HD Real operator()(std::size_t i) const {
-    Pick pick;
-    pick.wall = wall;
-    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, pick);
-    return axis(pick.force, component);
+    return axis(wall_force[i * wall_count + wall], component);
   }
 };
 

@@ -12,7 +12,8 @@
 
 namespace gpudem {
 
-/// v += h·F/m and ω += h·T/I.
+/// v += h·F/m and, when the contact law exerts torques (kRotate), ω += h·T/I.
+template <bool kRotate>
 struct Kick {
   Real4* velocity_inv_mass;
   Vec3* angular_velocity;
@@ -25,7 +26,8 @@ struct Kick {
     v.x += h * v.w * force[i].x;
     v.y += h * v.w * force[i].y;
     v.z += h * v.w * force[i].z;
-    angular_velocity[i] += (h / sphere_inertia(position_radius[i].w, v.w)) * torque[i];
+    if constexpr (kRotate)
+      angular_velocity[i] += (h / sphere_inertia(position_radius[i].w, v.w)) * torque[i];
   }
 };
 

@@ -11,7 +11,8 @@
 #include "core/ContactHistory.hpp"
 #include "core/ParticleStore.hpp"
 #include "core/Scene.hpp"
-#include "kernels/LinearContact.hpp"
+#include "core/ContactModel.hpp"
+#include "core/ContactParams.hpp"
 #include "kernels/PeriodicBox.hpp"
 #include "kernels/PlaneWall.hpp"
 
@@ -24,8 +25,9 @@ struct EngineSetup {
   Real dt = 0;
   IntegratorKind integrator = IntegratorKind::VelocityVerlet;
   Real skin = 0;  ///< Verlet skin [m]
+  ContactModel contact_model;  ///< must be one of valid_contact_models()
   std::uint32_t material_count = 0;
-  std::vector<LinearPairParams> pair_params;  ///< material_count² entries, row-major
+  std::vector<ContactPairParams> pair_params;  ///< material_count² entries, row-major
   std::vector<PlaneWall> walls;
 };
 

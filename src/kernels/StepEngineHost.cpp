@@ -1,11 +1,20 @@
-/// Host-backend instantiation of the step engine.
-#include "kernels/ParallelFor.hpp"
-#include "kernels/StepEngineImpl.hpp"
+/// Host-backend step engine: picks the instantiation for the scene's contact law.
+#include <stdexcept>
+
+#include "kernels/EngineInstances.hpp"
 
 namespace gpudem {
 
+void require_valid_contact_model(const EngineSetup& setup) {
+  if (!is_valid_contact_model(setup.contact_model))
+    throw std::invalid_argument("contact law " + contact_model_name(setup.contact_model) +
+                                " is not one of the combinations the engine is built for");
+}
+
 std::unique_ptr<StepEngine> make_host_engine(const EngineSetup& setup) {
-  return std::make_unique<StepEngineImpl<HostSpace>>(setup);
+  require_valid_contact_model(setup);
+  return setup.contact_model.normal == NormalLaw::Hertz ? make_host_hertz_engine(setup)
+                                                        : make_host_hooke_engine(setup);
 }
 
 #if !defined(GPUDEM_HAVE_CUDA)

@@ -1,6 +1,7 @@
 #pragma once
-/// The step engine for one execution space (DESIGN §4 on one rank): the same code is
-/// instantiated for HostSpace and CudaSpace. Include the backend's ParallelFor header first.
+/// The step engine for one execution space and one contact law (DESIGN §4 on one rank): the
+/// same code is instantiated for HostSpace and CudaSpace and for every valid law
+/// (EngineFactory.hpp). Include the backend's ParallelFor header first.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -73,22 +74,24 @@ struct Iota {
   GPUDEM_HD void operator()(std::size_t k) const { out[k] = static_cast<std::uint32_t>(k); }
 };
 
-/// out row k = in row order[k], rows of `width` values (per-particle wall springs).
+/// out row k = in row order[k], rows of `width` values (per-particle wall histories).
+template <class T>
 struct GatherRows {
   const std::uint32_t* order;
-  const Vec3* in;
-  Vec3* out;
+  const T* in;
+  T* out;
   std::uint32_t width;
   GPUDEM_HD void operator()(std::size_t k) const {
     for (std::uint32_t w = 0; w < width; ++w) out[k * width + w] = in[order[k] * width + w];
   }
 };
 
-/// Carries tangential springs over a neighbour rebuild: for each new list entry of particle
-/// k, the spring of the old entry of the same particle (old index previous_index[k]) with
-/// the same partner global id, or zero for a new contact. Contact history is keyed by
-/// global id, never by position in a list.
-struct RemapPairSprings {
+/// Carries contact history over a neighbour rebuild: for each new list entry of particle k,
+/// the history of the old entry of the same particle (old index previous_index[k]) with the
+/// same partner global id, or zero for a new contact. Contact history is keyed by global id,
+/// never by position in a list.
+template <class State>
+struct RemapPairHistory {
   const std::uint32_t* offsets;
   const std::uint32_t* neighbors;
   const ParticleId* id;
@@ -96,25 +99,28 @@ struct RemapPairSprings {
   const std::uint32_t* previous_offsets;
   const std::uint32_t* previous_neighbors;
   const ParticleId* previous_id;
-  const Vec3* previous_spring;
-  Vec3* spring;
+  const State* previous_history;
+  State* history;
   GPUDEM_HD void operator()(std::size_t k) const {
     const std::uint32_t old = previous_index[k];
     for (std::uint32_t e = offsets[k]; e < offsets[k + 1]; ++e) {
       const ParticleId partner = id[neighbors[e]];
-      Vec3 carried{};
+      State carried{};
       for (std::uint32_t f = previous_offsets[old]; f < previous_offsets[old + 1]; ++f)
         if (previous_id[previous_neighbors[f]] == partner) {
-          carried = previous_spring[f];
+          carried = previous_history[f];
           break;
         }
-      spring[e] = carried;
+      history[e] = carried;
     }
   }
 };
 
-template <class Space>
+template <class Space, class Law>
 class StepEngineImpl final : public StepEngine {
+  using State = typename Law::State;
+  static constexpr std::uint32_t kHistoryWidth = Law::history_size;
+
  public:
   explicit StepEngineImpl(const EngineSetup& setup) : setup_(setup) {
     pair_params_.upload(setup.pair_params);
@@ -142,7 +148,7 @@ class StepEngineImpl final : public StepEngine {
     compute_forces();  // for the overlap ratios; the forces and springs it leaves are replaced
     force_.swap(saved_force);
     torque_.swap(saved_torque);
-    zero_springs();
+    zero_history();
     removed_ = removed;
   }
 
@@ -157,17 +163,17 @@ class StepEngineImpl final : public StepEngine {
   }
 
   void get_contact_history(ContactHistory& history) const override {
-    std::vector<Vec3> pair_spring, wall_spring;
-    pair_spring_.download(pair_spring);
-    wall_spring_.download(wall_spring);
-    history = collect_history(contact_slots(), pair_spring, wall_spring);
+    history = collect_history(contact_slots(), kHistoryWidth, flat_values(pair_history_),
+                              flat_values(wall_history_));
   }
 
   void set_contact_history(const ContactHistory& history) override {
-    std::vector<Vec3> pair_spring, wall_spring;
-    scatter_history(contact_slots(), history, pair_spring, wall_spring);
-    pair_spring_.upload(pair_spring);
-    wall_spring_.upload(wall_spring);
+    std::vector<Real> pair_values, wall_values;
+    scatter_history(contact_slots(), kHistoryWidth, history, pair_values, wall_values);
+    if constexpr (kHistoryWidth > 0) {
+      upload_states(pair_values, pair_history_);
+      upload_states(wall_values, wall_history_);
+    }
   }
 
   void get_list_positions(std::vector<Real4>& position_radius) const override {
@@ -215,7 +221,6 @@ class StepEngineImpl final : public StepEngine {
     Diagnostics d;
     const std::size_t n = size();
     const ParticleView view = particle_view();
-    const ContactScene scene = contact_scene();
     d.particle_count = n;
     d.kinetic_translational =
         reduce_sum(Space{}, n, TranslationalEnergy{velocity_inv_mass_.data()});
@@ -226,15 +231,20 @@ class StepEngineImpl final : public StepEngine {
     d.potential_gravity = reduce_sum(
         Space{}, n,
         GravityEnergy{velocity_inv_mass_.data(), position_radius_.data(), setup_.gravity});
-    d.potential_elastic = reduce_sum(Space{}, n, ContactShare{view, scene, true});
-    d.contact_count = static_cast<std::uint64_t>(
-        std::llround(reduce_sum(Space{}, n, ContactShare{view, scene, false})));
+    DeviceArray<Real, Space> contacts(n), energy(n);
+    DeviceArray<Vec3, Space> wall_force(n * wall_count());
+    parallel_for(Space{}, n,
+                 ContactTerms<Law>{view, contact_scene(), contacts.data(), energy.data(),
+                                   wall_force.data()});
+    d.potential_elastic = reduce_sum(Space{}, n, ReadValue{energy.data()});
+    d.contact_count =
+        static_cast<std::uint64_t>(std::llround(reduce_sum(Space{}, n, ReadValue{contacts.data()})));
     d.max_overlap_ratio = reduce_max(Space{}, n, Real(0), ReadValue{overlap_ratio_.data()});
-    for (std::size_t w = 0; w < setup_.walls.size(); ++w) {
+    for (std::uint32_t w = 0; w < wall_count(); ++w) {
       Vec3 f;
       for (int k = 0; k < 3; ++k)
-        axis(f, k) = reduce_sum(Space{}, n,
-                                WallForceComponent{view, scene, static_cast<std::int32_t>(w), k});
+        axis(f, k) =
+            reduce_sum(Space{}, n, WallForceComponent{wall_force.data(), wall_count(), w, k});
       d.wall_force.push_back(f);
     }
     return d;
@@ -246,8 +256,8 @@ class StepEngineImpl final : public StepEngine {
   std::size_t memory_bytes() const override {
     return position_radius_.bytes() + velocity_inv_mass_.bytes() + angular_velocity_.bytes() +
            force_.bytes() + torque_.bytes() + id_.bytes() + material_.bytes() +
-           overlap_ratio_.bytes() + position_at_build_.bytes() + pair_spring_.bytes() +
-           wall_spring_.bytes() + scratch_bytes() + cells_.memory_bytes() +
+           overlap_ratio_.bytes() + position_at_build_.bytes() + pair_history_.bytes() +
+           wall_history_.bytes() + scratch_bytes() + cells_.memory_bytes() +
            neighbors_.memory_bytes();
   }
 
@@ -256,7 +266,8 @@ class StepEngineImpl final : public StepEngine {
  private:
   std::size_t size() const { return id_.size(); }
 
-  /// Uploads the particle arrays and sizes the per-particle work arrays; wall springs zero.
+  /// Uploads the particle arrays and sizes the per-particle work arrays; wall histories zero,
+  /// torques zero (a law without spin never writes them).
   void upload_particles(const ParticleStore& p) {
     position_radius_.upload(p.position_radius);
     velocity_inv_mass_.upload(p.velocity_inv_mass);
@@ -267,8 +278,11 @@ class StepEngineImpl final : public StepEngine {
     force_.resize(n);
     torque_.resize(n);
     overlap_ratio_.resize(n);
-    wall_spring_.resize(n * wall_count());
-    parallel_for(Space{}, wall_spring_.size(), Fill<Vec3>{wall_spring_.data(), Vec3{}});
+    parallel_for(Space{}, n, Fill<Vec3>{torque_.data(), Vec3{}});
+    if constexpr (kHistoryWidth > 0) {
+      wall_history_.resize(n * wall_count());
+      parallel_for(Space{}, wall_history_.size(), Fill<State>{wall_history_.data(), State{}});
+    }
   }
 
   /// The neighbour list of a restored state, built at the saved positions of the last build
@@ -285,14 +299,32 @@ class StepEngineImpl final : public StepEngine {
     permute_array(cells_.order(), n, force);
     permute_array(cells_.order(), n, torque);
     neighbors_.build(cells_, position_at_build_.data(), n, setup_.box, setup_.skin);
-    pair_spring_.resize(neighbors_.pairs_kept());
-    zero_springs();
+    if constexpr (kHistoryWidth > 0) pair_history_.resize(neighbors_.pairs_kept());
+    zero_history();
     has_list_ = true;
   }
 
-  void zero_springs() {
-    parallel_for(Space{}, pair_spring_.size(), Fill<Vec3>{pair_spring_.data(), Vec3{}});
-    parallel_for(Space{}, wall_spring_.size(), Fill<Vec3>{wall_spring_.data(), Vec3{}});
+  void zero_history() {
+    parallel_for(Space{}, pair_history_.size(), Fill<State>{pair_history_.data(), State{}});
+    parallel_for(Space{}, wall_history_.size(), Fill<State>{wall_history_.data(), State{}});
+  }
+
+  /// Host copy of a history array as kHistoryWidth values per contact.
+  std::vector<Real> flat_values(const DeviceArray<State, Space>& states) const {
+    std::vector<State> host;
+    states.download(host);
+    std::vector<Real> values;
+    values.reserve(host.size() * kHistoryWidth);
+    for (const State& s : host) values.insert(values.end(), s.value, s.value + kHistoryWidth);
+    return values;
+  }
+
+  static void upload_states(const std::vector<Real>& values, DeviceArray<State, Space>& states) {
+    std::vector<State> host(values.size() / kHistoryWidth);
+    for (std::size_t k = 0; k < host.size(); ++k)
+      for (std::uint32_t v = 0; v < kHistoryWidth; ++v)
+        host[k].value[v] = values[k * kHistoryWidth + v];
+    states.upload(host);
   }
 
   /// Host copies of the ids and the neighbour list, for contact-history conversions.
@@ -316,31 +348,31 @@ class StepEngineImpl final : public StepEngine {
     return host;
   }
 
+  /// The particle arrays the law reads; spins only when it needs them.
   ParticleView particle_view() const {
     return ParticleView{position_radius_.data(), velocity_inv_mass_.data(),
-                        angular_velocity_.data(), material_.data()};
+                        Law::needs_spin ? angular_velocity_.data() : nullptr, material_.data()};
   }
 
-  ContactScene contact_scene() const {
-    return ContactScene{
-        neighbors_.offsets(), neighbors_.neighbors(), pair_params_.data(), setup_.material_count,
-        walls_.data(),        wall_count(),           setup_.box,          pair_spring_.data(),
-        wall_spring_.data()};
+  ContactScene<Law> contact_scene() const {
+    return ContactScene<Law>{neighbors_.offsets(), neighbors_.neighbors(), pair_params_.data(),
+                             setup_.material_count, walls_.data(),         wall_count(),
+                             setup_.box,            pair_history_.data(),  wall_history_.data()};
   }
 
   void kick(Real h) {
     parallel_for(Space{}, size(),
-                 Kick{velocity_inv_mass_.data(), angular_velocity_.data(), force_.data(),
-                      torque_.data(), position_radius_.data(), h});
+                 Kick<Law::needs_spin>{velocity_inv_mass_.data(), angular_velocity_.data(),
+                                       force_.data(), torque_.data(), position_radius_.data(), h});
   }
 
   std::uint32_t wall_count() const { return static_cast<std::uint32_t>(setup_.walls.size()); }
 
   void compute_forces() {
     parallel_for(Space{}, size(),
-                 ComputeForces{particle_view(), contact_scene(), setup_.gravity, setup_.dt,
-                               pair_spring_.data(), wall_spring_.data(), force_.data(),
-                               torque_.data(), overlap_ratio_.data()});
+                 ComputeForces<Law>{particle_view(), contact_scene(), setup_.gravity, setup_.dt,
+                                    pair_history_.data(), wall_history_.data(), force_.data(),
+                                    torque_.data(), overlap_ratio_.data()});
   }
 
   /// The Verlet list stays valid while no particle moved more than skin/2.
@@ -353,7 +385,7 @@ class StepEngineImpl final : public StepEngine {
   }
 
   /// Wraps periodic images, removes particles that left the box, sorts by cell, rebuilds the
-  /// neighbour list and carries the contact springs over to it.
+  /// neighbour list and carries the contact history over to it.
   void rebuild() {
     parallel_for(Space{}, size(), WrapPositions{position_radius_.data(), setup_.box});
     std::swap(neighbors_, previous_neighbors_);
@@ -366,25 +398,27 @@ class StepEngineImpl final : public StepEngine {
     cells_.bin(position_radius_.data(), n, setup_.box, setup_.skin);
     reorder(cells_.order(), n);
     neighbors_.build(cells_, position_radius_.data(), n, setup_.box, setup_.skin);
-    remap_pair_springs();
+    remap_pair_history();
     position_at_build_.resize(n);
     parallel_for(Space{}, n, CopyArray<Real4>{position_radius_.data(), position_at_build_.data()});
     ++rebuilds_;
   }
 
-  void remap_pair_springs() {
-    const std::size_t n = size();
-    DeviceArray<Vec3, Space> fresh(neighbors_.pairs_kept());
-    if (has_list_) {
-      parallel_for(Space{}, n,
-                   RemapPairSprings{neighbors_.offsets(), neighbors_.neighbors(), id_.data(),
-                                    previous_index_.data(), previous_neighbors_.offsets(),
-                                    previous_neighbors_.neighbors(), previous_id_.data(),
-                                    pair_spring_.data(), fresh.data()});
-    } else {
-      parallel_for(Space{}, fresh.size(), Fill<Vec3>{fresh.data(), Vec3{}});
+  void remap_pair_history() {
+    if constexpr (kHistoryWidth > 0) {
+      DeviceArray<State, Space> fresh(neighbors_.pairs_kept());
+      if (has_list_) {
+        parallel_for(Space{}, size(),
+                     RemapPairHistory<State>{neighbors_.offsets(), neighbors_.neighbors(),
+                                             id_.data(), previous_index_.data(),
+                                             previous_neighbors_.offsets(),
+                                             previous_neighbors_.neighbors(), previous_id_.data(),
+                                             pair_history_.data(), fresh.data()});
+      } else {
+        parallel_for(Space{}, fresh.size(), Fill<State>{fresh.data(), State{}});
+      }
+      pair_history_.swap(fresh);
     }
-    pair_spring_.swap(fresh);
     has_list_ = true;
   }
 
@@ -413,9 +447,12 @@ class StepEngineImpl final : public StepEngine {
     permute_array(order, n, id_);
     permute_array(order, n, material_);
     permute_array(order, n, previous_index_);
-    DeviceArray<Vec3, Space> springs(n * wall_count());
-    parallel_for(Space{}, n, GatherRows{order, wall_spring_.data(), springs.data(), wall_count()});
-    wall_spring_.swap(springs);
+    if constexpr (kHistoryWidth > 0) {
+      DeviceArray<State, Space> rows(n * wall_count());
+      parallel_for(Space{}, n,
+                   GatherRows<State>{order, wall_history_.data(), rows.data(), wall_count()});
+      wall_history_.swap(rows);
+    }
   }
 
   template <class T>
@@ -435,7 +472,7 @@ class StepEngineImpl final : public StepEngine {
     torque_.resize(n);
     overlap_ratio_.resize(n);
     previous_index_.resize(n);
-    wall_spring_.resize(n * wall_count());
+    if constexpr (kHistoryWidth > 0) wall_history_.resize(n * wall_count());
   }
 
   std::size_t scratch_bytes() const {
@@ -444,7 +481,7 @@ class StepEngineImpl final : public StepEngine {
   }
 
   EngineSetup setup_;
-  DeviceArray<LinearPairParams, Space> pair_params_;
+  DeviceArray<ContactPairParams, Space> pair_params_;
   DeviceArray<PlaneWall, Space> walls_;
   DeviceArray<Real4, Space> position_radius_;
   DeviceArray<Real4, Space> velocity_inv_mass_;
@@ -457,8 +494,8 @@ class StepEngineImpl final : public StepEngine {
   DeviceArray<Real4, Space> position_at_build_;
   DeviceArray<std::uint64_t, Space> sort_key_;
   DeviceArray<std::uint32_t, Space> sort_index_;
-  DeviceArray<Vec3, Space> pair_spring_;  ///< tangential spring per neighbour-list entry
-  DeviceArray<Vec3, Space> wall_spring_;  ///< tangential spring per (particle, wall)
+  DeviceArray<State, Space> pair_history_;  ///< per neighbour-list entry (empty: no history)
+  DeviceArray<State, Space> wall_history_;  ///< per (particle, wall) (empty: no history)
   DeviceArray<std::uint32_t, Space> previous_index_;  ///< index before this rebuild's reorders
   DeviceArray<ParticleId, Space> previous_id_;
   CellList<Space> cells_;

@@ -1,8 +1,11 @@
-# The step engine, instantiated once per backend from the same template (StepEngineImpl.hpp).
-add_library(gpudem_kernels STATIC kernels/StepEngineHost.cpp)
-target_link_libraries(gpudem_kernels PUBLIC gpudem_base)
+# The step engine, instantiated per backend and per contact law from one template
+# (StepEngineImpl.hpp via EngineFactory.hpp), one translation unit per normal law.
+add_library(gpudem_kernels STATIC kernels/StepEngineHost.cpp kernels/StepEngineHostHooke.cpp
+                                  kernels/StepEngineHostHertz.cpp)
+target_link_libraries(gpudem_kernels PUBLIC gpudem_contact_model)
 if(GPUDEM_HAVE_CUDA)
-  target_sources(gpudem_kernels PRIVATE kernels/CudaMemory.cu kernels/StepEngineCuda.cu)
+  target_sources(gpudem_kernels PRIVATE kernels/CudaMemory.cu kernels/StepEngineCuda.cu
+                                        kernels/StepEngineCudaHooke.cu kernels/StepEngineCudaHertz.cu)
   set_target_properties(gpudem_kernels PROPERTIES CUDA_SEPARABLE_COMPILATION OFF)
   target_compile_options(gpudem_kernels PRIVATE $<$<COMPILE_LANGUAGE:CUDA>:--extended-lambda>)
   find_package(CUDAToolkit REQUIRED)

@@ -1,12 +1,19 @@
 // Contact history survives neighbour rebuilds: the tangential springs of a loaded, resting
 // pile are carried over by partner global id when particles are re-sorted and lists rebuilt.
+// Its width, the values per contact a checkpoint stores, is the contact law's history size:
+// contact_history_width (what a restart expects of a scene) equals ContactLawOf::history_size
+// for every valid model, and the engine of each model hands out records of that width.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
+#include <utility>
 
+#include "core/ContactModel.hpp"
 #include "core/ParticleSources.hpp"
 #include "core/SceneSetup.hpp"
+#include "kernels/contact/ContactLaw.hpp"
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"
@@ -54,7 +61,100 @@ TEST_P(ContactHistory, SpringsSurviveRebuild) {
   EXPECT_LT(worst, 1e-4 * weight) << "largest weight " << weight;
 }
 
+// Two touching 1 mm grains, one sliding past and spinning against the other: after a few
+// steps every spring a law keeps is loaded, so each side of the contact holds a record.
+TEST_P(ContactHistory, EngineRecordsAsManyValuesPerContactAsItsLawKeeps) {
+  Scene scene = basic_scene({0, 0, 0}, {0.01, 0.01, 0.01}, 2000, 0.5, 0.5);
+  scene.materials[0].rolling_friction = 0.1;  // μ_r > 0: an EPSD spring has stiffness
+  scene.simulation.gravity = {0, 0, 0};
+  scene.simulation.dt_auto = false;
+  scene.simulation.dt = 1e-6;  // s: 5 steps leave the 10 µm overlap nearly unchanged
+  const double radius = 1e-3;
+  const double inv_mass = 1 / (scene.materials[0].density * 4.0 / 3.0 * M_PI * std::pow(radius, 3));
+  ParticleStore pair;
+  pair.add(1, {0.004, 0.005, 0.005}, radius, 0, {}, inv_mass);
+  pair.add(2, {0.004 + 1.99 * radius, 0.005, 0.005}, radius, 0, {0, 0.01, 0}, inv_mass);
+  pair.angular_velocity[1] = {1, 1, 1};  // rad/s: rolling and twisting against grain 1
+  for (const ContactModel& model : valid_contact_models()) {
+    scene.contact.model = model;
+    auto engine = make_engine(make_engine_setup(scene, pair));
+    engine->set_particles(pair);
+    for (int n = 0; n < 5; ++n) engine->step();
+    gpudem::ContactHistory history;
+    engine->get_contact_history(history);
+    const std::uint32_t width = contact_history_width(model);
+    EXPECT_EQ(history.width, width) << contact_model_name(model);
+    // Both grains hold their side of the one contact; a law without history holds none.
+    const std::size_t records = width > 0 ? 2 : 0;
+    EXPECT_EQ(history.pair_owner.size(), records) << contact_model_name(model);
+    EXPECT_EQ(history.pair_values.size(), records * width) << contact_model_name(model);
+    EXPECT_TRUE(history.wall_owner.empty()) << contact_model_name(model);
+  }
+}
+
 GPUDEM_INSTANTIATE_BACKENDS(ContactHistory);
+
+// ---- history width of each contact law ------------------------------------------------------
+
+constexpr std::size_t kNormalLaws = 2, kDampingLaws = 3, kTangentialLaws = 3, kRollingLaws = 3,
+                      kCohesionLaws = 2;
+constexpr std::size_t kSlotCombinations =
+    kNormalLaws * kDampingLaws * kTangentialLaws * kRollingLaws * kCohesionLaws;
+
+/// Combination `I` of slot choices, numbered in enum order with cohesion varying fastest.
+template <std::size_t I>
+constexpr int kernel_history_size() {
+  constexpr std::size_t c = I % kCohesionLaws;
+  constexpr std::size_t r = I / kCohesionLaws % kRollingLaws;
+  constexpr std::size_t t = I / (kCohesionLaws * kRollingLaws) % kTangentialLaws;
+  constexpr std::size_t d = I / (kCohesionLaws * kRollingLaws * kTangentialLaws) % kDampingLaws;
+  constexpr std::size_t n = I / (kCohesionLaws * kRollingLaws * kTangentialLaws * kDampingLaws);
+  return ContactLawOf<static_cast<NormalLaw>(n), static_cast<DampingLaw>(d),
+                      static_cast<TangentialLaw>(t), static_cast<RollingLaw>(r),
+                      static_cast<CohesionLaw>(c)>::history_size;
+}
+
+template <std::size_t... I>
+constexpr std::array<int, sizeof...(I)> kernel_history_sizes(std::index_sequence<I...>) {
+  return {kernel_history_size<I>()...};
+}
+
+/// The number kernel_history_size gives the combination of `m`.
+std::size_t combination_number(const ContactModel& m) {
+  std::size_t number = static_cast<std::size_t>(m.normal);
+  number = number * kDampingLaws + static_cast<std::size_t>(m.damping);
+  number = number * kTangentialLaws + static_cast<std::size_t>(m.tangential);
+  number = number * kRollingLaws + static_cast<std::size_t>(m.rolling);
+  return number * kCohesionLaws + static_cast<std::size_t>(m.cohesion);
+}
+
+TEST(ContactHistoryWidth, IsTheKernelLawsHistorySizeForEveryValidModel) {
+  constexpr auto sizes = kernel_history_sizes(std::make_index_sequence<kSlotCombinations>{});
+  ASSERT_EQ(normal_law_names().size() * damping_law_names().size() * tangential_law_names().size() *
+                rolling_law_names().size() * cohesion_law_names().size(),
+            kSlotCombinations)
+      << "a slot gained a choice";
+  for (const ContactModel& m : valid_contact_models())
+    EXPECT_EQ(contact_history_width(m), static_cast<std::uint32_t>(sizes[combination_number(m)]))
+        << contact_model_name(m);
+}
+
+TEST(ContactHistoryWidth, CountsTheTangentialSpringAndFlagAndTheRollingSpring) {
+  ContactModel m;  // hooke/restitution/linear_history/none/none
+  EXPECT_EQ(contact_history_width(m), 4u);
+  m.rolling = RollingLaw::ConstantTorque;
+  EXPECT_EQ(contact_history_width(m), 4u);
+  m.rolling = RollingLaw::Epsd;
+  EXPECT_EQ(contact_history_width(m), 7u);
+  m.tangential = TangentialLaw::None;
+  EXPECT_EQ(contact_history_width(m), 3u);
+  m.rolling = RollingLaw::None;
+  m.cohesion = CohesionLaw::Sjkr;
+  EXPECT_EQ(contact_history_width(m), 0u);
+  m = {NormalLaw::Hertz, DampingLaw::Viscoelastic, TangentialLaw::Mindlin, RollingLaw::Epsd,
+       CohesionLaw::Sjkr};
+  EXPECT_EQ(contact_history_width(m), 7u);
+}
 
 }  // namespace
 }  // namespace gpudem::test

@@ -94,7 +94,7 @@ TEST_P(Dynamics, ElasticGasConservesEnergy) {
   Scene scene = basic_scene({0, 0, 0}, {0.1, 0.1, 0.1}, 1e4, 1.0, 0.0);
   scene.simulation.gravity = {0, 0, 0};
   scene.simulation.dt_fraction = 0.05;  // energy error of velocity Verlet scales with dt²
-  scene.contact.tangential = "none";
+  scene.contact.model.tangential = TangentialLaw::None;
   add_box_walls(scene);
   add_box_source(scene, scene.domain.min, scene.domain.max, 300, 4e-3, 1e-3);
   ParticleStore particles;
@@ -205,7 +205,7 @@ TEST_P(Rolling, ConstantTorqueStopsSphereAtClosedFormDistance) {
   const double r = 0.01, v0 = 0.5, mu_r = 0.05;
   Scene scene = basic_scene({-10, -1, -1}, {10, 1, 1}, 1e4, 0.3, 0.5);
   scene.materials[0].rolling_friction = mu_r;
-  scene.contact.rolling = "constant_torque";
+  scene.contact.model.rolling = RollingLaw::ConstantTorque;
   add_floor(scene, -0.5);
   ParticleStore particles = single_particle(scene, {0, 0, -0.5 + r}, {v0, 0, 0}, r);
   const double m = 1.0 / particles.velocity_inv_mass[0].w;
@@ -242,7 +242,7 @@ TEST_P(Boundaries, LeaversAreRemovedAndPeriodicImagesWrap) {
   Scene scene = basic_scene({0, 0, 0}, {1, 1, 1}, 1e4, 0.5, 0.5);
   scene.simulation.gravity = {0, 0, 0};
   scene.simulation.dt_auto = false;
-  scene.simulation.dt = 1e-3;
+  scene.simulation.dt = 5e-4;
   scene.domain.periodic = {false, true, false};
   const double r = 0.01, inv_m = 1.0 / sphere_mass(scene.materials[0].density, r);
   ParticleStore particles;
@@ -251,7 +251,7 @@ TEST_P(Boundaries, LeaversAreRemovedAndPeriodicImagesWrap) {
   particles.add(9, {0.5, 0.5, 0.5}, r, 0, {0, 0, 0}, inv_m);     // stays
   auto engine = make_engine(make_engine_setup(scene, particles));
   engine->set_particles(particles);
-  for (int n = 0; n < 200; ++n) engine->step();  // 0.2 s
+  for (int n = 0; n < 400; ++n) engine->step();  // 0.2 s
   EXPECT_EQ(engine->removed_count(), 1u);
   EXPECT_EQ(engine->particle_count(), 2u);
   engine->get_particles(particles);

@@ -2,7 +2,8 @@
 // on a floor, run 2T straight, equals bit for bit the run of T, checkpointed, restored into a
 // fresh engine and run T more. Restoring without the contact history must change the result,
 // so the comparison is sensitive to the tangential springs. History naming contacts the engine
-// does not hold is rejected.
+// does not hold, or written by a law keeping another number of values per contact, is
+// rejected.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -11,8 +12,10 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "comm/Checkpoint.hpp"
+#include "core/ContactModel.hpp"
 #include "core/ParticleSources.hpp"
 #include "core/SceneSetup.hpp"
 #include "support/Backends.hpp"
@@ -129,6 +132,7 @@ TEST_P(Restart, CheckpointedRunContinuesBitIdentically) {
   run(*first_leg, kStepsT);
   write_checkpoint(MPI_COMM_WORLD, dir_.string(), capture(*first_leg, kStepsT, setup_));
   const Checkpoint c = read_checkpoint(checkpoint_path(dir_.string()));
+  EXPECT_EQ(c.history.width, 4u) << "linear_history keeps a spring and a sliding flag";
   ASSERT_GT(c.history.pair_owner.size(), 100u) << "the bed must hold tangential springs at T";
   ASSERT_GT(c.history.wall_owner.size(), 10u) << "and springs on the floor";
 
@@ -148,8 +152,9 @@ TEST_P(Restart, CheckpointedRunContinuesBitIdentically) {
   ContactHistory straight_history, restored_history;
   straight->get_contact_history(straight_history);
   second_leg->get_contact_history(restored_history);
-  EXPECT_TRUE(same_bytes(restored_history.pair_spring, straight_history.pair_spring));
-  EXPECT_TRUE(same_bytes(restored_history.wall_spring, straight_history.wall_spring));
+  EXPECT_EQ(restored_history.width, straight_history.width);
+  EXPECT_TRUE(same_bytes(restored_history.pair_values, straight_history.pair_values));
+  EXPECT_TRUE(same_bytes(restored_history.wall_values, straight_history.wall_values));
 }
 
 TEST_P(Restart, RestartWithoutContactHistoryDiverges) {
@@ -173,11 +178,33 @@ TEST_P(Restart, RestartWithoutContactHistoryDiverges) {
   EXPECT_GT(difference, 1e-6) << "the contact history made no difference";
 }
 
+/// Setting `history` throws std::invalid_argument with `needle` in its message.
+void expect_rejected(StepEngine& engine, const ContactHistory& history, const std::string& needle) {
+  try {
+    engine.set_contact_history(history);
+    ADD_FAILURE() << "a history expected to fail with '" << needle << "' was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
 TEST_P(Restart, HistoryOfContactsTheEngineDoesNotHoldIsRejected) {
   auto engine = started();
-  ContactHistory unknown_particle;
-  unknown_particle.add_pair(particles_.id[0], 1u << 30, {1e-6, 0, 0});
-  EXPECT_THROW(engine->set_contact_history(unknown_particle), std::invalid_argument);
+  const std::uint32_t width = contact_history_width(scene_.contact.model);
+  const auto history = [width] {
+    ContactHistory h;
+    h.width = width;
+    return h;
+  };
+  std::vector<Real> spring(width, 0);
+  spring.at(0) = 1e-6;
+  const ParticleId unknown = 1u << 30;
+  ContactHistory unknown_owner = history();
+  unknown_owner.add_pair(unknown, particles_.id[0], spring.data());
+  expect_rejected(*engine, unknown_owner, std::to_string(unknown) + " is not in the engine");
+  ContactHistory unknown_partner = history();
+  unknown_partner.add_pair(particles_.id[0], unknown, spring.data());
+  expect_rejected(*engine, unknown_partner, std::to_string(unknown) + " are not neighbours");
   ParticleStore p;
   engine->get_particles(p);
   std::size_t low = 0, high = 0;  // along z, which is not periodic: centimetres apart
@@ -186,12 +213,21 @@ TEST_P(Restart, HistoryOfContactsTheEngineDoesNotHoldIsRejected) {
     if (p.position_radius[i].z > p.position_radius[high].z) high = i;
   }
   ASSERT_GT(p.position_radius[high].z - p.position_radius[low].z, 0.02);
-  ContactHistory not_neighbours;
-  not_neighbours.add_pair(p.id[low], p.id[high], {1e-6, 0, 0});
-  EXPECT_THROW(engine->set_contact_history(not_neighbours), std::invalid_argument);
-  ContactHistory no_such_wall;
-  no_such_wall.add_wall(p.id[0], 1, {1e-6, 0, 0});  // the scene has one wall
-  EXPECT_THROW(engine->set_contact_history(no_such_wall), std::invalid_argument);
+  ContactHistory not_neighbours = history();
+  not_neighbours.add_pair(p.id[low], p.id[high], spring.data());
+  expect_rejected(*engine, not_neighbours, "are not neighbours");
+  ContactHistory no_such_wall = history();
+  no_such_wall.add_wall(p.id[0], 1, spring.data());  // the scene has one wall
+  expect_rejected(*engine, no_such_wall, "wall index 1");
+}
+
+TEST_P(Restart, HistoryOfAnotherContactLawIsRejected) {
+  auto engine = started();
+  ContactHistory rolling_too;  // linear_history with an EPSD rolling spring: 7 values
+  rolling_too.width = 7;
+  const std::vector<Real> values{1e-6, 0, 0, 0, 1e-3, 0, 0};
+  rolling_too.add_wall(particles_.id[0], 0, values.data());
+  expect_rejected(*engine, rolling_too, "holds 7 values per contact but this contact law keeps 4");
 }
 
 GPUDEM_INSTANTIATE_BACKENDS(Restart);

@@ -1,7 +1,7 @@
 #pragma once
 // Damage done to a valid checkpoint file with the HDF5 C API, for tests of the reader's
-// rejections: another format version, a dataset removed or shortened, values replaced; and
-// reads of whole datasets for comparisons.
+// rejections: another format version, an attribute or dataset removed, a dataset shortened or
+// of another shape, values replaced; and reads of whole datasets for comparisons.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
@@ -40,6 +40,34 @@ inline void replace_u32_dataset(const std::string& path, const char* name,
   ASSERT_GE(dataset.id, 0) << name;
   ASSERT_GE(H5Dwrite(dataset.id, H5T_NATIVE_UINT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
             0);
+}
+
+/// Replaces dataset `name` by a rows × columns f64 dataset holding `values` (row by row).
+inline void replace_f64_dataset(const std::string& path, const char* name, hsize_t rows,
+                                hsize_t columns, const std::vector<double>& values) {
+  ASSERT_EQ(values.size(), rows * columns);
+  remove_dataset(path, name);
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  const hsize_t dims[2] = {rows, columns};
+  H5Id<H5Sclose> space(H5Screate_simple(2, dims, nullptr));
+  H5Id<H5Dclose> dataset(
+      H5Dcreate2(file.id, name, H5T_IEEE_F64LE, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  ASSERT_GE(dataset.id, 0) << name;
+  ASSERT_GE(H5Dwrite(dataset.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+            0);
+}
+
+inline void remove_attribute(const std::string& path, const char* name) {
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  ASSERT_GE(file.id, 0) << path;
+  ASSERT_GE(H5Adelete(file.id, name), 0) << name;
+}
+
+/// Whether the file's root group holds a link `name`.
+inline bool has_dataset(const std::string& path, const char* name) {
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  EXPECT_GE(file.id, 0) << path;
+  return H5Lexists(file.id, name, H5P_DEFAULT) > 0;
 }
 
 /// Rows of a dataset (whole file, C API), as raw values of type T.

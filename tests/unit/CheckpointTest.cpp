@@ -1,8 +1,10 @@
 // Checkpoint files: every field reads back bit-identical to what was written (at this run's
-// rank count, each rank writing its own rows), the file is replaced atomically (a stale
-// temporary is overwritten, a failed write leaves the previous checkpoint intact), and damaged
-// files are rejected with InputError naming the file and the problem. Also the two resumable
-// outputs a restart continues: the snapshot series and the time series.
+// rank count, each rank writing its own rows), for contact laws keeping 0, 4 or 7 history
+// values per contact; the file is replaced atomically (a stale temporary is overwritten, a
+// failed write leaves the previous checkpoint intact); damaged files, and checkpoints that do
+// not fit the scene (materials, walls, another contact law's history width), are rejected with
+// InputError naming the file and the problem. Also the two resumable outputs a restart
+// continues: the snapshot series and the time series.
 #include <gtest/gtest.h>
 #include <mpi.h>
 #include <unistd.h>
@@ -36,11 +38,22 @@ using test::comm_size;
 /// Rank r's particles: none on rank 1 (a rank without particles still takes part).
 std::size_t particles_of(int rank) { return rank == 1 ? 0 : 40 + 13 * rank; }
 
-/// Rank r's part of a checkpoint, random in every field, the same for every caller.
-Checkpoint random_part(int rank) {
+/// History values per contact of the default contact law (linear_history: spring and sliding
+/// flag).
+constexpr std::uint32_t kSpringWidth = 4;
+
+/// Rank r's part of a checkpoint, random in every field, with `width` history values per
+/// contact, the same for every caller. A law without history values has no records.
+Checkpoint random_part(int rank, std::uint32_t width = kSpringWidth) {
   std::mt19937_64 rng(1000 + rank);
   std::uniform_real_distribution<double> value(-1e3, 1e3), positive(1e-4, 1e-2);
+  const auto random_values = [&] {
+    std::vector<Real> values(width);
+    for (Real& v : values) v = value(rng);
+    return values;
+  };
   Checkpoint c;
+  c.history.width = width;
   ParticleStore& p = c.particles;
   for (std::size_t i = 0; i < particles_of(rank); ++i) {
     const ParticleId id = (std::uint64_t(rank) << 40) + i * 7 + 3;
@@ -50,8 +63,10 @@ Checkpoint random_part(int rank) {
     p.force.back() = {value(rng), value(rng), value(rng)};
     p.torque.back() = {value(rng), value(rng), value(rng)};
     c.list_position_radius.push_back({value(rng), value(rng), value(rng), value(rng)});
-    c.history.add_pair(id, id + 1, {value(rng), value(rng), value(rng)});
-    if (i % 2 == 0) c.history.add_wall(id, static_cast<std::uint32_t>(i % 5), {value(rng), 0, 1});
+    if (width == 0) continue;
+    c.history.add_pair(id, id + 1, random_values().data());
+    if (i % 2 == 0)
+      c.history.add_wall(id, static_cast<std::uint32_t>(i % 5), random_values().data());
   }
   c.snapshots = {{"particles_000000.h5", 0.0, 123}, {"particles_000001.h5", 1.0 / 3.0, 120}};
   c.time = 0.1 + 1e-17;
@@ -69,10 +84,10 @@ void append(std::vector<T>& to, const std::vector<T>& from) {
 }
 
 /// What the file must hold: every rank's rows in rank order, rank 0's table and attributes.
-Checkpoint expected_whole(int ranks) {
-  Checkpoint whole = random_part(0);
+Checkpoint expected_whole(int ranks, std::uint32_t width = kSpringWidth) {
+  Checkpoint whole = random_part(0, width);
   for (int r = 1; r < ranks; ++r) {
-    const Checkpoint part = random_part(r);
+    const Checkpoint part = random_part(r, width);
     append(whole.particles.position_radius, part.particles.position_radius);
     append(whole.particles.velocity_inv_mass, part.particles.velocity_inv_mass);
     append(whole.particles.angular_velocity, part.particles.angular_velocity);
@@ -83,10 +98,10 @@ Checkpoint expected_whole(int ranks) {
     append(whole.list_position_radius, part.list_position_radius);
     append(whole.history.pair_owner, part.history.pair_owner);
     append(whole.history.pair_partner, part.history.pair_partner);
-    append(whole.history.pair_spring, part.history.pair_spring);
+    append(whole.history.pair_values, part.history.pair_values);
     append(whole.history.wall_owner, part.history.wall_owner);
     append(whole.history.wall_index, part.history.wall_index);
-    append(whole.history.wall_spring, part.history.wall_spring);
+    append(whole.history.wall_values, part.history.wall_values);
   }
   return whole;
 }
@@ -116,10 +131,11 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
   EXPECT_TRUE(same_bytes("list_position_radius", a.list_position_radius, b.list_position_radius));
   EXPECT_TRUE(same_bytes("pair_owner", a.history.pair_owner, b.history.pair_owner));
   EXPECT_TRUE(same_bytes("pair_partner", a.history.pair_partner, b.history.pair_partner));
-  EXPECT_TRUE(same_bytes("pair_spring", a.history.pair_spring, b.history.pair_spring));
+  EXPECT_EQ(a.history.width, b.history.width);
+  EXPECT_TRUE(same_bytes("pair_values", a.history.pair_values, b.history.pair_values));
   EXPECT_TRUE(same_bytes("wall_owner", a.history.wall_owner, b.history.wall_owner));
   EXPECT_TRUE(same_bytes("wall_index", a.history.wall_index, b.history.wall_index));
-  EXPECT_TRUE(same_bytes("wall_spring", a.history.wall_spring, b.history.wall_spring));
+  EXPECT_TRUE(same_bytes("wall_values", a.history.wall_values, b.history.wall_values));
   ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
   for (std::size_t k = 0; k < a.snapshots.size(); ++k) {
     EXPECT_EQ(a.snapshots[k].h5_file, b.snapshots[k].h5_file);
@@ -143,7 +159,9 @@ class CheckpointFile : public ::testing::Test {
   std::string path() const { return checkpoint_path(dir_); }
 
   /// Writes this rank's random part; rank 0 then reads the whole file back.
-  void write_random() const { write_checkpoint(MPI_COMM_WORLD, dir_, random_part(comm_rank())); }
+  void write_random(std::uint32_t width = kSpringWidth) const {
+    write_checkpoint(MPI_COMM_WORLD, dir_, random_part(comm_rank(), width));
+  }
 
   /// The message of the InputError that reading `file` raises ("" and a failure if none).
   static std::string rejection(const std::string& file) {
@@ -170,6 +188,38 @@ TEST_F(CheckpointFile, RoundTripIsBitIdenticalAtThisRankCount) {
   write_random();
   MPI_Barrier(MPI_COMM_WORLD);
   if (comm_rank() == 0) expect_identical(read_checkpoint(path()), expected_whole(comm_size()));
+}
+
+TEST_F(CheckpointFile, RoundTripWithoutHistoryValuesStoresNoValueDatasets) {
+  write_random(0);
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (comm_rank() != 0) return;
+  EXPECT_FALSE(test::has_dataset(path(), "pair_history"));
+  EXPECT_FALSE(test::has_dataset(path(), "wall_history"));
+  EXPECT_TRUE(test::has_dataset(path(), "pair_owner"));
+  const Checkpoint c = read_checkpoint(path());
+  EXPECT_EQ(c.history.width, 0u);
+  EXPECT_TRUE(c.history.pair_owner.empty());
+  EXPECT_TRUE(c.history.wall_owner.empty());
+  expect_identical(c, expected_whole(comm_size(), 0));
+}
+
+TEST_F(CheckpointFile, RoundTripOfSevenHistoryValuesPerContact) {
+  write_random(7);  // tangential spring and sliding flag, and an EPSD rolling spring
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (comm_rank() != 0) return;
+  const std::size_t pairs = expected_whole(comm_size(), 7).history.pair_owner.size();
+  EXPECT_EQ(test::read_values<double>(path(), "pair_history", H5T_NATIVE_DOUBLE).size(), 7 * pairs);
+  expect_identical(read_checkpoint(path()), expected_whole(comm_size(), 7));
+}
+
+TEST_F(CheckpointFile, RanksHoldingHistoriesOfDifferentWidthsAreRefused) {
+  if (comm_size() < 2) GTEST_SKIP() << "needs two ranks";
+  const std::uint32_t width = comm_rank() == 0 ? kSpringWidth : 7;
+  EXPECT_THROW(write_random(width), std::logic_error) << "on rank " << comm_rank();
+  MPI_Barrier(MPI_COMM_WORLD);
+  EXPECT_FALSE(fs::exists(path() + ".tmp"));
+  EXPECT_FALSE(fs::exists(path()));
 }
 
 TEST_F(CheckpointFile, EmptyCheckpointRoundTrips) {
@@ -236,8 +286,26 @@ TEST_F(DamagedCheckpoint, OtherFormatVersionIsRejected) {
 }
 
 TEST_F(DamagedCheckpoint, MissingDatasetIsRejected) {
-  test::remove_dataset(path(), "pair_spring");
-  expect_rejected("missing dataset 'pair_spring'");
+  test::remove_dataset(path(), "pair_history");
+  expect_rejected("missing dataset 'pair_history'");
+}
+
+TEST_F(DamagedCheckpoint, MissingHistoryWidthIsRejected) {
+  test::remove_attribute(path(), "history_width");
+  expect_rejected("missing attribute 'history_width'");
+}
+
+TEST_F(DamagedCheckpoint, HistoryOfAnotherNumberOfColumnsIsRejected) {
+  const std::size_t walls = random_part(0).history.wall_owner.size();
+  test::replace_f64_dataset(path(), "wall_history", walls, 3, std::vector<double>(walls * 3, 1));
+  expect_rejected("dataset 'wall_history' must have 4 columns");
+}
+
+TEST_F(DamagedCheckpoint, HistoryOfAnotherNumberOfRowsIsRejected) {
+  test::replace_f64_dataset(path(), "pair_history", 2, kSpringWidth,
+                            std::vector<double>(2 * kSpringWidth, 1));
+  expect_rejected("dataset 'pair_history' has 2 rows but 'pair_owner' has " +
+                  std::to_string(particles_of(0)));
 }
 
 TEST_F(DamagedCheckpoint, DatasetsOfDifferentLengthsAreRejected) {
@@ -267,6 +335,35 @@ TEST_F(DamagedCheckpoint, MaterialOrWallBeyondTheSceneIsRejected) {
   scene.materials.resize(3);
   scene.walls.resize(4);
   EXPECT_THROW(check_checkpoint_fits_scene(c, path(), scene), InputError);
+}
+
+TEST_F(DamagedCheckpoint, HistoryOfAnotherContactLawIsRejected) {
+  const Checkpoint c = read_checkpoint(path());  // 4 values per contact
+  Scene scene;
+  scene.materials.resize(3);
+  scene.walls.resize(5);
+  for (const TangentialLaw tangential : {TangentialLaw::LinearHistory, TangentialLaw::Mindlin}) {
+    scene.contact.model.tangential = tangential;
+    EXPECT_NO_THROW(check_checkpoint_fits_scene(c, path(), scene));
+  }
+  const auto expect_refused_for = [&](TangentialLaw tangential, RollingLaw rolling,
+                                      const std::string& keeps) {
+    scene.contact.model.tangential = tangential;
+    scene.contact.model.rolling = rolling;
+    try {
+      check_checkpoint_fits_scene(c, path(), scene);
+      ADD_FAILURE() << "a history of 4 values per contact fitted a law keeping " << keeps;
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(path()), std::string::npos) << message;
+      EXPECT_NE(message.find("history of 4 values per contact"), std::string::npos) << message;
+      EXPECT_NE(message.find("keeps " + keeps), std::string::npos) << message;
+      EXPECT_NE(message.find("written with another contact law"), std::string::npos) << message;
+    }
+  };
+  expect_refused_for(TangentialLaw::None, RollingLaw::None, "0");
+  expect_refused_for(TangentialLaw::LinearHistory, RollingLaw::Epsd, "7");
+  expect_refused_for(TangentialLaw::None, RollingLaw::Epsd, "3");
 }
 
 std::string read_text(const std::string& path) {

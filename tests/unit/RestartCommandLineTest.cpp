@@ -1,8 +1,9 @@
 // gpudem-mpi --restart end to end: a run of 2T equals, snapshot for snapshot and bit for bit,
 // a run of T continued from its checkpoint (same .xmf, same time series); a run killed with
 // SIGKILL while writing a checkpoint every step always leaves a checkpoint that reads back and
-// continues; a bad checkpoint or a restart that cannot continue exits 2 with a message naming
-// the problem and writes nothing.
+// continues; a bad checkpoint or a restart that cannot continue (another time step, a contact
+// law keeping another number of history values per contact) exits 2 with a message naming the
+// problem and writes nothing.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -129,8 +130,9 @@ TEST_F(RestartCommandLine, RestartedRunEqualsStraightRun) {
       run(bed + " --quiet --set simulation.end_time=0.1 --output-dir " + legs.string());
   ASSERT_EQ(first.exit_code, 0) << first.output;
   const std::string checkpoint = (legs / "checkpoint.h5").string();
-  ASSERT_GT(read_values<double>(checkpoint, "pair_spring", H5T_NATIVE_DOUBLE).size(), 300u)
+  ASSERT_GT(read_values<std::uint64_t>(checkpoint, "pair_owner", H5T_NATIVE_UINT64).size(), 100u)
       << "the bed must hold tangential springs at the checkpoint";
+  EXPECT_EQ(read_checkpoint(checkpoint).history.width, 4u) << "linear_history: spring and flag";
   const Result second =
       run(bed + " --quiet --restart " + checkpoint + " --output-dir " + legs.string());
   ASSERT_EQ(second.exit_code, 0) << second.output;
@@ -345,6 +347,14 @@ TEST_F(RefusedRestart, MaterialBeyondTheScene) {
 TEST_F(RefusedRestart, OtherTimeStep) {
   expect_refused("dt = 5e-05 s but the scene gives 1e-04 s", "--set simulation.dt=1e-4",
                  "scene.toml");
+}
+
+TEST_F(RefusedRestart, ContactLawKeepingAnotherHistoryWidth) {
+  expect_refused("contact history of 4 values per contact, but the scene's contact law keeps 0",
+                 "--set 'contact.tangential=\"none\"'");
+  fs::remove_all(dir_ / "out");  // in case the first restart was not refused
+  expect_refused("contact history of 4 values per contact, but the scene's contact law keeps 7",
+                 "--set 'contact.rolling=\"epsd\"'");
 }
 
 TEST_F(RefusedRestart, CheckpointAtTheEndTime) {

@@ -1,18 +1,21 @@
 // Scene loading: every key of tests/data/scenes/full.toml read as written, defaults of a
-// minimal scene, --set overrides, and every kind of bad input reported as an InputError that
-// names file, line and key.
+// minimal scene, --set overrides, contact slot combinations, [[pair]] entries, and every kind
+// of bad input reported as an InputError that names file, line and key.
 #include "core/SceneLoader.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "core/ContactModel.hpp"
 #include "core/InputError.hpp"
 #include "core/TomlReader.hpp"
 
@@ -154,6 +157,9 @@ TEST_F(SceneLoaderTest, FullSceneReadsEveryValue) {
   EXPECT_EQ(s.simulation.integrator, IntegratorKind::SymplecticEuler);
   EXPECT_EQ(s.simulation.seed, 42u);
   expect_vec3(s.simulation.gravity, 0.5, 0, -9.5);
+  EXPECT_EQ(s.simulation.dt_line, 7);
+  EXPECT_DOUBLE_EQ(s.simulation.impact_speed, 3.5);
+  EXPECT_TRUE(s.simulation.allow_unstable_dt);
 
   expect_vec3(s.domain.min, -0.5, 0, -1);
   expect_vec3(s.domain.max, 1.5, 0.7, 0.5);
@@ -166,17 +172,35 @@ TEST_F(SceneLoaderTest, FullSceneReadsEveryValue) {
   EXPECT_DOUBLE_EQ(s.materials[0].poisson, 0.38);
   EXPECT_DOUBLE_EQ(s.materials[0].restitution, 0.4);
   EXPECT_DOUBLE_EQ(s.materials[0].friction, 0.6);
+  EXPECT_DOUBLE_EQ(s.materials[0].friction_dynamic, 0.45);
+  EXPECT_DOUBLE_EQ(s.materials[0].rolling_friction, 0.03);
+  EXPECT_DOUBLE_EQ(s.materials[0].rolling_damping, 0.2);
+  EXPECT_DOUBLE_EQ(s.materials[0].viscoelastic_time, 1e-5);
+  EXPECT_DOUBLE_EQ(s.materials[0].cohesion_energy_density, 2e4);
   EXPECT_EQ(s.materials[1].name, "steel");
   EXPECT_DOUBLE_EQ(s.materials[1].density, 7800);
   EXPECT_DOUBLE_EQ(s.materials[1].young, 210e9);
   EXPECT_DOUBLE_EQ(s.materials[1].poisson, -0.2);
   EXPECT_DOUBLE_EQ(s.materials[1].restitution, 1);
   EXPECT_DOUBLE_EQ(s.materials[1].friction, 0);
+  EXPECT_DOUBLE_EQ(s.materials[1].friction_dynamic, 0);
 
-  EXPECT_EQ(s.contact.normal, "hooke");
-  EXPECT_EQ(s.contact.damping, "none");
-  EXPECT_EQ(s.contact.tangential, "none");
-  EXPECT_DOUBLE_EQ(s.contact.stiffness, 5e4);
+  EXPECT_EQ(s.contact.model.normal, NormalLaw::Hertz);
+  EXPECT_EQ(s.contact.model.damping, DampingLaw::Viscoelastic);
+  EXPECT_EQ(s.contact.model.tangential, TangentialLaw::Mindlin);
+  EXPECT_EQ(s.contact.model.rolling, RollingLaw::Epsd);
+  EXPECT_EQ(s.contact.model.cohesion, CohesionLaw::Sjkr);
+  EXPECT_EQ(s.contact.mixing, MixingRule::Harmonic);
+  EXPECT_DOUBLE_EQ(s.contact.stiffness, 0);
+  ASSERT_EQ(s.contact.pairs.size(), 1u);
+  const PairOverride& pair = s.contact.pairs[0];
+  EXPECT_EQ(pair.a, 1u);
+  EXPECT_EQ(pair.b, 0u);
+  EXPECT_DOUBLE_EQ(pair.restitution, 0.3);
+  EXPECT_DOUBLE_EQ(pair.friction, 0.4);
+  EXPECT_DOUBLE_EQ(pair.friction_dynamic, 0.35);
+  EXPECT_DOUBLE_EQ(pair.rolling_friction, 0.02);
+  EXPECT_DOUBLE_EQ(pair.cohesion_energy_density, 1e3);
   EXPECT_DOUBLE_EQ(s.neighbor.skin, 1.5e-3);
 
   ASSERT_EQ(s.walls.size(), 2u);
@@ -246,9 +270,22 @@ TEST_F(SceneLoaderTest, MinimalSceneTakesDefaults) {
   EXPECT_DOUBLE_EQ(s.materials[0].poisson, 0.3);
   EXPECT_DOUBLE_EQ(s.materials[0].restitution, 0.5);
   EXPECT_DOUBLE_EQ(s.materials[0].friction, 0.5);
-  EXPECT_EQ(s.contact.normal, "hooke");
-  EXPECT_EQ(s.contact.damping, "restitution");
-  EXPECT_EQ(s.contact.tangential, "linear_history");
+  EXPECT_DOUBLE_EQ(s.materials[0].friction_dynamic, 0.5);
+  EXPECT_DOUBLE_EQ(s.materials[0].rolling_friction, 0);
+  EXPECT_DOUBLE_EQ(s.materials[0].rolling_damping, 0.3);
+  EXPECT_DOUBLE_EQ(s.materials[0].viscoelastic_time, 0);
+  EXPECT_DOUBLE_EQ(s.materials[0].cohesion_energy_density, 0);
+  EXPECT_EQ(s.contact.model.normal, NormalLaw::Hooke);
+  EXPECT_EQ(s.contact.model.damping, DampingLaw::Restitution);
+  EXPECT_EQ(s.contact.model.tangential, TangentialLaw::LinearHistory);
+  EXPECT_EQ(s.contact.model.rolling, RollingLaw::None);
+  EXPECT_EQ(s.contact.model.cohesion, CohesionLaw::None);
+  EXPECT_EQ(s.contact.mixing, MixingRule::Mean);
+  EXPECT_DOUBLE_EQ(s.contact.stiffness, 1e4);
+  EXPECT_TRUE(s.contact.pairs.empty());
+  EXPECT_EQ(s.simulation.dt_line, 0);
+  EXPECT_DOUBLE_EQ(s.simulation.impact_speed, 0);
+  EXPECT_FALSE(s.simulation.allow_unstable_dt);
   EXPECT_DOUBLE_EQ(s.neighbor.skin, 0);
   EXPECT_TRUE(s.walls.empty());
   ASSERT_EQ(s.sources.size(), 1u);
@@ -331,8 +368,10 @@ TEST_F(SceneLoaderTest, WrongTypeNamesExpectedType) {
                "expected one of \"velocity_verlet\", \"symplectic_euler\", got the string \"rk4\"");
   expect_error(load_error(base_with(kSimulationSlot, "dt = \"fast\"")), kSimulationSlot,
                "simulation.dt", "expected \"auto\" or a number > 0 [s]");
-  expect_error(load_error(base_with(kContactSlot, "normal = \"hertz\"")), kContactSlot,
-               "contact.normal", "expected one of \"hooke\"");
+  expect_error(load_error(base_with(kContactSlot, "normal = \"hertzian\"")), kContactSlot,
+               "contact.normal", "expected one of \"hooke\", \"hertz\", got the string");
+  expect_error(load_error(base_with(kSimulationSlot, "allow_unstable_dt = 1")), kSimulationSlot,
+               "simulation.allow_unstable_dt", "expected true or false, got 1");
 }
 
 TEST_F(SceneLoaderTest, MissingRequiredKeyNamesItsTable) {
@@ -505,6 +544,214 @@ TEST_F(SceneLoaderTest, InvalidOverriddenValueNamesKey) {
                "expected a number > 0 [kg/m^3], got -1");
   expect_error(load_error(kBaseScene, {"simulation.end_tme=1"}), 0, "simulation.end_tme",
                "did you mean 'end_time'?");
+}
+
+TEST_F(SceneLoaderTest, DtLineIsRecorded) {
+  EXPECT_EQ(load_text(base_with(kSimulationSlot, "dt = 1e-5")).simulation.dt_line, kSimulationSlot);
+  EXPECT_EQ(load_text(kBaseScene, {"simulation.dt=1e-5"}).simulation.dt_line, 0);
+}
+
+TEST_F(SceneLoaderTest, ImpactSpeedIsAutoOrPositive) {
+  EXPECT_DOUBLE_EQ(
+      load_text(base_with(kSimulationSlot, "impact_speed = 2")).simulation.impact_speed, 2);
+  EXPECT_DOUBLE_EQ(
+      load_text(base_with(kSimulationSlot, "impact_speed = \"auto\"")).simulation.impact_speed, 0);
+  for (const char* bad : {"0", "-1"}) {
+    expect_error(load_error(base_with(kSimulationSlot, std::string("impact_speed = ") + bad)),
+                 kSimulationSlot, "simulation.impact_speed",
+                 "expected \"auto\" or a number > 0 [m/s], got " + std::string(bad));
+  }
+}
+
+TEST_F(SceneLoaderTest, FrictionDynamicMayNotExceedFriction) {
+  expect_error(load_error(base_with(kMaterialSlot, "friction_dynamic = 0.6")), kMaterialSlot,
+               "material[0].friction_dynamic",
+               "expected a number <= friction = 0.5 (sliding friction cannot exceed static "
+               "friction), got 0.6");
+  const Scene s = load_text(base_with(kMaterialSlot, "friction = 0.8\nfriction_dynamic = 0.6"));
+  EXPECT_DOUBLE_EQ(s.materials[0].friction, 0.8);
+  EXPECT_DOUBLE_EQ(s.materials[0].friction_dynamic, 0.6);
+  EXPECT_DOUBLE_EQ(
+      load_text(base_with(kMaterialSlot, "friction = 0.7")).materials[0].friction_dynamic, 0.7);
+}
+
+TEST_F(SceneLoaderTest, NewMaterialValuesMustBeNonNegative) {
+  const std::vector<std::pair<std::string, std::string>> keys = {
+      {"friction_dynamic", ""},
+      {"rolling_damping", ""},
+      {"viscoelastic_time", " [s]"},
+      {"cohesion_energy_density", " [J/m^3]"}};
+  for (const auto& [key, unit] : keys) {
+    expect_error(load_error(base_with(kMaterialSlot, key + " = -1")), kMaterialSlot,
+                 "material[0]." + key, "expected a number >= 0" + unit + ", got -1");
+  }
+  const Scene zero = load_text(base_with(kMaterialSlot, "viscoelastic_time = 0"));
+  EXPECT_DOUBLE_EQ(zero.materials[0].viscoelastic_time, 0);
+}
+
+/// The [contact] lines that select `m` by name.
+std::string contact_lines(const ContactModel& m) {
+  const auto name = [](const std::vector<std::string>& names, auto value) {
+    return "\"" + names[static_cast<std::size_t>(value)] + "\"";
+  };
+  return "normal = " + name(normal_law_names(), m.normal) +
+         "\ndamping = " + name(damping_law_names(), m.damping) +
+         "\ntangential = " + name(tangential_law_names(), m.tangential) +
+         "\nrolling = " + name(rolling_law_names(), m.rolling) +
+         "\ncohesion = " + name(cohesion_law_names(), m.cohesion);
+}
+
+/// The rule of docs/input.md, written out independently of is_valid_contact_model: hooke takes
+/// damping none|restitution and tangential none|linear_history, hertz tangential none|mindlin.
+bool documented_valid(const ContactModel& m) {
+  if (m.normal == NormalLaw::Hooke) {
+    return m.damping != DampingLaw::Viscoelastic && m.tangential != TangentialLaw::Mindlin;
+  }
+  return m.tangential != TangentialLaw::LinearHistory;
+}
+
+const char* const kValidCombinations =
+    "hooke: damping none|restitution, tangential none|linear_history; hertz: damping "
+    "none|restitution|viscoelastic, tangential none|mindlin; rolling none|constant_torque|epsd "
+    "and cohesion none|sjkr with either";
+
+TEST_F(SceneLoaderTest, EveryValidCombinationLoadsAndEveryOtherIsRefused) {
+  int valid = 0, refused = 0;
+  for (int n = 0; n < 2; ++n)
+    for (int d = 0; d < 3; ++d)
+      for (int t = 0; t < 3; ++t)
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 2; ++c) {
+            const ContactModel m{static_cast<NormalLaw>(n), static_cast<DampingLaw>(d),
+                                 static_cast<TangentialLaw>(t), static_cast<RollingLaw>(r),
+                                 static_cast<CohesionLaw>(c)};
+            const std::string stiffness = n == 0 ? "stiffness = 1e4" : "";
+            const std::string text = base_with(kStiffnessLine, stiffness + "\n" + contact_lines(m));
+            SCOPED_TRACE(contact_model_name(m));
+            if (documented_valid(m)) {
+              EXPECT_TRUE(load_text(text).contact.model == m);
+              ++valid;
+            } else {
+              const InputError e = load_error(text);
+              EXPECT_NE(std::string(e.what()).find(kValidCombinations), std::string::npos)
+                  << e.what();
+              ++refused;
+            }
+          }
+  EXPECT_EQ(valid, 60);
+  EXPECT_EQ(refused, 48);
+}
+
+TEST_F(SceneLoaderTest, InvalidCombinationNamesTheSlotThatDoesNotFit) {
+  expect_error(load_error(base_with(kContactSlot, "tangential = \"mindlin\"")), kContactSlot,
+               "contact.tangential",
+               "normal = \"hooke\" does not go with tangential = \"mindlin\"; valid combinations "
+               "are " +
+                   std::string(kValidCombinations));
+  expect_error(load_error(base_with(kContactSlot, "damping = \"viscoelastic\"")), kContactSlot,
+               "contact.damping", "normal = \"hooke\" does not go with damping = \"viscoelastic\"");
+  expect_error(load_error(base_with(kStiffnessLine, "normal = \"hertz\"")), kContactLine,
+               "contact.tangential",
+               "normal = \"hertz\" does not go with tangential = \"linear_history\" (the "
+               "default)");
+}
+
+TEST_F(SceneLoaderTest, StiffnessIsRequiredWithHookeAndRefusedWithHertz) {
+  expect_error(
+      load_error(base_with(kContactSlot, "normal = \"hertz\"\ntangential = \"mindlin\"")),
+      kStiffnessLine, "contact.stiffness",
+      "stiffness belongs to normal = \"hooke\"; normal = \"hertz\" takes its stiffness from the "
+      "materials' young and poisson");
+  const Scene hertz =
+      load_text(base_with(kStiffnessLine, "normal = \"hertz\"\ntangential = \"mindlin\""));
+  EXPECT_EQ(hertz.contact.model.normal, NormalLaw::Hertz);
+  EXPECT_DOUBLE_EQ(hertz.contact.stiffness, 0);
+  expect_error(load_error(base_with(kStiffnessLine, "stiffness = 0")), kStiffnessLine,
+               "contact.stiffness", "expected a number > 0 [N/m], got 0");
+}
+
+TEST_F(SceneLoaderTest, MixingRuleByName) {
+  const std::vector<std::pair<std::string, MixingRule>> rules = {
+      {"mean", MixingRule::Mean},
+      {"min", MixingRule::Min},
+      {"max", MixingRule::Max},
+      {"harmonic", MixingRule::Harmonic}};
+  for (const auto& [name, rule] : rules) {
+    EXPECT_EQ(load_text(base_with(kContactSlot, "mixing = \"" + name + "\"")).contact.mixing, rule)
+        << name;
+  }
+  expect_error(load_error(base_with(kContactSlot, "mixing = \"geometric\"")), kContactSlot,
+               "contact.mixing",
+               "expected one of \"mean\", \"min\", \"max\", \"harmonic\", got the string "
+               "\"geometric\"");
+}
+
+/// The base scene with a second material, "steel", and `pairs` appended at its end.
+std::string with_pairs(const std::string& pairs) {
+  return base_with(kMaterialSlot, "[[material]]\nname = \"steel\"\ndensity = 7800\nyoung = 2e11") +
+         pairs + "\n";
+}
+
+/// Line of the first line of `pairs` in with_pairs(pairs).
+int first_pair_line() {
+  const std::string scene = with_pairs("");
+  return static_cast<int>(std::count(scene.begin(), scene.end(), '\n'));
+}
+
+TEST_F(SceneLoaderTest, PairEntriesRead) {
+  const Scene s =
+      load_text(with_pairs("[[pair]]\nmaterials = [\"soil\", \"soil\"]\nfriction = 0.7\n"
+                           "[[pair]]\nmaterials = [\"steel\", \"soil\"]\n"));
+  ASSERT_EQ(s.contact.pairs.size(), 2u);
+  const PairOverride& same = s.contact.pairs[0];
+  EXPECT_EQ(same.a, 0u);
+  EXPECT_EQ(same.b, 0u);
+  EXPECT_DOUBLE_EQ(same.friction, 0.7);
+  EXPECT_DOUBLE_EQ(same.friction_dynamic, 0.7);  // the entry's friction when not given
+  EXPECT_LT(same.restitution, 0);                // not given: the mixing rule's
+  EXPECT_LT(same.rolling_friction, 0);
+  EXPECT_LT(same.cohesion_energy_density, 0);
+  const PairOverride& mixed = s.contact.pairs[1];
+  EXPECT_EQ(mixed.a, 1u);
+  EXPECT_EQ(mixed.b, 0u);
+  EXPECT_LT(mixed.friction, 0);
+  EXPECT_LT(mixed.friction_dynamic, 0);
+}
+
+TEST_F(SceneLoaderTest, PairMaterialsMustExistOnce) {
+  const int line = first_pair_line() + 1;  // the materials line of the first entry
+  expect_error(load_error(with_pairs("[[pair]]\nmaterials = [\"soil\", \"stel\"]")), line,
+               "pair[0].materials", "unknown material 'stel'; did you mean 'steel'?");
+  expect_error(load_error(with_pairs("[[pair]]\nmaterials = [\"soil\"]")), line,
+               "pair[0].materials", "expected an array of 2 non-empty strings");
+  expect_error(load_error(with_pairs("[[pair]]\nmaterials = [\"soil\", \"steel\"]\n"
+                                     "[[pair]]\nmaterials = [\"steel\", \"soil\"]")),
+               line + 2, "pair[1].materials",
+               "duplicate pair 'steel'-'soil' (also given by pair[0])");
+  expect_error(load_error(with_pairs("[[pair]]\nfriction = 0.2")), first_pair_line(),
+               "pair[0].materials", "missing required key 'materials' in [[pair]]");
+}
+
+TEST_F(SceneLoaderTest, PairValuesAreChecked) {
+  const int line = first_pair_line() + 2;  // the line after materials
+  const std::string head = "[[pair]]\nmaterials = [\"soil\", \"steel\"]\n";
+  expect_error(load_error(with_pairs(head + "restitution = 0")), line, "pair[0].restitution",
+               "expected a number in (0, 1], got 0");
+  expect_error(load_error(with_pairs(head + "friction = -0.1")), line, "pair[0].friction",
+               "expected a number >= 0, got -0.1");
+  expect_error(load_error(with_pairs(head + "rolling_friction = -1")), line,
+               "pair[0].rolling_friction", "expected a number >= 0, got -1");
+  expect_error(load_error(with_pairs(head + "cohesion_energy_density = -1")), line,
+               "pair[0].cohesion_energy_density", "expected a number >= 0 [J/m^3], got -1");
+  expect_error(load_error(with_pairs(head + "friction = 0.3\nfriction_dynamic = 0.4")), line + 1,
+               "pair[0].friction_dynamic", "expected a number <= friction = 0.3");
+  // Without the entry's friction, the limit is the mixed static friction: mean(0.5, 0.5).
+  expect_error(load_error(with_pairs(head + "friction_dynamic = 0.6")), line,
+               "pair[0].friction_dynamic", "expected a number <= friction = 0.5");
+  expect_error(load_error(with_pairs(head + "frction = 0.3")), line, "pair[0].frction",
+               "unknown key 'frction' in [[pair]]; did you mean 'friction'?");
+  expect_error(load_error(with_pairs("[pair]\nmaterials = [\"soil\", \"steel\"]")),
+               first_pair_line(), "pair", "expected an array of tables [[pair]], got a table");
 }
 
 }  // namespace

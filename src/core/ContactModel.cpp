@@ -1,0 +1,88 @@
+#include "core/ContactModel.hpp"
+
+#include <set>
+
+namespace gpudem {
+
+namespace {
+
+/// "a|b" of the names whose enum value is in `used`, in enum order.
+std::string alternatives(const std::vector<std::string>& names, const std::set<int>& used) {
+  std::string text;
+  for (int value : used) text += (text.empty() ? "" : "|") + names[value];
+  return text;
+}
+
+/// The damping and tangential choices that go with `normal`, as "damping a|b, tangential c|d".
+std::string choices_with(NormalLaw normal) {
+  std::set<int> damping, tangential;
+  for (const ContactModel& m : valid_contact_models()) {
+    if (m.normal != normal) continue;
+    damping.insert(static_cast<int>(m.damping));
+    tangential.insert(static_cast<int>(m.tangential));
+  }
+  return "damping " + alternatives(damping_law_names(), damping) + ", tangential " +
+         alternatives(tangential_law_names(), tangential);
+}
+
+}  // namespace
+
+const std::vector<std::string>& normal_law_names() {
+  static const std::vector<std::string> names{"hooke", "hertz"};
+  return names;
+}
+const std::vector<std::string>& damping_law_names() {
+  static const std::vector<std::string> names{"none", "restitution", "viscoelastic"};
+  return names;
+}
+const std::vector<std::string>& tangential_law_names() {
+  static const std::vector<std::string> names{"none", "linear_history", "mindlin"};
+  return names;
+}
+const std::vector<std::string>& rolling_law_names() {
+  static const std::vector<std::string> names{"none", "constant_torque", "epsd"};
+  return names;
+}
+const std::vector<std::string>& cohesion_law_names() {
+  static const std::vector<std::string> names{"none", "sjkr"};
+  return names;
+}
+
+std::string contact_model_name(const ContactModel& m) {
+  return normal_law_names()[static_cast<int>(m.normal)] + "/" +
+         damping_law_names()[static_cast<int>(m.damping)] + "/" +
+         tangential_law_names()[static_cast<int>(m.tangential)] + "/" +
+         rolling_law_names()[static_cast<int>(m.rolling)] + "/" +
+         cohesion_law_names()[static_cast<int>(m.cohesion)];
+}
+
+std::vector<ContactModel> valid_contact_models() {
+  std::vector<ContactModel> models;
+  for (int n = 0; n < 2; ++n)
+    for (int d = 0; d < 3; ++d)
+      for (int t = 0; t < 3; ++t)
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 2; ++c) {
+            const ContactModel m{static_cast<NormalLaw>(n), static_cast<DampingLaw>(d),
+                                 static_cast<TangentialLaw>(t), static_cast<RollingLaw>(r),
+                                 static_cast<CohesionLaw>(c)};
+            if (is_valid_contact_model(m)) models.push_back(m);
+          }
+  return models;
+}
+
+std::string valid_contact_models_text() {
+  std::set<int> rolling, cohesion;
+  for (const ContactModel& m : valid_contact_models()) {
+    rolling.insert(static_cast<int>(m.rolling));
+    cohesion.insert(static_cast<int>(m.cohesion));
+  }
+  std::string text;
+  for (std::size_t n = 0; n < normal_law_names().size(); ++n) {
+    text += normal_law_names()[n] + ": " + choices_with(static_cast<NormalLaw>(n)) + "; ";
+  }
+  return text + "rolling " + alternatives(rolling_law_names(), rolling) + " and cohesion " +
+         alternatives(cohesion_law_names(), cohesion) + " with either";
+}
+
+}  // namespace gpudem

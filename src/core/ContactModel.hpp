@@ -1,0 +1,65 @@
+#pragma once
+/// Which contact law a scene uses: one choice per slot (DESIGN §6). The engine instantiates
+/// one template per valid combination; this header is the host-side list of those
+/// combinations and their names, shared by the scene loader and the engine factory.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gpudem {
+
+enum class NormalLaw : std::uint8_t { Hooke, Hertz };
+enum class DampingLaw : std::uint8_t { None, Restitution, Viscoelastic };
+enum class TangentialLaw : std::uint8_t { None, LinearHistory, Mindlin };
+enum class RollingLaw : std::uint8_t { None, ConstantTorque, Epsd };
+enum class CohesionLaw : std::uint8_t { None, Sjkr };
+
+struct ContactModel {
+  NormalLaw normal = NormalLaw::Hooke;
+  DampingLaw damping = DampingLaw::Restitution;
+  TangentialLaw tangential = TangentialLaw::LinearHistory;
+  RollingLaw rolling = RollingLaw::None;
+  CohesionLaw cohesion = CohesionLaw::None;
+
+  friend constexpr bool operator==(const ContactModel& a, const ContactModel& b) {
+    return a.normal == b.normal && a.damping == b.damping && a.tangential == b.tangential &&
+           a.rolling == b.rolling && a.cohesion == b.cohesion;
+  }
+  friend bool operator!=(const ContactModel& a, const ContactModel& b) { return !(a == b); }
+};
+
+/// Scene-file names of each slot's choices, in enum order.
+const std::vector<std::string>& normal_law_names();
+const std::vector<std::string>& damping_law_names();
+const std::vector<std::string>& tangential_law_names();
+const std::vector<std::string>& rolling_law_names();
+const std::vector<std::string>& cohesion_law_names();
+
+/// "normal/damping/tangential/rolling/cohesion", e.g. "hertz/restitution/mindlin/none/none".
+std::string contact_model_name(const ContactModel& model);
+
+/// The combinations the engine is built for: hooke pairs with damping none|restitution and
+/// tangential none|linear_history; hertz with damping none|restitution|viscoelastic and
+/// tangential none|mindlin; rolling and cohesion are free with either.
+constexpr bool is_valid_contact_model(const ContactModel& m) {
+  return m.normal == NormalLaw::Hooke
+             ? m.damping != DampingLaw::Viscoelastic && m.tangential != TangentialLaw::Mindlin
+             : m.tangential != TangentialLaw::LinearHistory;
+}
+std::vector<ContactModel> valid_contact_models();
+
+/// History values per contact that the law keeps (ContactLaw::history_size, DESIGN §6): the
+/// tangential spring and sliding flag of linear_history and mindlin (4) plus the rolling
+/// spring of epsd (3); the other slots keep none.
+constexpr std::uint32_t contact_history_width(const ContactModel& m) {
+  const std::uint32_t tangential = m.tangential == TangentialLaw::None ? 0 : 4;
+  const std::uint32_t rolling = m.rolling == RollingLaw::Epsd ? 3 : 0;
+  return tangential + rolling;
+}
+
+/// valid_contact_models() in a few words, for error messages: "hooke: damping
+/// none|restitution, tangential none|linear_history; hertz: ...; rolling none|...|epsd and
+/// cohesion none|sjkr with either".
+std::string valid_contact_models_text();
+
+}  // namespace gpudem

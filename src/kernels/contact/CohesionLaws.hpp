@@ -1,0 +1,23 @@
+#pragma once
+/// Cohesion slot: an attractive normal force added to the contact (moist soil).
+#include "core/ContactParams.hpp"
+#include "kernels/contact/ContactPoint.hpp"
+
+namespace gpudem {
+
+struct NoCohesion {
+  static constexpr bool needs_contact_area = false;
+  GPUDEM_HD static Real force(const ContactPairParams&, const ContactPoint&) { return 0; }
+};
+
+/// Simplified JKR of LIGGGHTS `cohesion sjkr`: F_c = k_c · A with A = π a² the contact-circle
+/// area and k_c the cohesion energy density [J/m³]; it pulls the pair together and does not
+/// enter the Coulomb limit. Acts only while the particles overlap.
+struct SjkrCohesion {
+  static constexpr bool needs_contact_area = true;
+  GPUDEM_HD static Real force(const ContactPairParams& p, const ContactPoint& c) {
+    return p.cohesion_energy_density * Real(3.14159265358979323846) * c.contact_radius_sq;
+  }
+};
+
+}  // namespace gpudem

@@ -1,0 +1,155 @@
+#pragma once
+/// A contact law is one choice per slot (DESIGN §6): normal, damping, tangential, rolling and
+/// cohesion, each a stateless struct of __host__ __device__ functions with capability flags.
+/// ContactLaw<...> composes them and derives the flags the contact sweep uses to load only
+/// what the law reads: history values per contact, spins, R*, inertias, contact area. A
+/// switched-off slot compiles to nothing.
+#include <cmath>
+
+#include "core/ContactModel.hpp"
+#include "kernels/contact/CohesionLaws.hpp"
+#include "kernels/contact/DampingLaws.hpp"
+#include "kernels/contact/NormalLaws.hpp"
+#include "kernels/contact/RollingLaws.hpp"
+#include "kernels/contact/TangentialLaws.hpp"
+
+namespace gpudem {
+
+/// The history values of one contact (N > 0); laws with N = 0 store nothing.
+template <int N>
+struct ContactState {
+  Real value[N > 0 ? N : 1];
+};
+
+/// What one contact exerts on particle i: the force at the contact point and the rolling
+/// torque (the torque of the force about i's centre is arm × force, added by the caller).
+struct ContactForce {
+  Vec3 force;
+  Vec3 rolling_torque;
+};
+
+template <class NormalSlot, class DampingSlot, class TangentialSlot, class RollingSlot,
+          class CohesionSlot>
+struct ContactLaw {
+  using Normal = NormalSlot;
+  using Damping = DampingSlot;
+  using Tangential = TangentialSlot;
+  using Rolling = RollingSlot;
+  using Cohesion = CohesionSlot;
+
+  static constexpr int history_size = Tangential::history_size + Rolling::history_size;
+  static constexpr int rolling_offset = Tangential::history_size;
+  static constexpr bool needs_spin = Tangential::needs_spin || Rolling::needs_spin;
+  static constexpr bool needs_effective_radius = Normal::needs_effective_radius ||
+                                                 Tangential::needs_effective_radius ||
+                                                 Rolling::needs_effective_radius;
+  static constexpr bool needs_inertia = Rolling::needs_inertia;
+  static constexpr bool needs_contact_area = Cohesion::needs_contact_area;
+  static constexpr bool has_tangential_force = Tangential::history_size > 0;
+  using State = ContactState<history_size>;
+
+  /// Force and rolling torque on i; advances `history` by dt (dt = 0: reads the stored state).
+  /// Normal: F_n = F_e + F_d (clamped at 0 if the damping law says so) minus cohesion; the
+  /// Coulomb and rolling limits scale with the elastic force F_e (TangentialLaws.hpp).
+  GPUDEM_HD static ContactForce evaluate(const ContactPairParams& p, const ContactPoint& c,
+                                         Real* history, Real dt) {
+    const NormalResponse n = Normal::respond(p, c);
+    Real fn = n.force + Damping::template normal_force<Normal>(p, c, n);
+    if (Damping::clamps_attraction && fn < 0) fn = 0;
+    ContactForce out;
+    out.force = Tangential::template force<Damping, Normal>(p, c, n.force, history, dt) -
+                (fn - Cohesion::force(p, c)) * c.normal;
+    out.rolling_torque = Rolling::torque(p, c, n, n.force, history + rolling_offset, dt);
+    return out;
+  }
+
+  /// Elastic energy stored in the contact's springs (cohesion not included) [J].
+  GPUDEM_HD static Real energy(const ContactPairParams& p, const ContactPoint& c,
+                               const Real* history) {
+    const NormalResponse n = Normal::respond(p, c);
+    return Normal::energy(p, c) + Tangential::energy(p, c, history) +
+           Rolling::energy(p, c, n, history + rolling_offset);
+  }
+
+  /// Bytes one contact evaluation reads beyond the partner's position, radius, velocity and
+  /// inverse mass (64 B) and its list index (4 B): the history and the partner's spin.
+  static constexpr int extra_bytes_per_contact =
+      history_size * static_cast<int>(sizeof(Real)) + (needs_spin ? 3 * sizeof(Real) : 0);
+};
+
+/// The slot type of each enum value.
+template <NormalLaw>
+struct NormalSlotOf;
+template <>
+struct NormalSlotOf<NormalLaw::Hooke> {
+  using type = HookeNormal;
+};
+template <>
+struct NormalSlotOf<NormalLaw::Hertz> {
+  using type = HertzNormal;
+};
+
+template <DampingLaw>
+struct DampingSlotOf;
+template <>
+struct DampingSlotOf<DampingLaw::None> {
+  using type = NoDamping;
+};
+template <>
+struct DampingSlotOf<DampingLaw::Restitution> {
+  using type = RestitutionDamping;
+};
+template <>
+struct DampingSlotOf<DampingLaw::Viscoelastic> {
+  using type = ViscoelasticDamping;
+};
+
+template <TangentialLaw>
+struct TangentialSlotOf;
+template <>
+struct TangentialSlotOf<TangentialLaw::None> {
+  using type = NoTangential;
+};
+template <>
+struct TangentialSlotOf<TangentialLaw::LinearHistory> {
+  using type = LinearHistoryTangential;
+};
+template <>
+struct TangentialSlotOf<TangentialLaw::Mindlin> {
+  using type = MindlinTangential;
+};
+
+template <RollingLaw>
+struct RollingSlotOf;
+template <>
+struct RollingSlotOf<RollingLaw::None> {
+  using type = NoRolling;
+};
+template <>
+struct RollingSlotOf<RollingLaw::ConstantTorque> {
+  using type = ConstantTorqueRolling;
+};
+template <>
+struct RollingSlotOf<RollingLaw::Epsd> {
+  using type = EpsdRolling;
+};
+
+template <CohesionLaw>
+struct CohesionSlotOf;
+template <>
+struct CohesionSlotOf<CohesionLaw::None> {
+  using type = NoCohesion;
+};
+template <>
+struct CohesionSlotOf<CohesionLaw::Sjkr> {
+  using type = SjkrCohesion;
+};
+
+/// The law type of a model named by enum values.
+template <NormalLaw N, DampingLaw D, TangentialLaw T, RollingLaw R, CohesionLaw C>
+using ContactLawOf =
+    ContactLaw<typename NormalSlotOf<N>::type, typename DampingSlotOf<D>::type,
+               typename TangentialSlotOf<T>::type, typename RollingSlotOf<R>::type,
+               typename CohesionSlotOf<C>::type>;
+
+}  // namespace gpudem

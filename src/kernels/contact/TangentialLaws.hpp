@@ -1,0 +1,122 @@
+#pragma once
+/// Tangential slot: friction force at the contact point. Both spring laws keep per contact
+/// four history values: the spring ξ (3) and a sliding flag (1).
+///
+/// Coulomb spring (Cundall & Strack 1979; stiffness of Mindlin & Deresiewicz 1953; the
+/// sliding rule of LIGGGHTS `tangential history`): each step ξ is rotated into the current
+/// tangent plane (length kept) and grows by v_t·dt. A sticking contact starts to slide when
+/// the spring force |S_t ξ| exceeds μ_s·F_e; a sliding one keeps |S_t ξ| = μ_d·F_e (ξ cut to
+/// length) and sticks again once |S_t ξ| < μ_d·F_e (static/dynamic friction as in EDEM).
+/// Sticking: F_t = −S_t ξ − γ_t v_t, capped at μ_s·F_e; sliding: F_t = −S_t ξ, no dashpot.
+/// F_e is the elastic normal force: a dashpot's impulse over a whole contact is zero, so in
+/// gross sliding the friction impulse is exactly μ_d times the normal impulse (rigid-body
+/// theory), and the brief pull of an inelastic dashpot at separation adds no friction.
+/// dt = 0 evaluates the force of the stored state (spring and sliding flag) without advancing it.
+#include <cmath>
+
+#include "kernels/contact/DampingLaws.hpp"
+
+namespace gpudem {
+
+struct NoTangential {
+  static constexpr int history_size = 0;
+  static constexpr bool needs_spin = false;
+  static constexpr bool needs_effective_radius = false;
+  template <class Damping, class Normal>
+  GPUDEM_HD static Vec3 force(const ContactPairParams&, const ContactPoint&, Real, Real*, Real) {
+    return Vec3{};
+  }
+  GPUDEM_HD static Real energy(const ContactPairParams&, const ContactPoint&, const Real*) {
+    return 0;
+  }
+};
+
+/// ξ rotated into the tangent plane of `normal`, its length kept.
+GPUDEM_HD inline Vec3 rotate_into_plane(Vec3 v, Vec3 normal) {
+  const Real length = norm(v);
+  v -= dot(v, normal) * normal;
+  const Real projected = norm(v);
+  return projected > 0 ? (length / projected) * v : v;
+}
+
+/// `v` scaled to length `length` (unchanged when it is zero).
+GPUDEM_HD inline Vec3 with_length(Vec3 v, Real length) {
+  const Real current = norm(v);
+  return current > 0 ? (length / current) * v : v;
+}
+
+/// The Coulomb spring above for stiffness S_t and elastic normal force F_e; `history` holds ξ
+/// and the sliding flag.
+template <class Damping, class Normal>
+GPUDEM_HD Vec3 coulomb_spring_force(const ContactPairParams& p, const ContactPoint& c,
+                                    Real stiffness, Real elastic_force, Real* history, Real dt) {
+  const Vec3 vt = tangential_velocity(c);
+  Vec3 spring = rotate_into_plane(Vec3{history[0], history[1], history[2]}, c.normal) + dt * vt;
+  const Real spring_force = stiffness * norm(spring);
+  const bool was_sliding = history[3] != 0;
+  const bool sliding = dt == 0        ? was_sliding  // reading the stored state
+                       : was_sliding ? spring_force >= p.friction_dynamic * elastic_force
+                                     : spring_force > p.friction_static * elastic_force;
+  Vec3 force;
+  if (sliding) {
+    spring = with_length(spring, p.friction_dynamic * elastic_force / stiffness);
+    force = -stiffness * spring;
+  } else {
+    const Real gamma = Damping::template tangential_coefficient<Normal>(p, c, stiffness);
+    force = -stiffness * spring - gamma * vt;
+    const Real limit = p.friction_static * elastic_force;
+    if (norm(force) > limit) force = with_length(force, limit);
+  }
+  history[0] = spring.x;
+  history[1] = spring.y;
+  history[2] = spring.z;
+  history[3] = sliding ? Real(1) : Real(0);
+  return force;
+}
+
+/// ½ S_t |ξ|² [J].
+GPUDEM_HD inline Real coulomb_spring_energy(Real stiffness, const Real* history) {
+  return Real(0.5) * stiffness *
+         (history[0] * history[0] + history[1] * history[1] + history[2] * history[2]);
+}
+
+/// Linear history spring of LAMMPS `hooke/history`: S_t = k_t = 2/7 k_n (equal normal and
+/// tangential periods for a solid sphere).
+struct LinearHistoryTangential {
+  static constexpr int history_size = 4;
+  static constexpr bool needs_spin = true;
+  static constexpr bool needs_effective_radius = false;
+  template <class Damping, class Normal>
+  GPUDEM_HD static Vec3 force(const ContactPairParams& p, const ContactPoint& c,
+                              Real elastic_force, Real* history, Real dt) {
+    return coulomb_spring_force<Damping, Normal>(p, c, p.hooke_tangential_stiffness,
+                                                 elastic_force, history, dt);
+  }
+  GPUDEM_HD static Real energy(const ContactPairParams& p, const ContactPoint&,
+                               const Real* history) {
+    return coulomb_spring_energy(p.hooke_tangential_stiffness, history);
+  }
+};
+
+/// Mindlin no-slip spring of Hertz–Mindlin (EDEM; Di Renzo & Di Maio 2004):
+/// S_t = 8 G* √(R* δ).
+struct MindlinTangential {
+  static constexpr int history_size = 4;
+  static constexpr bool needs_spin = true;
+  static constexpr bool needs_effective_radius = true;
+  GPUDEM_HD static Real stiffness(const ContactPairParams& p, const ContactPoint& c) {
+    return 8 * p.effective_shear * sqrt(c.effective_radius * c.overlap);
+  }
+  template <class Damping, class Normal>
+  GPUDEM_HD static Vec3 force(const ContactPairParams& p, const ContactPoint& c,
+                              Real elastic_force, Real* history, Real dt) {
+    return coulomb_spring_force<Damping, Normal>(p, c, stiffness(p, c), elastic_force, history,
+                                                 dt);
+  }
+  GPUDEM_HD static Real energy(const ContactPairParams& p, const ContactPoint& c,
+                               const Real* history) {
+    return coulomb_spring_energy(stiffness(p, c), history);
+  }
+};
+
+}  // namespace gpudem

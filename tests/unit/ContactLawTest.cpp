@@ -1,0 +1,126 @@
+// The composition of contact-law slots: every valid combination builds an engine on each
+// backend and obeys Newton's third law; invalid ones are refused; a switched-off slot costs
+// nothing (the Hooke-only kernel runs with no spin, torque or history arrays at all).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/ContactModel.hpp"
+#include "kernels/ContactForces.hpp"
+#include "kernels/ParallelFor.hpp"
+#include "support/Backends.hpp"
+
+namespace gpudem::test {
+namespace {
+
+using HookeOnly = ContactLawOf<NormalLaw::Hooke, DampingLaw::Restitution, TangentialLaw::None,
+                               RollingLaw::None, CohesionLaw::None>;
+using HertzMindlinEpsd = ContactLawOf<NormalLaw::Hertz, DampingLaw::Restitution,
+                                      TangentialLaw::Mindlin, RollingLaw::Epsd, CohesionLaw::None>;
+
+/// Pair constants with every field set, so any slot has what it reads.
+ContactPairParams all_fields() {
+  ContactPairParams p;
+  p.hooke_stiffness = 1e4;
+  p.hooke_tangential_stiffness = 2.0 / 7.0 * 1e4;
+  p.effective_young = 5e6;
+  p.effective_shear = 2e6;
+  p.restitution_beta = 0.2;
+  p.viscoelastic_time = 1e-5;
+  p.friction_static = 0.5;
+  p.friction_dynamic = 0.4;
+  p.rolling_friction = 0.1;
+  p.rolling_damping = 0.3;
+  p.cohesion_energy_density = 1e3;
+  return p;
+}
+
+/// Two overlapping spheres of different sizes moving and spinning, plus a floor they touch.
+EngineSetup two_sphere_setup(const ContactModel& model) {
+  EngineSetup s;
+  s.box.lo = {-1, -1, -1};
+  s.box.length = {2, 2, 2};
+  s.dt = 1e-6;
+  s.skin = 1e-3;
+  s.contact_model = model;
+  s.material_count = 1;
+  s.pair_params = {all_fields()};
+  return s;
+}
+
+ParticleStore two_spheres() {
+  ParticleStore p;
+  p.add(1, {0, 0, 0}, 0.010, 0, {0.3, -0.1, 0.2}, 1 / 0.01);
+  p.add(2, {0.0175, 0.002, -0.001}, 0.008, 0, {-0.2, 0.4, 0.0}, 1 / 0.005);
+  p.angular_velocity = {{1, -2, 3}, {-4, 0.5, 2}};
+  return p;
+}
+
+TEST(ContactLawFlags, DeclareHistoryAndSpin) {
+  EXPECT_EQ(HookeOnly::history_size, 0);
+  EXPECT_FALSE(HookeOnly::needs_spin);
+  EXPECT_FALSE(HookeOnly::needs_effective_radius);
+  EXPECT_EQ(HookeOnly::extra_bytes_per_contact, 0);
+  EXPECT_EQ(HertzMindlinEpsd::history_size, 7);  // ξ (3), sliding flag, rolling spring (3)
+  EXPECT_TRUE(HertzMindlinEpsd::needs_spin);
+  EXPECT_EQ(HertzMindlinEpsd::extra_bytes_per_contact, 7 * 8 + 3 * 8);
+  EXPECT_EQ(sizeof(HertzMindlinEpsd::State), 7 * sizeof(Real));
+}
+
+/// The Hooke-only force kernel on null spin, torque and history pointers: it can only pass
+/// if it never touches them. Its force is k_n δ (restitution damping: the spheres are at rest).
+TEST(ContactLawCost, HookeOnlyKernelReadsNoSpinTorqueOrHistory) {
+  const ContactPairParams params = all_fields();
+  const std::vector<Real4> x{{0, 0, 0, 0.01}, {0.019, 0, 0, 0.01}};
+  const std::vector<Real4> v{{0, 0, 0, 100}, {0, 0, 0, 100}};
+  const std::vector<MaterialId> material{0, 0};
+  const std::vector<std::uint32_t> offsets{0, 1, 2}, neighbors{1, 0};
+  PeriodicBox box;
+  box.lo = {-1, -1, -1};
+  box.length = {2, 2, 2};
+  const ParticleView view{x.data(), v.data(), nullptr, material.data()};
+  const ContactScene<HookeOnly> scene{offsets.data(), neighbors.data(), &params, 1, nullptr, 0,
+                                      box,            nullptr,          nullptr};
+  std::vector<Vec3> force(2);
+  std::vector<Real> ratio(2);
+  parallel_for(HostSpace{}, 2,
+               ComputeForces<HookeOnly>{view, scene, Vec3{}, Real(1e-6), nullptr, nullptr,
+                                        force.data(), nullptr, ratio.data()});
+  const double expected = params.hooke_stiffness * 0.001;
+  EXPECT_NEAR(force[0].x, -expected, 1e-9 * expected);
+  EXPECT_NEAR(force[1].x, expected, 1e-9 * expected);
+}
+
+class EveryContactLaw : public BackendTest {};
+
+/// Each valid model builds, evaluates equal and opposite pair forces (first contact step, no
+/// history yet) and steps without producing non-finite values.
+TEST_P(EveryContactLaw, BuildsAndObeysNewtonsThirdLaw) {
+  for (const ContactModel& model : valid_contact_models()) {
+    SCOPED_TRACE(contact_model_name(model));
+    auto engine = make_engine(two_sphere_setup(model));
+    ParticleStore p = two_spheres();
+    engine->set_particles(p);
+    engine->get_particles(p);
+    ASSERT_EQ(p.size(), 2u);
+    const Vec3 sum = p.force[0] + p.force[1];
+    EXPECT_GT(norm(p.force[0]), 0);
+    EXPECT_LT(norm(sum), 1e-12 * norm(p.force[0]));
+    for (int n = 0; n < 10; ++n) engine->step();
+    HealthFailure failure;
+    EXPECT_FALSE(engine->find_unhealthy(0.5, failure));
+  }
+}
+
+TEST_P(EveryContactLaw, RefusesAnInvalidCombination) {
+  ContactModel hooke_mindlin;
+  hooke_mindlin.tangential = TangentialLaw::Mindlin;
+  ASSERT_FALSE(is_valid_contact_model(hooke_mindlin));
+  EXPECT_THROW(make_engine(two_sphere_setup(hooke_mindlin)), std::invalid_argument);
+}
+
+GPUDEM_INSTANTIATE_BACKENDS(EveryContactLaw);
+
+}  // namespace
+}  // namespace gpudem::test
