@@ -142,11 +142,15 @@ Enum named_choice(const TableReader& table, const std::string& key,
   return static_cast<Enum>(std::find(names.begin(), names.end(), name) - names.begin());
 }
 
+/// The slots of [contact]; tangential defaults to the normal law's own spring (hooke:
+/// linear_history, hertz: mindlin).
 ContactModel read_contact_model(const TableReader& table) {
   ContactModel m;
   m.normal = named_choice(table, "normal", normal_law_names(), m.normal);
   m.damping = named_choice(table, "damping", damping_law_names(), m.damping);
-  m.tangential = named_choice(table, "tangential", tangential_law_names(), m.tangential);
+  const TangentialLaw own_spring =
+      m.normal == NormalLaw::Hertz ? TangentialLaw::Mindlin : TangentialLaw::LinearHistory;
+  m.tangential = named_choice(table, "tangential", tangential_law_names(), own_spring);
   m.rolling = named_choice(table, "rolling", rolling_law_names(), m.rolling);
   m.cohesion = named_choice(table, "cohesion", cohesion_law_names(), m.cohesion);
   return m;

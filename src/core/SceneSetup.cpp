@@ -135,11 +135,12 @@ void set_hooke_limits(TimeStepLimits& limits, const Scene& scene, const Particle
   limits.stable = std::min(limits.stable, 2 * std::sqrt(m_star / k));
 }
 
-/// Reduced radius, reduced mass and effective Young's modulus of one Hertz contact.
+/// Reduced radius, reduced mass and effective moduli of one Hertz contact.
 struct HertzPair {
   double radius;  ///< R* [m]
   double mass;    ///< m* [kg]
   double young;   ///< E* [Pa]
+  double shear;   ///< G* [Pa]
 };
 
 /// t_c = 2.87 (m*² / (R* E*² v))^{1/5} (Johnson 1985).
@@ -147,13 +148,17 @@ double hertz_contact_duration(const HertzPair& p, double v) {
   return 2.87 * std::pow(p.mass * p.mass / (p.radius * p.young * p.young * v), 0.2);
 }
 
-/// 2/ω of the stiffest moment of an impact at v: ω² = S_max/m*, S_max = 2 E* √(R* δ_max),
-/// δ_max = (15 m* v² / (16 E* √R*))^{2/5} (Johnson 1985).
-double hertz_stable_step(const HertzPair& p, double v) {
+/// 2/ω of the stiffest moment of an impact at v, δ_max = (15 m* v² / (16 E* √R*))^{2/5}
+/// (Johnson 1985): normal mode ω² = S_n/m*, S_n = 2 E* √(R* δ_max); with the Mindlin spring
+/// also the tangential mode ω² = S_t / (2/7 m*), S_t = 8 G* √(R* δ_max), whose effective mass
+/// is 2/7 m* because the contact point of a free sphere also moves by rotation.
+double hertz_stable_step(const HertzPair& p, double v, bool mindlin) {
   const double peak_overlap =
       std::pow(15 * p.mass * v * v / (16 * p.young * std::sqrt(p.radius)), 0.4);
-  const double peak_stiffness = 2 * p.young * std::sqrt(p.radius * peak_overlap);
-  return 2 / std::sqrt(peak_stiffness / p.mass);
+  const double root = std::sqrt(p.radius * peak_overlap);
+  double omega2 = 2 * p.young * root / p.mass;
+  if (mindlin) omega2 = std::max(omega2, 8 * p.shear * root / (2.0 / 7.0 * p.mass));
+  return 2 / std::sqrt(omega2);
 }
 
 /// Index of the smallest particle of each material; particles.size() for an absent material.
@@ -182,11 +187,14 @@ std::vector<HertzPair> hertz_extreme_pairs(const Scene& scene, const ParticleSto
       if (smallest[b] == particles.size()) continue;
       const double rb = particles.position_radius[smallest[b]].w;
       const double mb = 1 / particles.velocity_inv_mass[smallest[b]].w;
-      pairs.push_back(
-          {ra * rb / (ra + rb), ma * mb / (ma + mb), effective_young(mat_a, scene.materials[b])});
+      const Material& mat_b = scene.materials[b];
+      pairs.push_back({ra * rb / (ra + rb), ma * mb / (ma + mb), effective_young(mat_a, mat_b),
+                       effective_shear(mat_a, mat_b)});
     }
-    for (const WallSettings& w : scene.walls)
-      pairs.push_back({ra, ma, effective_young(mat_a, scene.materials[w.material])});
+    for (const WallSettings& w : scene.walls) {
+      const Material& wall = scene.materials[w.material];
+      pairs.push_back({ra, ma, effective_young(mat_a, wall), effective_shear(mat_a, wall)});
+    }
   }
   return pairs;
 }
@@ -196,7 +204,9 @@ void set_hertz_limits(TimeStepLimits& limits, const Scene& scene, const Particle
   const double v = impact_speed(scene, particles);
   for (const HertzPair& p : hertz_extreme_pairs(scene, particles)) {
     limits.contact_duration = std::min(limits.contact_duration, hertz_contact_duration(p, v));
-    limits.stable = std::min(limits.stable, hertz_stable_step(p, v));
+    limits.stable = std::min(
+        limits.stable,
+        hertz_stable_step(p, v, scene.contact.model.tangential == TangentialLaw::Mindlin));
   }
 }
 

@@ -650,10 +650,18 @@ TEST_F(SceneLoaderTest, InvalidCombinationNamesTheSlotThatDoesNotFit) {
                    std::string(kValidCombinations));
   expect_error(load_error(base_with(kContactSlot, "damping = \"viscoelastic\"")), kContactSlot,
                "contact.damping", "normal = \"hooke\" does not go with damping = \"viscoelastic\"");
-  expect_error(load_error(base_with(kStiffnessLine, "normal = \"hertz\"")), kContactLine,
-               "contact.tangential",
-               "normal = \"hertz\" does not go with tangential = \"linear_history\" (the "
-               "default)");
+  expect_error(load_error(base_with(kStiffnessLine, "normal = \"hertz\"\ndamping = \"none\"\n"
+                                                   "tangential = \"linear_history\"")),
+               kStiffnessLine + 2, "contact.tangential",
+               "normal = \"hertz\" does not go with tangential = \"linear_history\"");
+}
+
+/// Without a tangential key the normal law brings its own spring.
+TEST_F(SceneLoaderTest, TangentialDefaultsToTheNormalLawsSpring) {
+  const Scene hertz = load_text(base_with(kStiffnessLine, "normal = \"hertz\""));
+  EXPECT_EQ(hertz.contact.model.tangential, TangentialLaw::Mindlin);
+  const Scene hooke = load_text(base_with(kStiffnessLine, "stiffness = 1e4"));
+  EXPECT_EQ(hooke.contact.model.tangential, TangentialLaw::LinearHistory);
 }
 
 TEST_F(SceneLoaderTest, StiffnessIsRequiredWithHookeAndRefusedWithHertz) {

@@ -209,9 +209,9 @@ double rayleigh_of(const Material& m, double r) {
   return kPi * r * std::sqrt(m.density / shear) / (0.1631 * m.poisson + 0.8766);
 }
 
-/// Reduced radius and mass and E* of one Hertz contact.
+/// Reduced radius and mass, E* and G* of one Hertz contact.
 struct Contact {
-  double radius, mass, young;
+  double radius, mass, young, shear;
 };
 
 /// Johnson (1985): t_c = 2.87 (m*² / (R* E*² v))^{1/5}.
@@ -219,17 +219,20 @@ double hertz_duration(const Contact& c, double v) {
   return 2.87 * std::pow(c.mass * c.mass / (c.radius * c.young * c.young * v), 0.2);
 }
 
-/// 2/ω at the peak overlap of an impact at v.
+/// 2/ω at the peak overlap of an impact at v, the faster of the normal mode (S_n = 2E*√(R*δ),
+/// mass m*) and the Mindlin tangential mode (S_t = 8G*√(R*δ), mass 2/7 m*).
 double hertz_stable(const Contact& c, double v) {
   const double peak = std::pow(15 * c.mass * v * v / (16 * c.young * std::sqrt(c.radius)), 0.4);
-  const double stiffness = 2 * c.young * std::sqrt(c.radius * peak);
-  return 2 * std::sqrt(c.mass / stiffness);
+  const double normal = 2 * std::sqrt(c.mass / (2 * c.young * std::sqrt(c.radius * peak)));
+  const double tangential =
+      2 * std::sqrt(2.0 / 7.0 * c.mass / (8 * c.shear * std::sqrt(c.radius * peak)));
+  return std::min(normal, tangential);
 }
 
 /// Grains of radius 2 and 3 mm, a steel ball of 5 mm and a steel floor, Hertz contact at the
 /// impact speed v. At v = 2 m/s the steel ball's Rayleigh time (5.35e-6 s) is below every Hertz
-/// limit; the Hertz limits fall only as v^{-1/5}, so v = 1000 m/s brings 2/ω (3.86e-6 s), and
-/// v = 1e4 m/s t_c (4.91e-6 s), below it.
+/// limit; the Hertz limits fall only as v^{-1/5}, so v = 1000 m/s brings 2/ω, and v = 1e4 m/s
+/// t_c (4.91e-6 s), below it.
 struct HertzFixture {
   Scene scene = two_material_scene();
   ParticleStore particles;
@@ -254,11 +257,14 @@ struct HertzFixture {
     const double mg = sphere_mass_of(2500, 2e-3), ms = sphere_mass_of(7800, 5e-3);
     const double e_gg = 1 / (2 * 0.91 / 1e8), e_ss = 1 / (2 * 0.9375 / 2e11);
     const double e_gs = 1 / (0.91 / 1e8 + 0.9375 / 2e11);
-    return {{1e-3, mg / 2, e_gg},
-            {2e-3 * 5e-3 / 7e-3, mg * ms / (mg + ms), e_gs},
-            {2.5e-3, ms / 2, e_ss},
-            {2e-3, mg, e_gs},
-            {5e-3, ms, e_ss}};
+    const double g_grain = 1e8 / 2.6, g_steel = 2e11 / 2.5;  // G = E / (2 (1 + ν))
+    const double g_gg = 1 / (2 * 1.7 / g_grain), g_ss = 1 / (2 * 1.75 / g_steel);
+    const double g_gs = 1 / (1.7 / g_grain + 1.75 / g_steel);
+    return {{1e-3, mg / 2, e_gg, g_gg},
+            {2e-3 * 5e-3 / 7e-3, mg * ms / (mg + ms), e_gs, g_gs},
+            {2.5e-3, ms / 2, e_ss, g_ss},
+            {2e-3, mg, e_gs, g_gs},
+            {5e-3, ms, e_ss, g_ss}};
   }
   double duration() const {
     double t = std::numeric_limits<double>::infinity();
