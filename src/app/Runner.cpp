@@ -93,14 +93,15 @@ std::vector<double> timeseries_row(double time, std::uint64_t step, const Diagno
 void print_summary(const Scene& scene, const ParticleStore& particles, const EngineSetup& setup,
                    const StepEngine* engine, std::uint64_t steps) {
   const TimeStepLimits limits = time_step_limits(scene, particles);
-  std::printf("scene %s: %zu particles, %zu materials, %zu walls\n", scene.file.c_str(),
-              particles.size(), scene.materials.size(), scene.walls.size());
+  std::printf("scene %s: %zu particles, %zu materials, %zu walls, contact law %s\n",
+              scene.file.c_str(), particles.size(), scene.materials.size(), scene.walls.size(),
+              contact_model_name(setup.contact_model).c_str());
   std::printf(
-      "dt = %.4g s (%s; contact duration %.4g s, Rayleigh time %.4g s), %llu steps to "
-      "t = %.4g s, skin %.4g m\n",
+      "dt = %.4g s (%s; contact duration %.4g s, Rayleigh time %.4g s, stable limit %.4g s), "
+      "%llu steps to t = %.4g s, skin %.4g m\n",
       setup.dt, scene.simulation.dt_auto ? "auto" : "explicit", limits.contact_duration,
-      limits.rayleigh, static_cast<unsigned long long>(steps), scene.simulation.end_time,
-      setup.skin);
+      limits.rayleigh, limits.stable, static_cast<unsigned long long>(steps),
+      scene.simulation.end_time, setup.skin);
   if (engine) {
     const std::string device =
         engine->backend_name() == "cuda" ? " (" + cuda::device_description() + ")" : "";

@@ -24,8 +24,9 @@ class DeviceArray<T, HostSpace> {
   std::size_t size() const { return data_.size(); }
   /// Resizes keeping the first min(old, new) elements.
   void resize(std::size_t n) { data_.resize(n); }
-  void upload(const std::vector<T>& host) { data_.assign(host.begin(), host.end()); }
-  void download(std::vector<T>& host) const { host.assign(data_.begin(), data_.end()); }
+  // Copy, then move: GCC 12 -Wnonnull misfires on copy-assigning into a provably empty vector.
+  void upload(const std::vector<T>& host) { data_ = std::vector<T>(host); }
+  void download(std::vector<T>& host) const { host = std::vector<T>(data_); }
   void swap(DeviceArray& other) { data_.swap(other.data_); }
   std::size_t bytes() const { return data_.capacity() * sizeof(T); }
 
