@@ -63,12 +63,13 @@ class StepEngine {
   /// forces and torques of the last evaluation.
   virtual void get_particles(ParticleStore& particles) const = 0;
 
-  /// The tangential springs of every contact whose spring is not zero, keyed by global ids.
+  /// The history records (Law::history_size values each) of every contact whose record is not
+  /// all zero, keyed by global ids.
   virtual void get_contact_history(ContactHistory& history) const = 0;
-  /// Gives every contact listed in `history` its spring and every other contact a zero
-  /// spring; call after set_particles or restore_particles. Throws std::invalid_argument for
-  /// an entry naming an unknown particle, a pair that is not in the neighbour list, or a wall
-  /// index beyond the walls. Forces are not re-evaluated.
+  /// Gives every contact listed in `history` its record and every other contact a zero
+  /// record; call after set_particles or restore_particles. Throws std::invalid_argument for a
+  /// history of another width, an entry naming an unknown particle, a pair that is not in the
+  /// neighbour list, or a wall index beyond the walls. Forces are not re-evaluated.
   virtual void set_contact_history(const ContactHistory& history) = 0;
 
   /// Positions and radii at the last neighbour-list build, in the order of get_particles.

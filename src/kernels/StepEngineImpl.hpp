@@ -145,7 +145,7 @@ class StepEngineImpl final : public StepEngine {
     saved_force.upload(p.force);
     saved_torque.upload(p.torque);
     build_list_at_saved_positions(saved_force, saved_torque);
-    compute_forces();  // for the overlap ratios; the forces and springs it leaves are replaced
+    compute_forces();  // for the overlap ratios; the forces and history it leaves are replaced
     force_.swap(saved_force);
     torque_.swap(saved_torque);
     zero_history();

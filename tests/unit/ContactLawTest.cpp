@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "core/ContactModel.hpp"
@@ -55,6 +56,30 @@ ParticleStore two_spheres() {
   p.add(2, {0.0175, 0.002, -0.001}, 0.008, 0, {-0.2, 0.4, 0.0}, 1 / 0.005);
   p.angular_velocity = {{1, -2, 3}, {-4, 0.5, 2}};
   return p;
+}
+
+/// Each enum value selects the slot of the same name (SlotOf lists slots in enum order).
+TEST(ContactLawSlots, FollowEnumOrder) {
+  using All = ContactLawOf<NormalLaw::Hertz, DampingLaw::Viscoelastic, TangentialLaw::Mindlin,
+                           RollingLaw::Epsd, CohesionLaw::Sjkr>;
+  static_assert(std::is_same_v<All::Normal, HertzNormal>);
+  static_assert(std::is_same_v<All::Damping, ViscoelasticDamping>);
+  static_assert(std::is_same_v<All::Tangential, MindlinTangential>);
+  static_assert(std::is_same_v<All::Rolling, EpsdRolling>);
+  static_assert(std::is_same_v<All::Cohesion, SjkrCohesion>);
+  using Middle = ContactLawOf<NormalLaw::Hooke, DampingLaw::Restitution, TangentialLaw::LinearHistory,
+                              RollingLaw::ConstantTorque, CohesionLaw::None>;
+  static_assert(std::is_same_v<Middle::Normal, HookeNormal>);
+  static_assert(std::is_same_v<Middle::Damping, RestitutionDamping>);
+  static_assert(std::is_same_v<Middle::Tangential, LinearHistoryTangential>);
+  static_assert(std::is_same_v<Middle::Rolling, ConstantTorqueRolling>);
+  static_assert(std::is_same_v<Middle::Cohesion, NoCohesion>);
+  using First = ContactLawOf<NormalLaw::Hooke, DampingLaw::None, TangentialLaw::None,
+                             RollingLaw::None, CohesionLaw::None>;
+  static_assert(std::is_same_v<First::Damping, NoDamping>);
+  static_assert(std::is_same_v<First::Tangential, NoTangential>);
+  static_assert(std::is_same_v<First::Rolling, NoRolling>);
+  SUCCEED() << "checked at compile time";
 }
 
 TEST(ContactLawFlags, DeclareHistoryAndSpin) {

@@ -5,6 +5,8 @@
 /// what the law reads: history values per contact, spins, R*, inertias, contact area. A
 /// switched-off slot compiles to nothing.
 #include <cmath>
+#include <cstddef>
+#include <tuple>
 
 #include "core/ContactModel.hpp"
 #include "kernels/contact/CohesionLaws.hpp"
@@ -77,79 +79,17 @@ struct ContactLaw {
       history_size * static_cast<int>(sizeof(Real)) + (needs_spin ? 3 * sizeof(Real) : 0);
 };
 
-/// The slot type of each enum value.
-template <NormalLaw>
-struct NormalSlotOf;
-template <>
-struct NormalSlotOf<NormalLaw::Hooke> {
-  using type = HookeNormal;
-};
-template <>
-struct NormalSlotOf<NormalLaw::Hertz> {
-  using type = HertzNormal;
-};
-
-template <DampingLaw>
-struct DampingSlotOf;
-template <>
-struct DampingSlotOf<DampingLaw::None> {
-  using type = NoDamping;
-};
-template <>
-struct DampingSlotOf<DampingLaw::Restitution> {
-  using type = RestitutionDamping;
-};
-template <>
-struct DampingSlotOf<DampingLaw::Viscoelastic> {
-  using type = ViscoelasticDamping;
-};
-
-template <TangentialLaw>
-struct TangentialSlotOf;
-template <>
-struct TangentialSlotOf<TangentialLaw::None> {
-  using type = NoTangential;
-};
-template <>
-struct TangentialSlotOf<TangentialLaw::LinearHistory> {
-  using type = LinearHistoryTangential;
-};
-template <>
-struct TangentialSlotOf<TangentialLaw::Mindlin> {
-  using type = MindlinTangential;
-};
-
-template <RollingLaw>
-struct RollingSlotOf;
-template <>
-struct RollingSlotOf<RollingLaw::None> {
-  using type = NoRolling;
-};
-template <>
-struct RollingSlotOf<RollingLaw::ConstantTorque> {
-  using type = ConstantTorqueRolling;
-};
-template <>
-struct RollingSlotOf<RollingLaw::Epsd> {
-  using type = EpsdRolling;
-};
-
-template <CohesionLaw>
-struct CohesionSlotOf;
-template <>
-struct CohesionSlotOf<CohesionLaw::None> {
-  using type = NoCohesion;
-};
-template <>
-struct CohesionSlotOf<CohesionLaw::Sjkr> {
-  using type = SjkrCohesion;
-};
+/// The slot type an enum value names: Slots are listed in the enum's order.
+template <class Enum, Enum value, class... Slots>
+using SlotOf = std::tuple_element_t<static_cast<std::size_t>(value), std::tuple<Slots...>>;
 
 /// The law type of a model named by enum values.
 template <NormalLaw N, DampingLaw D, TangentialLaw T, RollingLaw R, CohesionLaw C>
-using ContactLawOf =
-    ContactLaw<typename NormalSlotOf<N>::type, typename DampingSlotOf<D>::type,
-               typename TangentialSlotOf<T>::type, typename RollingSlotOf<R>::type,
-               typename CohesionSlotOf<C>::type>;
+using ContactLawOf = ContactLaw<
+    SlotOf<NormalLaw, N, HookeNormal, HertzNormal>,
+    SlotOf<DampingLaw, D, NoDamping, RestitutionDamping, ViscoelasticDamping>,
+    SlotOf<TangentialLaw, T, NoTangential, LinearHistoryTangential, MindlinTangential>,
+    SlotOf<RollingLaw, R, NoRolling, ConstantTorqueRolling, EpsdRolling>,
+    SlotOf<CohesionLaw, C, NoCohesion, SjkrCohesion>>;
 
 }  // namespace gpudem
