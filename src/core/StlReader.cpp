@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/InputError.hpp"
+#include "core/Rotation.hpp"
 
 namespace gpudem {
 namespace {
@@ -276,24 +277,13 @@ void require_valid(const MeshPlacement& placement, const std::string& path) {
   if (!is_finite(placement.offset)) reject("offset must be finite");
 }
 
-/// Rows of R = cos θ I + sin θ [k]× + (1 − cos θ) k kᵀ (Rodrigues' rotation formula), k the
-/// unit axis.
-std::array<Vec3, 3> rotation_matrix(const Vec3& axis_vector, double angle) {
-  const Vec3 k = (1.0 / norm(axis_vector)) * axis_vector;
-  const double c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
-  return {Vec3{c + t * k.x * k.x, t * k.x * k.y - s * k.z, t * k.x * k.z + s * k.y},
-          Vec3{t * k.y * k.x + s * k.z, c + t * k.y * k.y, t * k.y * k.z - s * k.x},
-          Vec3{t * k.z * k.x - s * k.y, t * k.z * k.y + s * k.x, c + t * k.z * k.z}};
-}
-
 /// p' = R (scale · p) + offset for every corner; equal corners stay bit-identical.
 void place(Soup& soup, const MeshPlacement& placement, const std::string& path) {
-  const std::array<Vec3, 3> rows =
-      rotation_matrix(placement.rotation_axis, placement.rotation_angle);
+  const Rotation rotation = rotation_about(placement.rotation_axis, placement.rotation_angle);
   for (std::size_t t = 0; t < soup.size(); ++t)
     for (Vec3& p : soup[t]) {
       const Vec3 scaled = placement.scale * p;
-      p = Vec3{dot(rows[0], scaled), dot(rows[1], scaled), dot(rows[2], scaled)} + placement.offset;
+      p = rotation.apply(scaled) + placement.offset;
       if (!is_finite(p))
         throw InputError(path, 0, "",
                          "triangle " + std::to_string(t + 1) +

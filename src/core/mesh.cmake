@@ -1,2 +1,3 @@
-add_library(gpudem_mesh STATIC core/StlReader.cpp)
+# Tools: triangle meshes from STL files and their prescribed rigid motion.
+add_library(gpudem_mesh STATIC core/StlReader.cpp core/PrescribedMotion.cpp)
 target_link_libraries(gpudem_mesh PUBLIC gpudem_base)
