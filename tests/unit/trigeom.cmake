@@ -1,0 +1,4 @@
+gpudem_add_test(test_triangle_contact
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/TriangleContactTest.cpp
+  LIBS gpudem_kernels
+  LABELS unit)
