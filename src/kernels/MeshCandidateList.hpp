@@ -1,0 +1,304 @@
+#pragma once
+/// Per-particle lists of the mesh triangles that may touch it before the next rebuild, in CSR
+/// form: the triangles of particle i are triangles()[offsets()[i] .. offsets()[i + 1]), each
+/// once, in grid-cell order. Triangle t is listed for particle i when the distance from i's centre to t is
+/// below r_i + skin: valid while the particle and the mesh each move less than skin / 2.
+///
+/// Search (DESIGN §3, plan then execute): triangles are binned by their bounding boxes in a
+/// uniform grid over the mesh, cells at least as large as the largest reach; a particle then
+/// scans the at most 2 × 2 × 2 cells its reach box overlaps, and takes a triangle only from the
+/// lowest cell shared by the triangle's box and its own, so no triangle is seen twice. Distances
+/// are plain (meshes do not wrap across periodic faces).
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "core/Config.hpp"
+#include "core/Vec3.hpp"
+#include "kernels/DeviceArray.hpp"
+#include "kernels/ParallelFor.hpp"
+#include "kernels/TriangleContact.hpp"
+
+namespace gpudem {
+
+/// Vertex ids of one triangle, indices into the mesh's vertex array.
+struct TriangleCorners {
+  std::uint32_t v[3];
+};
+
+/// The uniform grid over the meshes' bounding box and the binned triangles (sorted by cell).
+struct TriangleBins {
+  Vec3 lo;           ///< lower corner of the grid [m]
+  Real cell = 1;     ///< cell edge [m]
+  int dims[3] = {1, 1, 1};
+  const Vec3* vertices;
+  const TriangleCorners* corners;
+  const std::uint32_t* cell_begin;  ///< cell_count + 1 offsets into `binned`
+  const std::uint32_t* binned;      ///< triangle indices, sorted by cell
+
+  GPUDEM_HD int cell_of(Real x, int k) const {
+    const int c = static_cast<int>(floor((x - axis(lo, k)) / cell));
+    return c < 0 ? 0 : (c >= dims[k] ? dims[k] - 1 : c);
+  }
+  GPUDEM_HD std::uint64_t key(int x, int y, int z) const {
+    return (static_cast<std::uint64_t>(z) * dims[1] + y) * dims[0] + x;
+  }
+  /// Lower and upper cell of triangle t's bounding box along axis k.
+  GPUDEM_HD void triangle_cells(std::uint32_t t, int k, int& first, int& last) const {
+    const Real a = axis(vertices[corners[t].v[0]], k), b = axis(vertices[corners[t].v[1]], k),
+               c = axis(vertices[corners[t].v[2]], k);
+    first = cell_of(fmin(a, fmin(b, c)), k);
+    last = cell_of(fmax(a, fmax(b, c)), k);
+  }
+  GPUDEM_HD Real distance2(std::uint32_t t, Vec3 p) const {
+    const TriangleCorners c = corners[t];
+    return norm2(closest_triangle_feature(p, vertices[c.v[0]], vertices[c.v[1]], vertices[c.v[2]])
+                     .point -
+                 p);
+  }
+
+  /// Calls visit(t) for each triangle within `reach` of p, once each.
+  template <class Visitor>
+  GPUDEM_HD void for_each_near(Vec3 p, Real reach, Visitor& visit) const {
+    int first[3], last[3];
+    for (int k = 0; k < 3; ++k) {
+      const Real x = axis(p, k);
+      if (x + reach < axis(lo, k) || x - reach > axis(lo, k) + dims[k] * cell) return;
+      first[k] = cell_of(x - reach, k);
+      last[k] = cell_of(x + reach, k);
+    }
+    for (int z = first[2]; z <= last[2]; ++z)
+      for (int y = first[1]; y <= last[1]; ++y)
+        for (int x = first[0]; x <= last[0]; ++x) {
+          const std::uint64_t cell = key(x, y, z);
+          for (std::uint32_t e = cell_begin[cell]; e < cell_begin[cell + 1]; ++e) {
+            const std::uint32_t t = binned[e];
+            if (!first_shared_cell(t, first, x, y, z)) continue;
+            if (distance2(t, p) < reach * reach) visit(t);
+          }
+        }
+  }
+
+ private:
+  /// True when (x, y, z) is the lowest cell in both t's box and the query's [first, ...].
+  GPUDEM_HD bool first_shared_cell(std::uint32_t t, const int first[3], int x, int y,
+                                   int z) const {
+    const int at[3] = {x, y, z};
+    for (int k = 0; k < 3; ++k) {
+      int lo_cell, hi_cell;
+      triangle_cells(t, k, lo_cell, hi_cell);
+      if (at[k] != (lo_cell > first[k] ? lo_cell : first[k])) return false;
+    }
+    return true;
+  }
+};
+
+namespace mesh_candidate_kernels {
+
+/// Number of cells triangle t's bounding box covers.
+struct CountCells {
+  TriangleBins bins;
+  std::uint32_t* count;
+  GPUDEM_HD void operator()(std::size_t t) const {
+    std::uint32_t cells = 1;
+    for (int k = 0; k < 3; ++k) {
+      int first, last;
+      bins.triangle_cells(static_cast<std::uint32_t>(t), k, first, last);
+      cells *= static_cast<std::uint32_t>(last - first + 1);
+    }
+    count[t] = cells;
+  }
+};
+
+/// (cell, triangle) pairs of triangle t from slot offset[t] on.
+struct WriteCells {
+  TriangleBins bins;
+  const std::uint32_t* offset;
+  std::uint64_t* key;
+  std::uint32_t* triangle;
+  GPUDEM_HD void operator()(std::size_t t) const {
+    int first[3], last[3];
+    for (int k = 0; k < 3; ++k)
+      bins.triangle_cells(static_cast<std::uint32_t>(t), k, first[k], last[k]);
+    std::uint32_t slot = offset[t];
+    for (int z = first[2]; z <= last[2]; ++z)
+      for (int y = first[1]; y <= last[1]; ++y)
+        for (int x = first[0]; x <= last[0]; ++x) {
+          key[slot] = bins.key(x, y, z);
+          triangle[slot++] = static_cast<std::uint32_t>(t);
+        }
+  }
+};
+
+/// cell_begin[c] = first sorted slot whose cell is >= c (binary search; c = cell_count gives
+/// the total).
+struct CellBegin {
+  const std::uint64_t* sorted_key;
+  std::uint32_t pairs;
+  std::uint32_t* cell_begin;
+  GPUDEM_HD void operator()(std::size_t c) const {
+    std::uint32_t lo = 0, hi = pairs;
+    while (lo < hi) {
+      const std::uint32_t mid = lo + (hi - lo) / 2;
+      if (sorted_key[mid] < c) {
+        lo = mid + 1;
+      } else {
+        hi = mid;
+      }
+    }
+    cell_begin[c] = lo;
+  }
+};
+
+struct CountVisitor {
+  std::uint32_t count = 0;
+  GPUDEM_HD void operator()(std::uint32_t) { ++count; }
+};
+
+struct WriteVisitor {
+  std::uint32_t* out;
+  GPUDEM_HD void operator()(std::uint32_t t) { *out++ = t; }
+};
+
+/// Triangles within r_i + skin of particle i: counted, or written from offsets[i] on.
+template <bool kWrite>
+struct ParticleTriangles {
+  TriangleBins bins;
+  const Real4* position_radius;
+  Real skin;
+  std::uint32_t* offsets;
+  std::uint32_t* triangles;
+  GPUDEM_HD void operator()(std::size_t i) const {
+    const Real4 p = position_radius[i];
+    if constexpr (kWrite) {
+      WriteVisitor write{triangles + offsets[i]};
+      bins.for_each_near(xyz(p), p.w + skin, write);
+    } else {
+      CountVisitor count;
+      bins.for_each_near(xyz(p), p.w + skin, count);
+      offsets[i] = count.count;
+    }
+  }
+};
+
+struct CopyVertices {
+  const Vec3* in;
+  Vec3* out;
+  GPUDEM_HD void operator()(std::size_t k) const { out[k] = in[k]; }
+};
+
+struct StoreTotal {
+  std::uint32_t* target;
+  std::uint32_t value;
+  GPUDEM_HD void operator()(std::size_t) const { *target = value; }
+};
+
+}  // namespace mesh_candidate_kernels
+
+template <class Space>
+class MeshCandidateList {
+ public:
+  /// Bins `triangle_count` triangles (corners into `vertices`, both in Space memory) and lists,
+  /// for each of the n particles, the triangles within r_i + skin. `max_radius` is the largest
+  /// particle radius: cells are at least 2 (max_radius + skin) wide, and no wider than needed to
+  /// keep the grid under `max_cells` cells.
+  void build(const Vec3* vertices, std::size_t vertex_count, const TriangleCorners* corners,
+             std::size_t triangle_count, const Real4* position_radius, std::size_t n,
+             Real max_radius, Real skin, std::size_t max_cells = std::size_t(1) << 22) {
+    n_ = n;
+    offsets_.resize(n + 1);
+    plan_grid(vertices, vertex_count, max_radius + skin, max_cells);
+    bins_.vertices = vertices;
+    bins_.corners = corners;
+    bin_triangles(triangle_count);
+    using namespace mesh_candidate_kernels;
+    parallel_for(Space{}, n,
+                 ParticleTriangles<false>{bins_, position_radius, skin, offsets_.data(), nullptr});
+    const std::uint64_t total = exclusive_scan(Space{}, offsets_.data(), offsets_.data(), n);
+    if (total > std::numeric_limits<std::uint32_t>::max())
+      throw std::overflow_error("MeshCandidateList: more than 2^32 - 1 particle-triangle pairs");
+    parallel_for(Space{}, 1, StoreTotal{offsets_.data() + n, static_cast<std::uint32_t>(total)});
+    triangles_.resize(total);
+    parallel_for(Space{}, n,
+                 ParticleTriangles<true>{bins_, position_radius, skin, offsets_.data(),
+                                         triangles_.data()});
+    pairs_ = total;
+  }
+
+  std::size_t size() const { return n_; }
+  const std::uint32_t* offsets() const { return offsets_.data(); }
+  const std::uint32_t* triangles() const { return triangles_.data(); }
+  std::uint64_t pairs() const { return pairs_; }
+  std::size_t memory_bytes() const {
+    return offsets_.bytes() + triangles_.bytes() + cell_begin_.bytes() + binned_.bytes() +
+           keys_.bytes();
+  }
+
+ private:
+  /// Grid over the vertices' bounding box grown by `reach`, cells of at least 2·reach (so a
+  /// reach box overlaps at most two cells per axis), grown until the grid has <= max_cells.
+  void plan_grid(const Vec3* vertices, std::size_t vertex_count, Real reach,
+                 std::size_t max_cells) {
+    std::vector<Vec3> host(vertex_count);
+    DeviceArray<Vec3, Space> copy(vertex_count);
+    parallel_for(Space{}, vertex_count,
+                 mesh_candidate_kernels::CopyVertices{vertices, copy.data()});
+    copy.download(host);
+    Vec3 lo{std::numeric_limits<Real>::max(), std::numeric_limits<Real>::max(),
+            std::numeric_limits<Real>::max()};
+    Vec3 hi = -1 * lo;
+    for (const Vec3& v : host)
+      for (int k = 0; k < 3; ++k) {
+        axis(lo, k) = std::fmin(axis(lo, k), axis(v, k));
+        axis(hi, k) = std::fmax(axis(hi, k), axis(v, k));
+      }
+    const Vec3 margin{reach, reach, reach};
+    bins_.lo = lo - margin;
+    const Vec3 extent = (hi + margin) - bins_.lo;
+    Real cell = 2 * reach;
+    for (;;) {
+      std::size_t cells = 1;
+      for (int k = 0; k < 3; ++k) {
+        bins_.dims[k] = std::max(1, static_cast<int>(std::ceil(axis(extent, k) / cell)));
+        cells *= static_cast<std::size_t>(bins_.dims[k]);
+      }
+      if (cells <= max_cells) break;
+      cell *= 2;
+    }
+    bins_.cell = cell;
+  }
+
+  void bin_triangles(std::size_t triangle_count) {
+    using namespace mesh_candidate_kernels;
+    DeviceArray<std::uint32_t, Space> count(triangle_count + 1);
+    parallel_for(Space{}, triangle_count, CountCells{bins_, count.data()});
+    const std::uint64_t pairs =
+        exclusive_scan(Space{}, count.data(), count.data(), triangle_count);
+    keys_.resize(pairs);
+    binned_.resize(pairs);
+    parallel_for(Space{}, triangle_count,
+                 WriteCells{bins_, count.data(), keys_.data(), binned_.data()});
+    sort_by_key(Space{}, keys_.data(), binned_.data(), pairs);
+    const std::size_t cells =
+        static_cast<std::size_t>(bins_.dims[0]) * bins_.dims[1] * bins_.dims[2];
+    cell_begin_.resize(cells + 1);
+    parallel_for(Space{}, cells + 1,
+                 CellBegin{keys_.data(), static_cast<std::uint32_t>(pairs), cell_begin_.data()});
+    bins_.cell_begin = cell_begin_.data();
+    bins_.binned = binned_.data();
+  }
+
+  TriangleBins bins_;
+  std::size_t n_ = 0;
+  std::uint64_t pairs_ = 0;
+  DeviceArray<std::uint32_t, Space> offsets_;
+  DeviceArray<std::uint32_t, Space> triangles_;
+  DeviceArray<std::uint32_t, Space> cell_begin_;
+  DeviceArray<std::uint32_t, Space> binned_;
+  DeviceArray<std::uint64_t, Space> keys_;
+};
+
+}  // namespace gpudem
