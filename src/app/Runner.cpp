@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "app/BedPreparation.hpp"
 #include "app/Progress.hpp"
 #include "comm/Checkpoint.hpp"
 #include "comm/OutputDirectory.hpp"
@@ -126,11 +127,13 @@ std::optional<SeriesResume> series_resume(const LoopStart& start) {
   return SeriesResume{"step", static_cast<double>(start.step)};
 }
 
-/// The time loop with its output and checkpoint schedule.
+/// The time loop with its output and checkpoint schedule. With a settle check (a bed
+/// preparation) it stops at the first settled time-series row, after that step's snapshot and
+/// checkpoint.
 class TimeLoop {
  public:
   TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine, const EngineSetup& setup,
-           bool quiet, const LoopStart& start)
+           bool quiet, const LoopStart& start, const SettleCheck* settle)
       : scene_(scene),
         mpi_(mpi),
         engine_(engine),
@@ -149,7 +152,8 @@ class TimeLoop {
         series_(scene.output.dir + "/timeseries.csv", timeseries_columns(scene), mpi.is_root(),
                 series_resume(start)),
         progress_(!quiet && mpi.is_root(), kProgressInterval, total_steps_, start.step),
-        resumed_(start.resumed) {
+        resumed_(start.resumed),
+        settle_(settle) {
     if (resumed_) snapshots_.resume(start.snapshots);
   }
 
@@ -160,43 +164,26 @@ class TimeLoop {
       HealthFailure failure;
       if (engine_.find_unhealthy(kOverlapLimit, failure)) return stop_unstable(step, failure);
       const bool last = step == total_steps_;
-      record(step, last || step % snapshot_every_ == 0);
-      if (checkpoint_every_ > 0 && (last || step % checkpoint_every_ == 0)) checkpoint(step);
-      progress_.update(step * dt_, step, engine_.particle_count(), last);
+      const bool snapshot = last || step % snapshot_every_ == 0;
+      const std::optional<Diagnostics> row = record(step, snapshot);
+      const bool settled = settle_ && row && settle_->settled(step, *row);
+      if (settled && !snapshot) write_snapshot(step * dt_, step);
+      if (checkpoint_every_ > 0 && (last || settled || step % checkpoint_every_ == 0))
+        checkpoint(step);
+      progress_.update(step * dt_, step, engine_.particle_count(), last || settled);
+      if (settled) {
+        settled_step_ = step;
+        return finish(step);
+      }
     }
-    if (mpi_.is_root())
-      std::printf(
-          "done: %llu steps in %.2f s; %llu particles removed (left the domain); output "
-          "in %s (open %s in ParaView)\n",
-          static_cast<unsigned long long>(total_steps_ - first_step_), progress_.elapsed(),
-          static_cast<unsigned long long>(engine_.removed_count()), scene_.output.dir.c_str(),
-          snapshots_.xmf_path().c_str());
-    return kExitOk;
+    return finish(total_steps_);
   }
 
- private:
-  void record(std::uint64_t step, bool snapshot) {
-    const double time = step * dt_;
-    if (step % series_every_ == 0 || snapshot) {
-      const std::uint64_t removed = engine_.removed_count();
-      if (removed > reported_removed_ && mpi_.is_root())
-        std::printf("warning: %llu particle(s) left the domain and were removed (total %llu)\n",
-                    static_cast<unsigned long long>(removed - reported_removed_),
-                    static_cast<unsigned long long>(removed));
-      reported_removed_ = removed;
-      series_.append(timeseries_row(time, step, engine_.diagnostics(), removed));
-    }
-    if (snapshot) write_snapshot(time, step);
-  }
+  /// The step at which the bed settled; none when it did not or nothing was checked.
+  std::optional<std::uint64_t> settled_step() const { return settled_step_; }
 
-  void write_snapshot(double time, std::uint64_t step) {
-    engine_.get_particles(host_);
-    snapshots_.write(host_, time, step);
-  }
-
-  /// Everything the step needs to be continued bit-for-bit (Checkpoint.hpp), after the
-  /// step's snapshot so that the snapshot table includes it.
-  void checkpoint(std::uint64_t step) {
+  /// Everything the step needs to be continued bit-for-bit (Checkpoint.hpp).
+  Checkpoint capture(std::uint64_t step) const {
     Checkpoint c;
     engine_.get_particles(c.particles);
     engine_.get_list_positions(c.list_position_radius);
@@ -208,7 +195,48 @@ class TimeLoop {
     c.dt = dt_;
     c.dt_fraction = scene_.simulation.dt_auto ? scene_.simulation.dt_fraction : 0.0;
     c.skin = skin_;
-    write_checkpoint(mpi_.comm(), scene_.output.dir, c);
+    return c;
+  }
+
+ private:
+  int finish(std::uint64_t step) {
+    if (mpi_.is_root())
+      std::printf(
+          "done: %llu steps in %.2f s; %llu particles removed (left the domain); output "
+          "in %s (open %s in ParaView)\n",
+          static_cast<unsigned long long>(step - first_step_), progress_.elapsed(),
+          static_cast<unsigned long long>(engine_.removed_count()), scene_.output.dir.c_str(),
+          snapshots_.xmf_path().c_str());
+    return kExitOk;
+  }
+
+  /// Writes the step's time-series row when one is due (returning its diagnostics) and its
+  /// snapshot when asked.
+  std::optional<Diagnostics> record(std::uint64_t step, bool snapshot) {
+    const double time = step * dt_;
+    std::optional<Diagnostics> row;
+    if (step % series_every_ == 0 || snapshot) {
+      const std::uint64_t removed = engine_.removed_count();
+      if (removed > reported_removed_ && mpi_.is_root())
+        std::printf("warning: %llu particle(s) left the domain and were removed (total %llu)\n",
+                    static_cast<unsigned long long>(removed - reported_removed_),
+                    static_cast<unsigned long long>(removed));
+      reported_removed_ = removed;
+      row = engine_.diagnostics();
+      series_.append(timeseries_row(time, step, *row, removed));
+    }
+    if (snapshot) write_snapshot(time, step);
+    return row;
+  }
+
+  void write_snapshot(double time, std::uint64_t step) {
+    engine_.get_particles(host_);
+    snapshots_.write(host_, time, step);
+  }
+
+  /// Written after the step's snapshot so that the snapshot table includes it.
+  void checkpoint(std::uint64_t step) {
+    write_checkpoint(mpi_.comm(), scene_.output.dir, capture(step));
   }
 
   int stop_unstable(std::uint64_t step, const HealthFailure& f) {
@@ -242,6 +270,8 @@ class TimeLoop {
   TimeSeriesWriter series_;
   Progress progress_;
   bool resumed_;
+  const SettleCheck* settle_;  ///< null: run to end_time
+  std::optional<std::uint64_t> settled_step_;
   ParticleStore host_;
   std::uint64_t reported_removed_ = 0;
 };
@@ -292,6 +322,19 @@ void start_engine(StepEngine& engine, const ParticleStore& particles, const Chec
   }
 }
 
+/// Ends a bed preparation: saves the trimmed bed when it settled, else reports why not.
+int finish_preparation(const Scene& scene, const MpiContext& mpi, const StepEngine& engine,
+                       const TimeLoop& loop, double dt) {
+  const std::optional<std::uint64_t> settled = loop.settled_step();
+  if (!settled) {
+    report_unsettled(scene, mpi, step_count(scene.simulation.end_time, dt) * dt,
+                     engine.diagnostics());
+    return kExitFailure;
+  }
+  save_bed(scene, mpi, loop.capture(*settled));
+  return kExitOk;
+}
+
 }  // namespace
 
 int run_scene(const RunOptions& options, const MpiContext& mpi) {
@@ -299,16 +342,19 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   if (!options.output_dir.empty()) scene.output.dir = options.output_dir;
   std::optional<Checkpoint> checkpoint;
   ParticleStore created;
+  BedLoader bed;
   if (!options.restart_file.empty()) {
     checkpoint = read_checkpoint(options.restart_file);
     check_checkpoint_fits_scene(*checkpoint, options.restart_file, scene);
   } else {
-    create_particles(scene, created);
+    create_particles(scene, created, bed.reader());
   }
   const ParticleStore& particles = checkpoint ? checkpoint->particles : created;
   EngineSetup setup = make_engine_setup(scene, particles);
   if (checkpoint) adopt_checkpoint_step(setup, scene, *checkpoint, options.restart_file);
   const std::uint64_t steps = step_count(scene.simulation.end_time, setup.dt);
+  std::optional<SettleCheck> settle;
+  if (scene.preparation.enabled) settle.emplace(scene, setup.dt);
   const bool banner = !options.quiet && mpi.is_root();
   if (checkpoint && mpi.is_root() && (banner || options.check_only))
     std::printf("restart from %s at t = %.6g s (step %llu)\n", options.restart_file.c_str(),
@@ -316,18 +362,23 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   if (options.check_only) {
     if (mpi.is_root()) {
       print_summary(scene, particles, setup, nullptr, steps);
+      if (settle) print_preparation(scene, *settle, setup.dt);
       std::printf("scene is valid\n");
     }
     return kExitOk;
   }
   std::unique_ptr<StepEngine> engine = make_engine(options.backend, setup);
   start_engine(*engine, particles, checkpoint ? &*checkpoint : nullptr, options.restart_file);
+  if (!checkpoint) bed.apply_history(scene, mpi, *engine);
   prepare_output_directory(scene.output.dir);
   if (banner) print_summary(scene, particles, setup, engine.get(), steps);
+  if (banner && settle) print_preparation(scene, *settle, setup.dt);
   LoopStart start;
   if (checkpoint) start = {checkpoint->step, true, checkpoint->snapshots};
-  TimeLoop loop(scene, mpi, *engine, setup, options.quiet, start);
-  return loop.run();
+  TimeLoop loop(scene, mpi, *engine, setup, options.quiet, start, settle ? &*settle : nullptr);
+  const int code = loop.run();
+  if (code != kExitOk || !settle) return code;
+  return finish_preparation(scene, mpi, *engine, loop, setup.dt);
 }
 
 }  // namespace gpudem

@@ -175,7 +175,7 @@ std::optional<Vec3> free_spot(Vec3 lo, Vec3 hi, double r, const SphereHash& hash
   return std::nullopt;
 }
 
-void insert_box(const Scene& scene, std::size_t i, ParticleStore& store) {
+void insert_box(const Scene& scene, std::size_t i, ParticleStore& store, ParticleId& next_id) {
   const ParticleSource& src = scene.sources[i];
   check_material(scene, i);
   check_distribution(scene, i);
@@ -200,7 +200,7 @@ void insert_box(const Scene& scene, std::size_t i, ParticleStore& store) {
                            ") in the region; enlarge the region or lower count/volume_fraction");
     hash.insert(*c, r);
     placed_volume += sphere_volume(r);
-    store.add(store.size(), *c, r, src.material, src.velocity, 1.0 / sphere_mass(density, r));
+    store.add(next_id++, *c, r, src.material, src.velocity, 1.0 / sphere_mass(density, r));
   }
 }
 
@@ -244,21 +244,33 @@ MaterialId csv_material(const Scene& scene, const CsvReader& csv, const std::str
                    "unknown material '" + field + "' (neither a material name nor an index)");
 }
 
-/// Rejects a centre outside the domain along a non-periodic axis.
-void check_in_domain(const Scene& scene, const CsvReader& csv, Vec3 centre) {
-  const char* names[] = {"x", "y", "z"};
+/// The first non-periodic axis (0, 1, 2) along which `centre` lies outside the domain, or -1.
+int axis_outside_domain(const Scene& scene, Vec3 centre) {
   for (int k = 0; k < 3; ++k) {
-    const double lo = axis(scene.domain.min, k), hi = axis(scene.domain.max, k);
     const double c = axis(centre, k);
-    if (!scene.domain.periodic[k] && (c < lo || c > hi))
-      throw InputError(csv.path(), csv.line(), names[k],
-                       "centre " + std::string(names[k]) + " = " + format_number(c) +
-                           " lies outside the domain [" + format_number(lo) + ", " +
-                           format_number(hi) + "]");
+    if (!scene.domain.periodic[k] &&
+        (c < axis(scene.domain.min, k) || c > axis(scene.domain.max, k)))
+      return k;
   }
+  return -1;
 }
 
-void import_csv(const Scene& scene, std::size_t i, ParticleStore& store) {
+/// "centre x = 1.2 lies outside the domain [0, 1]" for axis k.
+std::string outside_domain_text(const Scene& scene, Vec3 centre, int k) {
+  return "centre " + std::string(1, "xyz"[k]) + " = " + format_number(axis(centre, k)) +
+         " lies outside the domain [" + format_number(axis(scene.domain.min, k)) + ", " +
+         format_number(axis(scene.domain.max, k)) + "]";
+}
+
+/// Rejects a centre outside the domain along a non-periodic axis.
+void check_in_domain(const Scene& scene, const CsvReader& csv, Vec3 centre) {
+  const int k = axis_outside_domain(scene, centre);
+  if (k >= 0)
+    throw InputError(csv.path(), csv.line(), std::string(1, "xyz"[k]),
+                     outside_domain_text(scene, centre, k));
+}
+
+void import_csv(const Scene& scene, std::size_t i, ParticleStore& store, ParticleId& next_id) {
   const ParticleSource& src = scene.sources[i];
   CsvReader csv(src.csv_file);
   const CsvColumns col = csv_columns(csv);
@@ -278,18 +290,84 @@ void import_csv(const Scene& scene, std::size_t i, ParticleStore& store) {
     check_in_domain(scene, csv, centre);
     const Vec3 v{optional(col.vx, "vx", src.velocity.x), optional(col.vy, "vy", src.velocity.y),
                  optional(col.vz, "vz", src.velocity.z)};
-    store.add(store.size(), centre, r, mat, v, 1.0 / sphere_mass(scene.materials[mat].density, r));
+    store.add(next_id++, centre, r, mat, v, 1.0 / sphere_mass(scene.materials[mat].density, r));
   }
+}
+
+/// Fails on the `bed` key of source i with `what`.
+[[noreturn]] void reject_bed(const Scene& scene, std::size_t i, const std::string& what) {
+  const ParticleSource& src = scene.sources[i];
+  throw InputError(scene.file, src.bed_line, source_key(i) + ".bed",
+                   "bed file '" + src.bed_file + "': " + what);
+}
+
+/// The particles of bed source i, read errors reported on its `bed` key.
+ParticleStore read_bed_particles(const Scene& scene, std::size_t i, const BedReader& read_bed) {
+  if (!read_bed) throw std::logic_error("create_particles: a bed source needs a bed reader");
+  try {
+    return read_bed(scene.sources[i].bed_file);
+  } catch (const InputError& e) {
+    throw InputError(scene.file, scene.sources[i].bed_line, source_key(i) + ".bed",
+                     std::string("cannot read the bed: ") + e.what());
+  }
+}
+
+/// Rejects bed particle n when its material or its centre does not fit the scene.
+void check_bed_particle(const Scene& scene, std::size_t i, const ParticleStore& bed,
+                        std::size_t n) {
+  const std::string particle = "particle id " + std::to_string(bed.id[n]);
+  if (bed.material[n] >= scene.materials.size())
+    reject_bed(scene, i,
+               particle + " has material index " + std::to_string(bed.material[n]) +
+                   " but the scene defines " + std::to_string(scene.materials.size()) +
+                   " material(s)");
+  const Vec3 centre = xyz(bed.position_radius[n]);
+  const int k = axis_outside_domain(scene, centre);
+  if (k >= 0) reject_bed(scene, i, particle + ": " + outside_domain_text(scene, centre, k));
+}
+
+/// Appends the particles of bed source i with their ids, velocities and spins; masses from the
+/// scene's material densities.
+void append_bed(const Scene& scene, std::size_t i, const ParticleStore& bed, ParticleStore& store) {
+  for (std::size_t n = 0; n < bed.size(); ++n) {
+    check_bed_particle(scene, i, bed, n);
+    const Real4 p = bed.position_radius[n];
+    const double density = scene.materials[bed.material[n]].density;
+    store.add(bed.id[n], xyz(p), p.w, bed.material[n], xyz(bed.velocity_inv_mass[n]),
+              1.0 / sphere_mass(density, p.w));
+    store.angular_velocity.back() = bed.angular_velocity[n];
+  }
+}
+
+/// The id after the largest of `particles` (0 for none).
+ParticleId id_after(const ParticleStore& particles) {
+  ParticleId next = 0;
+  for (const ParticleId id : particles.id) next = std::max(next, id + 1);
+  return next;
 }
 
 }  // namespace
 
-void create_particles(const Scene& scene, ParticleStore& store) {
-  for (std::size_t i = 0; i < scene.sources.size(); ++i) {
-    if (scene.sources[i].kind == SourceKind::Box)
-      insert_box(scene, i, store);
-    else
-      import_csv(scene, i, store);
+void create_particles(const Scene& scene, ParticleStore& store, const BedReader& read_bed) {
+  const auto& sources = scene.sources;
+  const auto is_bed = [](const ParticleSource& s) { return s.kind == SourceKind::Bed; };
+  const std::size_t bed_index =
+      std::find_if(sources.begin(), sources.end(), is_bed) - sources.begin();
+  ParticleStore bed;
+  if (bed_index < sources.size()) bed = read_bed_particles(scene, bed_index, read_bed);
+  ParticleId next_id = std::max<ParticleId>(store.size(), id_after(bed));
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    switch (sources[i].kind) {
+      case SourceKind::Box:
+        insert_box(scene, i, store, next_id);
+        break;
+      case SourceKind::Csv:
+        import_csv(scene, i, store, next_id);
+        break;
+      case SourceKind::Bed:
+        append_bed(scene, i, bed, store);
+        break;
+    }
   }
 }
 

@@ -1,8 +1,11 @@
 #pragma once
 /// Particle creation from the scene's [[insert]] sources: random non-overlapping insertion in a
-/// box (by count or by volume fraction) with a radius distribution, or CSV import.
+/// box (by count or by volume fraction) with a radius distribution, CSV import, or the
+/// particles of a saved bed.
 #include <cstdint>
+#include <functional>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "core/ParticleStore.hpp"
@@ -10,8 +13,13 @@
 
 namespace gpudem {
 
-/// Creates the particles of every source, in scene order, appending to `store` with
-/// consecutive global ids starting at store.size().
+/// Reads the particles of a bed file (a checkpoint, whose format belongs to the layer that
+/// reads files); throws InputError naming the file when it cannot.
+using BedReader = std::function<ParticleStore(const std::string& bed_file)>;
+
+/// Creates the particles of every source, in scene order, appending to `store`. Bed particles
+/// keep their global ids; the other sources' particles get consecutive ids starting after the
+/// bed's largest id, or at store.size() without a bed source.
 ///
 /// A box source samples all its radii first (`count` of them, or until their volume reaches
 /// volume_fraction × region volume) and places them largest first by random sequential
@@ -24,10 +32,15 @@ namespace gpudem {
 /// vx, vy, vz, in any order named by the header line; missing ones take the source's
 /// material and velocity. CSV particles are not checked for overlaps.
 ///
-/// Throws InputError (file, line, key) for unreadable CSV files, bad rows or values, centres
-/// outside the domain on a non-periodic axis, or a region that cannot hold the requested
-/// particles.
-void create_particles(const Scene& scene, ParticleStore& store);
+/// A bed source (at most one) takes the positions, radii, velocities, spins, materials and ids
+/// of the file `read_bed` reads; masses follow from the scene's material densities. Bed
+/// particles are not checked for overlaps either; box sources listed after a bed avoid it.
+///
+/// Throws InputError (file, line, key) for unreadable CSV or bed files, bad rows or values,
+/// centres outside the domain on a non-periodic axis, bed materials beyond the scene's, or a
+/// region that cannot hold the requested particles; std::logic_error for a bed source without
+/// `read_bed`.
+void create_particles(const Scene& scene, ParticleStore& store, const BedReader& read_bed = {});
 
 /// Draws `count` radii from `dist` [m]: uniform on [mean - spread, mean + spread]; normal
 /// (mean, stddev) redrawn until within [min, max]; or values[k] with probability

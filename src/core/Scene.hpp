@@ -94,9 +94,10 @@ struct RadiusDistribution {
   std::vector<double> weights;  ///< discrete weights (by count), normalised by the user of it
 };
 
-enum class SourceKind { Box, Csv };
+enum class SourceKind { Box, Csv, Bed };
 
-/// One [[insert]] entry: random non-overlapping insertion in a box, or a CSV file.
+/// One [[insert]] entry: random non-overlapping insertion in a box, a CSV file, or the
+/// particles of a saved bed.
 struct ParticleSource {
   SourceKind kind = SourceKind::Box;
   Vec3 region_min, region_max;  ///< [m] box region
@@ -106,6 +107,8 @@ struct ParticleSource {
   MaterialId material = 0;
   Vec3 velocity;         ///< [m/s] initial velocity (box)
   std::string csv_file;  ///< CSV path, resolved relative to the scene file
+  std::string bed_file;  ///< bed (checkpoint) path, resolved relative to the scene file
+  int bed_line = 0;      ///< line of `bed` in the scene file (0: unknown or from --set)
 };
 
 struct OutputSettings {
@@ -116,6 +119,19 @@ struct OutputSettings {
 
 struct CheckpointSettings {
   double every = 0;  ///< [s] checkpoint interval; 0 = no checkpoints
+};
+
+/// [preparation]: the run settles a bed, trims it and saves it.
+struct PreparationSettings {
+  bool enabled = false;  ///< a [preparation] table is present
+  /// [J] settled when the mean kinetic energy per particle (translational + rotational)
+  /// falls below this
+  double kinetic_energy = 0;
+  /// [s] first time at which settling is checked; < 0 = automatic: √(2H/|g|), H the domain's
+  /// extent along gravity (0 without gravity)
+  double check_after = -1;
+  double remove_above = 0;  ///< [m] particles whose centre is higher along −g are removed
+  std::string bed_file;     ///< bed path (relative to the working directory); empty = default
 };
 
 struct Scene {
@@ -129,6 +145,7 @@ struct Scene {
   std::vector<ParticleSource> sources;
   OutputSettings output;
   CheckpointSettings checkpoint;
+  PreparationSettings preparation;
 };
 
 }  // namespace gpudem

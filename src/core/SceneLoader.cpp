@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <toml.hpp>
@@ -430,20 +431,72 @@ ParticleSource read_csv_source(const TableReader& table, const Scene& scene) {
   return s;
 }
 
+/// A bed source: the particles of a saved bed file (resolved like a CSV file, not opened).
+ParticleSource read_bed_source(const TableReader& table, const Scene& scene) {
+  std::vector<std::string> other_keys = kBoxOnlyKeys;
+  other_keys.push_back("material");
+  for (const std::string& key : other_keys) {
+    if (table.has(key)) {
+      table.fail(key, "'" + key +
+                          "' does not apply to a bed source, whose particles keep their own "
+                          "values; a bed source takes only bed");
+    }
+  }
+  ParticleSource s;
+  s.kind = SourceKind::Bed;
+  const std::filesystem::path bed = table.string("bed");
+  const std::filesystem::path scene_dir = std::filesystem::path(scene.file).parent_path();
+  s.bed_file = bed.is_absolute() ? bed.string() : (scene_dir / bed).lexically_normal().string();
+  s.bed_line = table.line("bed");
+  return s;
+}
+
+/// The one source kind an [[insert]] entry names by its `region`, `csv` or `bed` key.
+SourceKind source_kind(const TableReader& table) {
+  const std::pair<std::string, SourceKind> kinds[] = {
+      {"region", SourceKind::Box}, {"csv", SourceKind::Csv}, {"bed", SourceKind::Bed}};
+  const std::pair<std::string, SourceKind>* chosen = nullptr;
+  for (const auto& kind : kinds) {
+    if (!table.has(kind.first)) continue;
+    if (chosen) {
+      table.fail(kind.first, "an [[insert]] takes either " + kind.first + " or " + chosen->first +
+                                 ", not both");
+    }
+    chosen = &kind;
+  }
+  if (!chosen) {
+    table.fail("region",
+               "missing 'region' (random insertion in a box), 'csv' (particles from a file) or "
+               "'bed' (the particles of a saved bed) in [[insert]]");
+  }
+  return chosen->second;
+}
+
+ParticleSource read_source(const TableReader& table, const Scene& scene) {
+  table.allow_only(
+      {"csv", "region", "bed", "count", "volume_fraction", "radius", "material", "velocity"});
+  switch (source_kind(table)) {
+    case SourceKind::Csv:
+      return read_csv_source(table, scene);
+    case SourceKind::Bed:
+      return read_bed_source(table, scene);
+    case SourceKind::Box:
+      break;
+  }
+  return read_box_source(table, scene);
+}
+
 std::vector<ParticleSource> read_sources(const TableReader& root, const Scene& scene) {
   std::vector<ParticleSource> sources;
-  for (const TableReader& table : root.array_of_tables("insert")) {
-    table.allow_only(
-        {"csv", "region", "count", "volume_fraction", "radius", "material", "velocity"});
-    const bool csv = table.has("csv");
-    const bool box = table.has("region");
-    if (csv && box) table.fail("csv", "an [[insert]] takes either csv or region, not both");
-    if (!csv && !box) {
-      table.fail("region",
-                 "missing 'region' (random insertion in a box) or 'csv' (particles "
-                 "from a file) in [[insert]]");
+  const std::vector<TableReader> tables = root.array_of_tables("insert");
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    sources.push_back(read_source(tables[i], scene));
+    for (std::size_t j = 0; j < i; ++j) {
+      if (sources[i].kind == SourceKind::Bed && sources[j].kind == SourceKind::Bed) {
+        tables[i].fail("bed", "a scene takes at most one bed source (also given by insert[" +
+                                  std::to_string(j) + "])");
+      }
     }
-    sources.push_back(csv ? read_csv_source(table, scene) : read_box_source(table, scene));
   }
   return sources;
 }
@@ -466,6 +519,26 @@ CheckpointSettings read_checkpoint(const TableReader& root) {
   return c;
 }
 
+/// [preparation]: settle, trim and save a bed. The bed file is left empty for the runner to
+/// default to <output.dir>/bed.h5 once --output-dir has been applied. Heights are measured
+/// against gravity, which must therefore be non-zero.
+PreparationSettings read_preparation(const TableReader& root, Vec3 gravity) {
+  PreparationSettings p;
+  if (!root.has("preparation")) return p;
+  const TableReader table = root.table("preparation");
+  table.allow_only({"kinetic_energy", "remove_above", "bed_file", "check_after"});
+  p.enabled = true;
+  p.kinetic_energy = table.number("kinetic_energy", positive("J"));
+  p.remove_above = table.number("remove_above", any_value("m"));
+  if (!(norm(gravity) > 0)) {
+    table.fail("remove_above",
+               "heights are measured against gravity, but simulation.gravity is zero");
+  }
+  p.bed_file = table.string("bed_file", p.bed_file);
+  p.check_after = table.number("check_after", non_negative("s"), p.check_after);
+  return p;
+}
+
 }  // namespace
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
@@ -473,7 +546,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   apply_overrides(tree, overrides);
   const TableReader root(tree, path, "", "");
   root.allow_only({"simulation", "domain", "material", "contact", "pair", "neighbor", "wall",
-                   "insert", "output", "checkpoint"});
+                   "insert", "output", "checkpoint", "preparation"});
   Scene scene;
   scene.file = path;
   scene.simulation = read_simulation(root);
@@ -486,6 +559,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   scene.sources = read_sources(root, scene);
   scene.output = read_output(root);
   scene.checkpoint = read_checkpoint(root);
+  scene.preparation = read_preparation(root, scene.simulation.gravity);
   return scene;
 }
 
