@@ -248,12 +248,15 @@ class TimeLoop {
                    "stiffness and initial overlaps.\n",
                    static_cast<unsigned long long>(step), step * dt_,
                    static_cast<unsigned long long>(f.id), f.position.x, f.position.y, f.position.z,
-                   f.non_finite ? "has a non-finite position or velocity"
-                                : ("overlaps by " + std::to_string(f.overlap_ratio * 100) +
-                                   " % of its radius")
-                                      .c_str(),
+                   describe(f).c_str(),
                    snapshots_.files().back().c_str());
     return kExitUnstable;
+  }
+
+  static std::string describe(const HealthFailure& f) {
+    if (f.non_finite) return "has a non-finite position or velocity";
+    if (f.mesh_overflow) return "touches more mesh triangles at once than the engine holds (16)";
+    return "overlaps by " + std::to_string(f.overlap_ratio * 100) + " % of its radius";
   }
 
   const Scene& scene_;

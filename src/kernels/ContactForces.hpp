@@ -6,6 +6,9 @@
 
 namespace gpudem {
 
+/// Overlap ratio recorded for a particle whose mesh candidates overflowed (health check).
+constexpr Real kMeshOverflowScore = Real(1e200);
+
 /// Torque of a contact force about i's centre plus the law's rolling torque.
 template <class Law>
 GPUDEM_HD Vec3 contact_torque(const ContactSample<Law>& c, const ContactForce& f) {
@@ -14,17 +17,28 @@ GPUDEM_HD Vec3 contact_torque(const ContactSample<Law>& c, const ContactForce& f
   return torque;
 }
 
+/// Writable history arrays of one particle's contacts.
+template <class Law>
+struct HistoryArrays {
+  typename Law::State* pair;
+  typename Law::State* wall;
+  typename Law::State* mesh;
+  GPUDEM_HD typename Law::State* of(const ContactSample<Law>& c) const {
+    return c.mesh >= 0 ? mesh : (c.wall >= 0 ? wall : pair);
+  }
+};
+
 template <class Law>
 struct ForceSum {
-  typename Law::State* pair_history;
-  typename Law::State* wall_history;
+  HistoryArrays<Law> history;
   Real dt;
   Vec3 force;
   Vec3 torque;
   Real worst_overlap_ratio = 0;
+  bool mesh_overflow = false;
   GPUDEM_HD void operator()(ContactSample<Law>& c) {
     const ContactForce f = Law::evaluate(*c.params, c.point, c.state.value, dt);
-    if constexpr (Law::history_size > 0) (c.wall < 0 ? pair_history : wall_history)[c.slot] = c.state;
+    if constexpr (Law::history_size > 0) history.of(c)[c.slot] = c.state;
     force += f.force;
     if constexpr (Law::needs_spin) torque += contact_torque(c, f);
     const Real ratio = c.point.overlap / c.min_radius;
@@ -32,11 +46,16 @@ struct ForceSum {
   }
   /// A contact that opened forgets its history.
   GPUDEM_HD void separated(std::uint32_t slot) {
-    if constexpr (Law::history_size > 0) pair_history[slot] = typename Law::State{};
+    if constexpr (Law::history_size > 0) history.pair[slot] = typename Law::State{};
   }
   GPUDEM_HD void separated_from_wall(std::uint32_t slot) {
-    if constexpr (Law::history_size > 0) wall_history[slot] = typename Law::State{};
+    if constexpr (Law::history_size > 0) history.wall[slot] = typename Law::State{};
   }
+  GPUDEM_HD void separated_from_mesh(std::uint32_t slot) {
+    if constexpr (Law::history_size > 0) history.mesh[slot] = typename Law::State{};
+  }
+  /// More triangles within contact than MeshContactCandidates holds: flagged as unhealthy.
+  GPUDEM_HD void mesh_overflow_seen() { mesh_overflow = true; }
 };
 
 /// F_i = m_i g + Σ contacts, T_i = Σ (arm × F + rolling torque) (one thread per particle).
@@ -46,17 +65,16 @@ struct ComputeForces {
   ContactScene<Law> scene;
   Vec3 gravity;
   Real dt;
-  typename Law::State* pair_history;  ///< scene.pair_history / wall_history, writable
-  typename Law::State* wall_history;
+  HistoryArrays<Law> history;  ///< scene's history arrays, writable
   Vec3* force;
   Vec3* torque;
   Real* overlap_ratio;
   GPUDEM_HD void operator()(std::size_t i) const {
-    ForceSum<Law> sum{pair_history, wall_history, dt, Vec3{}, Vec3{}, Real(0)};
+    ForceSum<Law> sum{history, dt, Vec3{}, Vec3{}, Real(0)};
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, sum);
     force[i] = sum.force + (Real(1) / particles.velocity_inv_mass[i].w) * gravity;
     if constexpr (Law::needs_spin) torque[i] = sum.torque;
-    overlap_ratio[i] = sum.worst_overlap_ratio;
+    overlap_ratio[i] = sum.mesh_overflow ? kMeshOverflowScore : sum.worst_overlap_ratio;
   }
 };
 

@@ -1,7 +1,8 @@
 #pragma once
-/// Walks every contact of one particle — neighbours from the Verlet list, then plane walls —
-/// and hands each touching one to a visitor (`visit(sample)`), and each listed partner that
-/// is not touching to `visit.separated(slot)`. Forces, energies and counters are all
+/// Walks every contact of one particle — neighbours from the Verlet list, plane walls, then
+/// mesh walls — and hands each touching one to a visitor (`visit(sample)`), and each listed
+/// partner that is not touching to `visit.separated(slot)` (`separated_from_wall`,
+/// `separated_from_mesh`). Forces, energies and counters are all
 /// visitors, so the contact geometry lives in one place. The sweep loads only what the
 /// contact law's capability flags ask for (spins, inertias, history).
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include "core/ContactParams.hpp"
 #include "core/ParticleStore.hpp"
 #include "core/Vec3.hpp"
+#include "kernels/MeshWalls.hpp"
 #include "kernels/PeriodicBox.hpp"
 #include "kernels/PlaneWall.hpp"
 #include "kernels/contact/ContactLaw.hpp"
@@ -38,12 +40,16 @@ struct ContactScene {
   PeriodicBox box;
   const typename Law::State* pair_history;  ///< per neighbour-list entry
   const typename Law::State* wall_history;  ///< per (particle, wall): slot i·wall_count + w
+  MeshView mesh;
+  const typename Law::State* mesh_history;  ///< per mesh candidate-list entry
 };
 
 /// Base for visitors that ignore partners out of contact.
 struct IgnoreSeparated {
   GPUDEM_HD void separated(std::uint32_t) {}
   GPUDEM_HD void separated_from_wall(std::uint32_t) {}
+  GPUDEM_HD void separated_from_mesh(std::uint32_t) {}
+  GPUDEM_HD void mesh_overflow_seen() {}
 };
 
 /// One touching contact as seen from particle i.
@@ -53,8 +59,9 @@ struct ContactSample {
   Real arm;         ///< lever arm on i: r_i − δ/2, along point.normal [m]
   Real min_radius;  ///< smaller radius of the pair (r_i for walls) [m]
   const ContactPairParams* params;
-  std::int32_t wall;          ///< wall index, or −1 for a particle partner
-  std::uint32_t slot;         ///< index of this contact's history (pair or wall array)
+  std::int32_t wall;          ///< plane wall index, or −1
+  std::int32_t mesh = -1;     ///< mesh index, or −1
+  std::uint32_t slot;         ///< index of this contact's history (pair, wall or mesh array)
   typename Law::State state;  ///< history stored at the end of the last step
 };
 
@@ -90,11 +97,12 @@ GPUDEM_HD void describe_pair(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi,
 }
 
 /// Fills the fields of a wall contact that the law's flags ask for (wall: infinite mass
-/// and radius, at rest).
+/// and radius; its surface moves with `wall_velocity` at the contact point).
 template <class Law>
-GPUDEM_HD void describe_wall(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi) {
+GPUDEM_HD void describe_wall(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi,
+                             Vec3 wall_velocity) {
   ContactPoint& k = c.point;
-  Vec3 ui = xyz(vi);
+  Vec3 ui = xyz(vi) - wall_velocity;
   if constexpr (Law::needs_spin) {
     ui += cross(wi, c.arm * k.normal);
     k.relative_spin = wi;
@@ -109,6 +117,90 @@ GPUDEM_HD void describe_wall(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi)
   }
   if constexpr (Law::needs_contact_area)
     k.contact_radius_sq = wall_contact_radius_sq(xi.w, k.overlap);
+}
+
+/// True when every history value of `state` is zero (a contact that has none yet).
+template <class State>
+GPUDEM_HD bool is_blank(const State& state, int width) {
+  for (int k = 0; k < width; ++k)
+    if (state.value[k] != 0) return false;
+  return true;
+}
+
+/// True when triangles s and t share a vertex.
+GPUDEM_HD inline bool share_vertex(const TriangleIds& s, const TriangleIds& t) {
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      if (s.vertex[a] == t.vertex[b]) return true;
+  return false;
+}
+
+/// History of the contact on list entry e: its own, or, when it has none yet, that of another
+/// entry of the particle on a triangle sharing a vertex that is not in contact now — the
+/// contact slid over from that triangle, and its spring goes with it.
+template <class Law>
+GPUDEM_HD typename Law::State mesh_contact_state(const ContactScene<Law>& s, std::uint32_t begin,
+                                                 std::uint32_t end, std::uint32_t e,
+                                                 const std::uint32_t* in_contact, int kept) {
+  typename Law::State state = s.mesh_history[e];
+  if (!is_blank(state, Law::history_size)) return state;
+  const TriangleIds& here = s.mesh.ids[s.mesh.triangles[e]];
+  for (std::uint32_t f = begin; f < end; ++f) {
+    bool touching = false;
+    for (int k = 0; k < kept; ++k) touching = touching || in_contact[k] == f;
+    if (touching || is_blank(s.mesh_history[f], Law::history_size)) continue;
+    if (share_vertex(here, s.mesh.ids[s.mesh.triangles[f]])) return s.mesh_history[f];
+  }
+  return state;
+}
+
+/// The listed triangles of particle i within contact, reduced to the contacts that count
+/// once where triangles meet (select_mesh_contacts); each one is visited with the history of
+/// the list entry of its triangle (mesh_contact_state), and the entries with no contact are
+/// separated. All history is read before any is written.
+template <class Law, class Visitor>
+GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi, MaterialId mi,
+                                   const ContactScene<Law>& s, Visitor& visit) {
+  const MeshView& m = s.mesh;
+  const std::uint32_t begin = m.offsets[i], end = m.offsets[i + 1];
+  MeshContactCandidates set;
+  for (std::uint32_t e = begin; e < end; ++e) {
+    const TriangleCorners t = m.corners[m.triangles[e]];
+    add_mesh_candidate(set, xyz(xi), xi.w, m.vertices[t.v[0]], m.vertices[t.v[1]],
+                       m.vertices[t.v[2]], m.ids[m.triangles[e]]);
+  }
+  if (set.overflow) visit.mesh_overflow_seen();
+  const int kept = select_mesh_contacts(set, xi.w);
+  std::uint32_t entry[MeshContactCandidates::kCapacity];
+  for (int k = 0; k < kept; ++k)
+    for (std::uint32_t e = begin; e < end; ++e)
+      if (m.triangles[e] == set.items[k].ids.triangle) entry[k] = e;
+  typename Law::State state[MeshContactCandidates::kCapacity];
+  if constexpr (Law::history_size > 0)
+    for (int k = 0; k < kept; ++k) state[k] = mesh_contact_state(s, begin, end, entry[k], entry, kept);
+  for (std::uint32_t e = begin; e < end; ++e) {
+    int found = -1;
+    for (int k = 0; k < kept; ++k)
+      if (entry[k] == e) found = k;
+    if (found < 0) {
+      visit.separated_from_mesh(e);
+      continue;
+    }
+    const MeshContactCandidate& hit = set.items[found];
+    const std::uint32_t mesh = m.triangle_mesh[hit.ids.triangle];
+    ContactSample<Law> c;
+    c.point.normal = mesh_contact_normal(hit, xyz(xi));
+    c.point.overlap = mesh_contact_overlap(hit, xi.w);
+    c.arm = xi.w - Real(0.5) * c.point.overlap;
+    describe_wall(c, xi, vi, wi, m.kinematics[mesh].at(hit.point));
+    c.min_radius = xi.w;
+    c.params = &s.pair_params[mi * s.material_count + m.material[mesh]];
+    c.wall = -1;
+    c.mesh = static_cast<std::int32_t>(mesh);
+    c.slot = e;
+    if constexpr (Law::history_size > 0) c.state = state[found];
+    visit(c);
+  }
 }
 
 /// Calls visit(sample) for each contact of particle i with positive overlap.
@@ -157,7 +249,7 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p,
     c.point.normal = -wall.normal;
     c.point.overlap = overlap;
     c.arm = xi.w - Real(0.5) * overlap;
-    describe_wall(c, xi, vi, wi);
+    describe_wall(c, xi, vi, wi, Vec3{});
     c.min_radius = xi.w;
     c.params = &s.pair_params[mi * s.material_count + wall.material];
     c.wall = static_cast<std::int32_t>(w);
@@ -165,6 +257,7 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p,
     if constexpr (Law::history_size > 0) c.state = s.wall_history[slot];
     visit(c);
   }
+  if (s.mesh.mesh_count > 0) visit_mesh_contacts(i, xi, vi, wi, mi, s, visit);
 }
 
 }  // namespace gpudem

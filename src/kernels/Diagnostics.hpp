@@ -39,7 +39,8 @@ struct GravityEnergy {
 
 /// Particle i's contact terms, written per particle so that the sums need no law-specific
 /// reduction: its share of the contact count and of the elastic energy (a particle pair is
-/// seen from both sides, so each side adds ½), and the force it exerts on each wall. The
+/// seen from both sides, so each side adds ½), the force it exerts on each body (plane walls
+/// w, then meshes wall_count + m) and its torque on each mesh about the mesh's centre. The
 /// stored history is read, not advanced (dt = 0).
 template <class Law>
 struct ContactTerms {
@@ -47,37 +48,57 @@ struct ContactTerms {
   ContactScene<Law> scene;
   Real* contacts;      ///< per particle
   Real* energy;        ///< per particle [J]
-  Vec3* wall_force;    ///< per (particle, wall): i·wall_count + w [N]
+  Vec3* body_force;    ///< per (particle, body): i·body_count + body [N]
+  Vec3* mesh_torque;   ///< per (particle, mesh): i·mesh_count + m [N m]
   struct Tally : IgnoreSeparated {
     Real contacts = 0;
     Real energy = 0;
-    Vec3* wall_force;
+    Vec3 centre;
+    Vec3* body_force;
+    Vec3* mesh_torque;
+    const MeshKinematics* kinematics;
+    std::uint32_t wall_count;
     GPUDEM_HD void operator()(ContactSample<Law>& c) {
-      const Real share = c.wall < 0 ? Real(0.5) : Real(1);
+      const bool pair = c.wall < 0 && c.mesh < 0;
+      const Real share = pair ? Real(0.5) : Real(1);
       contacts += share;
       energy += share * Law::energy(*c.params, c.point, c.state.value);
-      if (c.wall >= 0) wall_force[c.wall] = -Law::evaluate(*c.params, c.point, c.state.value, 0).force;
+      if (pair) return;
+      const Vec3 load = -Law::evaluate(*c.params, c.point, c.state.value, 0).force;
+      if (c.wall >= 0) {
+        body_force[c.wall] += load;
+      } else {
+        body_force[wall_count + c.mesh] += load;
+        const Vec3 at = centre + c.arm * c.point.normal;
+        mesh_torque[c.mesh] += cross(at - kinematics[c.mesh].centre, load);
+      }
     }
   };
   GPUDEM_HD void operator()(std::size_t i) const {
-    Vec3* walls = wall_force + i * scene.wall_count;
-    for (std::uint32_t w = 0; w < scene.wall_count; ++w) walls[w] = Vec3{};
+    const std::uint32_t bodies = scene.wall_count + scene.mesh.mesh_count;
     Tally t;
-    t.wall_force = walls;
+    t.body_force = body_force + i * bodies;
+    t.mesh_torque = mesh_torque + i * scene.mesh.mesh_count;
+    for (std::uint32_t b = 0; b < bodies; ++b) t.body_force[b] = Vec3{};
+    for (std::uint32_t m = 0; m < scene.mesh.mesh_count; ++m) t.mesh_torque[m] = Vec3{};
+    t.centre = xyz(particles.position_radius[i]);
+    t.kinematics = scene.mesh.kinematics;
+    t.wall_count = scene.wall_count;
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, t);
     contacts[i] = t.contacts;
     energy[i] = t.energy;
   }
 };
 
-/// Component `component` of the force particle i exerts on wall `wall`, from ContactTerms.
-struct WallForceComponent {
-  const Vec3* wall_force;
-  std::uint32_t wall_count;
-  std::uint32_t wall;
+/// Component `component` of the load `per_particle` row i holds for column `column` of
+/// `columns` (a body's force or a mesh's torque), from ContactTerms.
+struct LoadComponent {
+  const Vec3* per_particle;
+  std::uint32_t columns;
+  std::uint32_t column;
   int component;
   GPUDEM_HD Real operator()(std::size_t i) const {
-    return axis(wall_force[i * wall_count + wall], component);
+    return axis(per_particle[i * columns + column], component);
   }
 };
 

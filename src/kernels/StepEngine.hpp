@@ -13,6 +13,7 @@
 #include "core/Scene.hpp"
 #include "core/ContactModel.hpp"
 #include "core/ContactParams.hpp"
+#include "kernels/MeshWallSetup.hpp"
 #include "kernels/PeriodicBox.hpp"
 #include "kernels/PlaneWall.hpp"
 
@@ -29,6 +30,7 @@ struct EngineSetup {
   std::uint32_t material_count = 0;
   std::vector<ContactPairParams> pair_params;  ///< material_count² entries, row-major
   std::vector<PlaneWall> walls;
+  std::vector<MeshWallSetup> meshes;  ///< triangle-mesh walls (tools)
 };
 
 /// Global quantities reduced over all particles; walls' forces are the forces the
@@ -42,6 +44,8 @@ struct Diagnostics {
   double potential_elastic = 0;      ///< Σ contact spring energy [J]
   double max_overlap_ratio = 0;      ///< max over contacts of δ / min(r_i, r_j)
   std::vector<Vec3> wall_force;
+  std::vector<Vec3> mesh_force;   ///< force the particles exert on each mesh [N]
+  std::vector<Vec3> mesh_torque;  ///< their torque on each mesh about its centre [N m]
 };
 
 /// A particle the health check rejected: non-finite state or an overlap beyond the limit.
@@ -50,6 +54,7 @@ struct HealthFailure {
   Vec3 position;
   double overlap_ratio = 0;
   bool non_finite = false;
+  bool mesh_overflow = false;  ///< more mesh triangles in contact than one particle can hold
 };
 
 class StepEngine {

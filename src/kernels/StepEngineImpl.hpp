@@ -12,6 +12,7 @@
 #include "kernels/DeviceArray.hpp"
 #include "kernels/Diagnostics.hpp"
 #include "kernels/Integrators.hpp"
+#include "kernels/MeshWalls.hpp"
 #include "kernels/NeighborList.hpp"
 #include "kernels/Permute.hpp"
 #include "kernels/StepEngine.hpp"
@@ -48,6 +49,11 @@ struct WrapPositions {
     position_radius[i].y = p.y;
     position_radius[i].z = p.z;
   }
+};
+
+struct Radius {
+  const Real4* position_radius;
+  GPUDEM_HD Real operator()(std::size_t i) const { return position_radius[i].w; }
 };
 
 struct ReadValue {
@@ -122,7 +128,7 @@ class StepEngineImpl final : public StepEngine {
   static constexpr std::uint32_t kHistoryWidth = Law::history_size;
 
  public:
-  explicit StepEngineImpl(const EngineSetup& setup) : setup_(setup) {
+  explicit StepEngineImpl(const EngineSetup& setup) : setup_(setup), meshes_(setup.meshes) {
     pair_params_.upload(setup.pair_params);
     walls_.upload(setup.walls);
   }
@@ -187,6 +193,8 @@ class StepEngineImpl final : public StepEngine {
     const bool verlet = setup_.integrator == IntegratorKind::VelocityVerlet;
     kick(verlet ? Real(0.5) * dt : dt);
     parallel_for(Space{}, size(), Drift{position_radius_.data(), velocity_inv_mass_.data(), dt});
+    ++steps_;
+    if (!meshes_.empty()) meshes_.set_time(steps_ * dt);
     if (needs_rebuild()) rebuild();
     compute_forces();
     if (verlet) kick(Real(0.5) * dt);
@@ -211,7 +219,8 @@ class StepEngineImpl final : public StepEngine {
       const Real s = host_score(i);
       if (s <= limit) continue;
       failure =
-          HealthFailure{host.id[i], xyz(host.position_radius[i]), ratio[i], s == kNonFiniteScore};
+          HealthFailure{host.id[i], xyz(host.position_radius[i]), ratio[i],
+                        s == kNonFiniteScore, ratio[i] == kMeshOverflowScore};
       return true;
     }
     return false;
@@ -232,20 +241,20 @@ class StepEngineImpl final : public StepEngine {
         Space{}, n,
         GravityEnergy{velocity_inv_mass_.data(), position_radius_.data(), setup_.gravity});
     DeviceArray<Real, Space> contacts(n), energy(n);
-    DeviceArray<Vec3, Space> wall_force(n * wall_count());
+    const std::uint32_t bodies = wall_count() + meshes_.count();
+    DeviceArray<Vec3, Space> body_force(n * bodies), mesh_torque(n * meshes_.count());
     parallel_for(Space{}, n,
                  ContactTerms<Law>{view, contact_scene(), contacts.data(), energy.data(),
-                                   wall_force.data()});
+                                   body_force.data(), mesh_torque.data()});
     d.potential_elastic = reduce_sum(Space{}, n, ReadValue{energy.data()});
     d.contact_count =
         static_cast<std::uint64_t>(std::llround(reduce_sum(Space{}, n, ReadValue{contacts.data()})));
     d.max_overlap_ratio = reduce_max(Space{}, n, Real(0), ReadValue{overlap_ratio_.data()});
-    for (std::uint32_t w = 0; w < wall_count(); ++w) {
-      Vec3 f;
-      for (int k = 0; k < 3; ++k)
-        axis(f, k) =
-            reduce_sum(Space{}, n, WallForceComponent{wall_force.data(), wall_count(), w, k});
-      d.wall_force.push_back(f);
+    for (std::uint32_t w = 0; w < wall_count(); ++w)
+      d.wall_force.push_back(column_sum(body_force, bodies, w));
+    for (std::uint32_t m = 0; m < meshes_.count(); ++m) {
+      d.mesh_force.push_back(column_sum(body_force, bodies, wall_count() + m));
+      d.mesh_torque.push_back(column_sum(mesh_torque, meshes_.count(), m));
     }
     return d;
   }
@@ -258,7 +267,7 @@ class StepEngineImpl final : public StepEngine {
            force_.bytes() + torque_.bytes() + id_.bytes() + material_.bytes() +
            overlap_ratio_.bytes() + position_at_build_.bytes() + pair_history_.bytes() +
            wall_history_.bytes() + scratch_bytes() + cells_.memory_bytes() +
-           neighbors_.memory_bytes();
+           neighbors_.memory_bytes() + meshes_.memory_bytes();
   }
 
   std::string backend_name() const override { return Space::name; }
@@ -299,9 +308,25 @@ class StepEngineImpl final : public StepEngine {
     permute_array(cells_.order(), n, force);
     permute_array(cells_.order(), n, torque);
     neighbors_.build(cells_, position_at_build_.data(), n, setup_.box, setup_.skin);
+    meshes_.rebuild(position_at_build_.data(), n, largest_radius(), setup_.skin,
+                    previous_index_.data(), false);
     if constexpr (kHistoryWidth > 0) pair_history_.resize(neighbors_.pairs_kept());
     zero_history();
     has_list_ = true;
+  }
+
+  /// Σ over particles of column `column` of a per-(particle, column) load array.
+  Vec3 column_sum(const DeviceArray<Vec3, Space>& load, std::uint32_t columns,
+                  std::uint32_t column) const {
+    Vec3 sum;
+    for (int k = 0; k < 3; ++k)
+      axis(sum, k) =
+          reduce_sum(Space{}, size(), LoadComponent{load.data(), columns, column, k});
+    return sum;
+  }
+
+  Real largest_radius() const {
+    return reduce_max(Space{}, size(), Real(0), Radius{position_radius_.data()});
   }
 
   void zero_history() {
@@ -357,7 +382,8 @@ class StepEngineImpl final : public StepEngine {
   ContactScene<Law> contact_scene() const {
     return ContactScene<Law>{neighbors_.offsets(), neighbors_.neighbors(), pair_params_.data(),
                              setup_.material_count, walls_.data(),         wall_count(),
-                             setup_.box,            pair_history_.data(),  wall_history_.data()};
+                             setup_.box,            pair_history_.data(),  wall_history_.data(),
+                             meshes_.view(),        meshes_.history()};
   }
 
   void kick(Real h) {
@@ -370,18 +396,23 @@ class StepEngineImpl final : public StepEngine {
 
   void compute_forces() {
     parallel_for(Space{}, size(),
-                 ComputeForces<Law>{particle_view(), contact_scene(), setup_.gravity, setup_.dt,
-                                    pair_history_.data(), wall_history_.data(), force_.data(),
-                                    torque_.data(), overlap_ratio_.data()});
+                 ComputeForces<Law>{particle_view(),
+                                    contact_scene(),
+                                    setup_.gravity,
+                                    setup_.dt,
+                                    {pair_history_.data(), wall_history_.data(), meshes_.history()},
+                                    force_.data(),
+                                    torque_.data(),
+                                    overlap_ratio_.data()});
   }
 
-  /// The Verlet list stays valid while no particle moved more than skin/2.
+  /// The lists stay valid while no particle and no mesh vertex moved more than skin/2.
   bool needs_rebuild() const {
     const Real moved2 =
         reduce_max(Space{}, size(), Real(0),
                    DisplacementSquared{position_radius_.data(), position_at_build_.data()});
     const Real half_skin = Real(0.5) * setup_.skin;
-    return moved2 > half_skin * half_skin;
+    return moved2 > half_skin * half_skin || meshes_.moved_beyond(half_skin);
   }
 
   /// Wraps periodic images, removes particles that left the box, sorts by cell, rebuilds the
@@ -398,6 +429,8 @@ class StepEngineImpl final : public StepEngine {
     cells_.bin(position_radius_.data(), n, setup_.box, setup_.skin);
     reorder(cells_.order(), n);
     neighbors_.build(cells_, position_radius_.data(), n, setup_.box, setup_.skin);
+    meshes_.rebuild(position_radius_.data(), n, largest_radius(), setup_.skin,
+                    previous_index_.data(), has_list_);
     remap_pair_history();
     position_at_build_.resize(n);
     parallel_for(Space{}, n, CopyArray<Real4>{position_radius_.data(), position_at_build_.data()});
@@ -501,6 +534,8 @@ class StepEngineImpl final : public StepEngine {
   CellList<Space> cells_;
   NeighborList<Space> neighbors_;
   NeighborList<Space> previous_neighbors_;
+  MeshWalls<Space, Law> meshes_;
+  std::uint64_t steps_ = 0;  ///< steps taken by this engine (the meshes' clock)
   bool has_list_ = false;
   std::uint64_t removed_ = 0;
   std::uint64_t rebuilds_ = 0;

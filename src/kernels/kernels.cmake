@@ -2,7 +2,7 @@
 # (StepEngineImpl.hpp via EngineFactory.hpp), one translation unit per normal law.
 add_library(gpudem_kernels STATIC kernels/StepEngineHost.cpp kernels/StepEngineHostHooke.cpp
                                   kernels/StepEngineHostHertz.cpp)
-target_link_libraries(gpudem_kernels PUBLIC gpudem_contact_model)
+target_link_libraries(gpudem_kernels PUBLIC gpudem_contact_model gpudem_mesh)
 if(GPUDEM_HAVE_CUDA)
   target_sources(gpudem_kernels PRIVATE kernels/CudaMemory.cu kernels/StepEngineCuda.cu
                                         kernels/StepEngineCudaHooke.cu kernels/StepEngineCudaHertz.cu)

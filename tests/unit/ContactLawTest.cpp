@@ -106,11 +106,12 @@ TEST(ContactLawCost, HookeOnlyKernelReadsNoSpinTorqueOrHistory) {
   box.length = {2, 2, 2};
   const ParticleView view{x.data(), v.data(), nullptr, material.data()};
   const ContactScene<HookeOnly> scene{offsets.data(), neighbors.data(), &params, 1, nullptr, 0,
-                                      box,            nullptr,          nullptr};
+                                      box,            nullptr,          nullptr, MeshView{},
+                                      nullptr};
   std::vector<Vec3> force(2);
   std::vector<Real> ratio(2);
   parallel_for(HostSpace{}, 2,
-               ComputeForces<HookeOnly>{view, scene, Vec3{}, Real(1e-6), nullptr, nullptr,
+               ComputeForces<HookeOnly>{view, scene, Vec3{}, Real(1e-6), {nullptr, nullptr, nullptr},
                                         force.data(), nullptr, ratio.data()});
   const double expected = params.hooke_stiffness * 0.001;
   EXPECT_NEAR(force[0].x, -expected, 1e-9 * expected);

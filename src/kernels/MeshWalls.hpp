@@ -1,0 +1,231 @@
+#pragma once
+/// The triangle-mesh walls (tools) of a step engine in one memory space: vertices moved
+/// rigidly by their prescribed motion every step, the per-particle triangle candidate lists
+/// rebuilt with the neighbour list, and the contact history of each (particle, listed
+/// triangle) entry, carried over a rebuild by (particle, triangle). Include the backend's
+/// ParallelFor header first.
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/Rotation.hpp"
+#include "kernels/DeviceArray.hpp"
+#include "kernels/MeshCandidateList.hpp"
+#include "kernels/MeshWallSetup.hpp"
+
+namespace gpudem {
+
+/// Rigid motion of one mesh at the current time, for the velocity of its surface.
+struct MeshKinematics {
+  Vec3 velocity;          ///< of the centre [m/s]
+  Vec3 angular_velocity;  ///< [rad/s]
+  Vec3 centre;            ///< [m]
+  /// Velocity of the mesh point x: v + ω × (x − c) [m/s].
+  GPUDEM_HD Vec3 at(Vec3 x) const { return velocity + cross(angular_velocity, x - centre); }
+};
+
+/// What the contact sweep reads about the meshes (pointers into one memory space).
+struct MeshView {
+  std::uint32_t mesh_count = 0;
+  const Vec3* vertices = nullptr;
+  const TriangleCorners* corners = nullptr;
+  const TriangleIds* ids = nullptr;  ///< vertex and edge ids unique over all meshes
+  const std::uint32_t* triangle_mesh = nullptr;
+  const MaterialId* material = nullptr;  ///< per mesh
+  const MeshKinematics* kinematics = nullptr;  ///< per mesh
+  const std::uint32_t* offsets = nullptr;  ///< per-particle candidate lists (CSR)
+  const std::uint32_t* triangles = nullptr;
+};
+
+namespace mesh_wall_kernels {
+
+/// x = R (x₀ − c₀) + c for the vertices [first, first + count) of one mesh.
+struct PlaceVertices {
+  const Vec3* initial;
+  Vec3* current;
+  std::size_t first;
+  Rotation rotation;
+  Vec3 initial_centre;
+  Vec3 centre;
+  GPUDEM_HD void operator()(std::size_t k) const {
+    current[first + k] = rotation.apply(initial[first + k] - initial_centre) + centre;
+  }
+};
+
+/// |x − x_at_build|² of vertex k.
+struct VertexDisplacement {
+  const Vec3* current;
+  const Vec3* at_build;
+  GPUDEM_HD Real operator()(std::size_t k) const { return norm2(current[k] - at_build[k]); }
+};
+
+/// History of particle k's new list entries from its old entries with the same triangle.
+template <class State>
+struct RemapEntries {
+  const std::uint32_t* offsets;
+  const std::uint32_t* triangles;
+  const std::uint32_t* previous_index;
+  const std::uint32_t* previous_offsets;
+  const std::uint32_t* previous_triangles;
+  const State* previous_history;
+  State* history;
+  GPUDEM_HD void operator()(std::size_t k) const {
+    const std::uint32_t old = previous_index[k];
+    for (std::uint32_t e = offsets[k]; e < offsets[k + 1]; ++e) {
+      State carried{};
+      for (std::uint32_t f = previous_offsets[old]; f < previous_offsets[old + 1]; ++f)
+        if (previous_triangles[f] == triangles[e]) {
+          carried = previous_history[f];
+          break;
+        }
+      history[e] = carried;
+    }
+  }
+};
+
+template <class T>
+struct Copy {
+  const T* in;
+  T* out;
+  GPUDEM_HD void operator()(std::size_t k) const { out[k] = in[k]; }
+};
+
+template <class T>
+struct Zero {
+  T* out;
+  GPUDEM_HD void operator()(std::size_t k) const { out[k] = T{}; }
+};
+
+}  // namespace mesh_wall_kernels
+
+/// `Law` decides whether entries keep history (Law::history_size > 0).
+template <class Space, class Law>
+class MeshWalls {
+  using State = typename Law::State;
+
+ public:
+  MeshWalls() = default;
+  explicit MeshWalls(const std::vector<MeshWallSetup>& meshes) : setups_(meshes) {
+    std::vector<Vec3> vertices;
+    std::vector<TriangleCorners> corners;
+    std::vector<TriangleIds> ids;
+    std::vector<std::uint32_t> triangle_mesh;
+    std::vector<MaterialId> material;
+    std::uint32_t edge_base = 0;
+    for (std::uint32_t m = 0; m < meshes.size(); ++m) {
+      const TriangleMesh& mesh = meshes[m].mesh;
+      const auto vertex_base = static_cast<std::uint32_t>(vertices.size());
+      first_vertex_.push_back(vertices.size());
+      vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+      for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        TriangleIds id;
+        id.triangle = static_cast<std::uint32_t>(ids.size());
+        for (int k = 0; k < 3; ++k) {
+          id.vertex[k] = vertex_base + mesh.triangles[t][k];
+          id.edge[k] = edge_base + mesh.triangle_edges[t][k];
+        }
+        corners.push_back({{id.vertex[0], id.vertex[1], id.vertex[2]}});
+        ids.push_back(id);
+        triangle_mesh.push_back(m);
+      }
+      edge_base += static_cast<std::uint32_t>(mesh.edges.size());
+      material.push_back(meshes[m].material);
+    }
+    first_vertex_.push_back(vertices.size());
+    initial_.upload(vertices);
+    vertices_.upload(vertices);
+    at_build_.upload(vertices);
+    corners_.upload(corners);
+    ids_.upload(ids);
+    triangle_mesh_.upload(triangle_mesh);
+    material_.upload(material);
+    set_time(0);
+  }
+
+  std::uint32_t count() const { return static_cast<std::uint32_t>(setups_.size()); }
+  bool empty() const { return setups_.empty(); }
+
+  /// Moves every mesh to its pose at time t (from its initial pose, so no error accumulates)
+  /// and records its surface velocity at t.
+  void set_time(double t) {
+    std::vector<MeshKinematics> kinematics;
+    for (std::uint32_t m = 0; m < count(); ++m) {
+      const PrescribedMotion& motion = setups_[m].motion;
+      const Vec3 centre = motion.centre(t);
+      kinematics.push_back({motion.velocity(t), motion.angular_velocity(t), centre});
+      const std::size_t n = first_vertex_[m + 1] - first_vertex_[m];
+      parallel_for(Space{}, n,
+                   mesh_wall_kernels::PlaceVertices{initial_.data(), vertices_.data(),
+                                                    first_vertex_[m],
+                                                    rotation_by_vector(motion.rotation_vector(0, t)),
+                                                    motion.centre(0), centre});
+    }
+    kinematics_.upload(kinematics);
+  }
+
+  /// True once some vertex has moved more than skin/2 since the last build.
+  bool moved_beyond(Real half_skin) const {
+    if (empty()) return false;
+    const Real moved2 = reduce_max(Space{}, vertices_.size(), Real(0),
+                                   mesh_wall_kernels::VertexDisplacement{vertices_.data(),
+                                                                         at_build_.data()});
+    return moved2 > half_skin * half_skin;
+  }
+
+  /// New candidate lists for the n particles (in their new order), with the history carried
+  /// over from the old lists: previous_index[k] is particle k's index in the old lists
+  /// (`had_lists` false: no old lists, history starts at zero).
+  void rebuild(const Real4* position_radius, std::size_t n, Real max_radius, Real skin,
+               const std::uint32_t* previous_index, bool had_lists) {
+    if (empty()) return;
+    std::swap(candidates_, previous_candidates_);
+    candidates_.build(vertices_.data(), vertices_.size(), corners_.data(), ids_.size(),
+                      position_radius, n, max_radius, skin);
+    parallel_for(Space{}, vertices_.size(),
+                 mesh_wall_kernels::Copy<Vec3>{vertices_.data(), at_build_.data()});
+    if constexpr (Law::history_size > 0) {
+      DeviceArray<State, Space> fresh(candidates_.pairs());
+      if (had_lists) {
+        parallel_for(Space{}, n,
+                     mesh_wall_kernels::RemapEntries<State>{
+                         candidates_.offsets(), candidates_.triangles(), previous_index,
+                         previous_candidates_.offsets(), previous_candidates_.triangles(),
+                         history_.data(), fresh.data()});
+      } else {
+        parallel_for(Space{}, fresh.size(), mesh_wall_kernels::Zero<State>{fresh.data()});
+      }
+      history_.swap(fresh);
+    }
+  }
+
+  MeshView view() const {
+    if (empty()) return MeshView{};
+    return MeshView{count(),          vertices_.data(),      corners_.data(),
+                    ids_.data(),      triangle_mesh_.data(), material_.data(),
+                    kinematics_.data(), candidates_.offsets(), candidates_.triangles()};
+  }
+  State* history() { return history_.data(); }
+  const State* history() const { return history_.data(); }
+  std::size_t memory_bytes() const {
+    return initial_.bytes() + vertices_.bytes() + at_build_.bytes() + corners_.bytes() +
+           ids_.bytes() + triangle_mesh_.bytes() + history_.bytes() +
+           candidates_.memory_bytes() + previous_candidates_.memory_bytes();
+  }
+
+ private:
+  std::vector<MeshWallSetup> setups_;
+  std::vector<std::size_t> first_vertex_;  ///< mesh m's vertices: [first[m], first[m + 1])
+  DeviceArray<Vec3, Space> initial_;
+  DeviceArray<Vec3, Space> vertices_;
+  DeviceArray<Vec3, Space> at_build_;
+  DeviceArray<TriangleCorners, Space> corners_;
+  DeviceArray<TriangleIds, Space> ids_;
+  DeviceArray<std::uint32_t, Space> triangle_mesh_;
+  DeviceArray<MaterialId, Space> material_;
+  DeviceArray<MeshKinematics, Space> kinematics_;
+  MeshCandidateList<Space> candidates_;
+  MeshCandidateList<Space> previous_candidates_;
+  DeviceArray<State, Space> history_;
+};
+
+}  // namespace gpudem
