@@ -22,6 +22,7 @@
 #include "comm/Checkpoint.hpp"
 #include "support/CheckpointEdits.hpp"
 #include "support/RunBinary.hpp"
+#include "support/SandBin.hpp"
 
 namespace gpudem {
 namespace {
@@ -34,39 +35,9 @@ constexpr double kRemoveAbove = 0.012;
 /// Settling is checked from √(2H/|g|) on, H = 0.1 m the domain's height.
 const double kFirstCheckTime = std::sqrt(2 * 0.1 / 9.81);
 
-/// 300 frictional grains dropped on a floor (periodic in x and y); they rest by t ≈ 0.3 s.
-const char* kPreparationScene = R"([simulation]
-end_time = 0.6
-dt = 5e-5
-
-[domain]
-min = [0.0, 0.0, 0.0]
-max = [0.05, 0.05, 0.1]
-periodic = [true, true, false]
-
-[[material]]
-name = "sand"
-density = 2500.0
-young = 1e7
-poisson = 0.3
-restitution = 0.2
-friction = 0.8
-
-[contact]
-stiffness = 2000
-
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-material = "sand"
-
-[[insert]]
-region = { min = [0.0, 0.0, 0.0], max = [0.05, 0.05, 0.05] }
-count = 300
-radius = { mean = 0.0025, spread = 0.0005 }
-material = "sand"
-
-[output]
+/// 300 frictional grains dropped on a floor; they rest by t ≈ 0.3 s.
+const std::string kPreparationScene =
+    test::sand_bin_scene(0.6, 0.1, test::kSandGrains, R"([output]
 timeseries_every = 0.005
 
 [checkpoint]
@@ -75,35 +46,10 @@ every = 10.0
 [preparation]
 kinetic_energy = 1e-9
 remove_above = 0.012
-)";
+)");
 
 /// The same bin and grains, started from a bed plus 20 new grains above it.
-const char* kFromBedScene = R"([simulation]
-end_time = 0.01
-dt = 5e-5
-
-[domain]
-min = [0.0, 0.0, 0.0]
-max = [0.05, 0.05, 0.1]
-periodic = [true, true, false]
-
-[[material]]
-name = "sand"
-density = 2500.0
-young = 1e7
-poisson = 0.3
-restitution = 0.2
-friction = 0.8
-
-[contact]
-stiffness = 2000
-
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-material = "sand"
-
-[[insert]]
+const std::string kFromBedScene = test::sand_bin_scene(0.01, 0.1, R"([[insert]]
 bed = "BED"
 
 [[insert]]
@@ -111,7 +57,8 @@ region = { min = [0.0, 0.0, 0.05], max = [0.05, 0.05, 0.08] }
 count = 20
 radius = 0.0025
 material = "sand"
-)";
+)",
+                                                       "");
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {
   return text.replace(text.find(from), from.size(), to);

@@ -29,6 +29,7 @@
 extern char** environ;
 
 #include "support/RunBinary.hpp"
+#include "support/SandBin.hpp"
 
 namespace gpudem {
 namespace {
@@ -49,44 +50,13 @@ std::string read_text(const fs::path& path) {
 
 /// 300 frictional grains falling onto a floor: by T = 0.1 s they rest on it and on each other
 /// with loaded tangential springs. Snapshots every 0.05 s, checkpoints every T.
-const char* kBedScene = R"([simulation]
-end_time = 0.2
-dt = 5e-5
-
-[domain]
-min = [0.0, 0.0, 0.0]
-max = [0.05, 0.05, 0.2]
-periodic = [true, true, false]
-
-[[material]]
-name = "sand"
-density = 2500.0
-young = 1e7
-poisson = 0.3
-restitution = 0.2
-friction = 0.8
-
-[contact]
-stiffness = 2000
-
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-material = "sand"
-
-[[insert]]
-region = { min = [0.0, 0.0, 0.0], max = [0.05, 0.05, 0.05] }
-count = 300
-radius = { mean = 0.0025, spread = 0.0005 }
-material = "sand"
-
-[output]
+const std::string kBedScene = test::sand_bin_scene(0.2, 0.2, test::kSandGrains, R"([output]
 every = 0.05
 timeseries_every = 0.005
 
 [checkpoint]
 every = 0.1
-)";
+)");
 
 class RestartCommandLine : public ::testing::Test {
  protected:
