@@ -413,20 +413,28 @@ ParticleSource read_box_source(const TableReader& table, const Scene& scene) {
   return s;
 }
 
+/// Fails on the first of `keys` the table holds, saying why it does not belong there.
+void refuse_keys(const TableReader& table, const std::vector<std::string>& keys,
+                 const std::string& why) {
+  for (const std::string& key : keys)
+    if (table.has(key)) table.fail(key, "'" + key + "' " + why);
+}
+
+/// The path string `key` names, resolved relative to the scene file's directory.
+std::string path_beside_scene(const TableReader& table, const std::string& key,
+                              const Scene& scene) {
+  const std::filesystem::path path = table.string(key);
+  const std::filesystem::path scene_dir = std::filesystem::path(scene.file).parent_path();
+  return path.is_absolute() ? path.string() : (scene_dir / path).lexically_normal().string();
+}
+
 /// A CSV source; its file is resolved relative to the scene file's directory, not opened.
 ParticleSource read_csv_source(const TableReader& table, const Scene& scene) {
-  for (const std::string& key : kBoxOnlyKeys) {
-    if (table.has(key)) {
-      table.fail(key, "'" + key +
-                          "' belongs to region sources; a csv source takes only csv "
-                          "and material");
-    }
-  }
+  refuse_keys(table, kBoxOnlyKeys,
+              "belongs to region sources; a csv source takes only csv and material");
   ParticleSource s;
   s.kind = SourceKind::Csv;
-  const std::filesystem::path csv = table.string("csv");
-  const std::filesystem::path scene_dir = std::filesystem::path(scene.file).parent_path();
-  s.csv_file = csv.is_absolute() ? csv.string() : (scene_dir / csv).lexically_normal().string();
+  s.csv_file = path_beside_scene(table, "csv", scene);
   s.material = table.has("material") ? material_index(table, "material", scene.materials) : 0;
   return s;
 }
@@ -435,18 +443,12 @@ ParticleSource read_csv_source(const TableReader& table, const Scene& scene) {
 ParticleSource read_bed_source(const TableReader& table, const Scene& scene) {
   std::vector<std::string> other_keys = kBoxOnlyKeys;
   other_keys.push_back("material");
-  for (const std::string& key : other_keys) {
-    if (table.has(key)) {
-      table.fail(key, "'" + key +
-                          "' does not apply to a bed source, whose particles keep their own "
-                          "values; a bed source takes only bed");
-    }
-  }
+  refuse_keys(table, other_keys,
+              "does not apply to a bed source, whose particles keep their own values; a bed "
+              "source takes only bed");
   ParticleSource s;
   s.kind = SourceKind::Bed;
-  const std::filesystem::path bed = table.string("bed");
-  const std::filesystem::path scene_dir = std::filesystem::path(scene.file).parent_path();
-  s.bed_file = bed.is_absolute() ? bed.string() : (scene_dir / bed).lexically_normal().string();
+  s.bed_file = path_beside_scene(table, "bed", scene);
   s.bed_line = table.line("bed");
   return s;
 }

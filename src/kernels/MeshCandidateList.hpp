@@ -18,6 +18,7 @@
 
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
+#include "kernels/ArrayKernels.hpp"
 #include "kernels/DeviceArray.hpp"
 #include "kernels/ParallelFor.hpp"
 #include "kernels/TriangleContact.hpp"
@@ -184,17 +185,6 @@ struct ParticleTriangles {
   }
 };
 
-struct CopyVertices {
-  const Vec3* in;
-  Vec3* out;
-  GPUDEM_HD void operator()(std::size_t k) const { out[k] = in[k]; }
-};
-
-struct StoreTotal {
-  std::uint32_t* target;
-  std::uint32_t value;
-  GPUDEM_HD void operator()(std::size_t) const { *target = value; }
-};
 
 }  // namespace mesh_candidate_kernels
 
@@ -220,7 +210,8 @@ class MeshCandidateList {
     const std::uint64_t total = exclusive_scan(Space{}, offsets_.data(), offsets_.data(), n);
     if (total > std::numeric_limits<std::uint32_t>::max())
       throw std::overflow_error("MeshCandidateList: more than 2^32 - 1 particle-triangle pairs");
-    parallel_for(Space{}, 1, StoreTotal{offsets_.data() + n, static_cast<std::uint32_t>(total)});
+    parallel_for(Space{}, 1,
+                 Fill<std::uint32_t>{offsets_.data() + n, static_cast<std::uint32_t>(total)});
     triangles_.resize(total);
     parallel_for(Space{}, n,
                  ParticleTriangles<true>{bins_, position_radius, skin, offsets_.data(),
@@ -244,8 +235,7 @@ class MeshCandidateList {
                  std::size_t max_cells) {
     std::vector<Vec3> host(vertex_count);
     DeviceArray<Vec3, Space> copy(vertex_count);
-    parallel_for(Space{}, vertex_count,
-                 mesh_candidate_kernels::CopyVertices{vertices, copy.data()});
+    parallel_for(Space{}, vertex_count, CopyArray<Vec3>{vertices, copy.data()});
     copy.download(host);
     Vec3 lo{std::numeric_limits<Real>::max(), std::numeric_limits<Real>::max(),
             std::numeric_limits<Real>::max()};

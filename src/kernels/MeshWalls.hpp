@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/Rotation.hpp"
+#include "kernels/ArrayKernels.hpp"
 #include "kernels/DeviceArray.hpp"
 #include "kernels/MeshCandidateList.hpp"
 #include "kernels/MeshWallSetup.hpp"
@@ -83,18 +84,6 @@ struct RemapEntries {
   }
 };
 
-template <class T>
-struct Copy {
-  const T* in;
-  T* out;
-  GPUDEM_HD void operator()(std::size_t k) const { out[k] = in[k]; }
-};
-
-template <class T>
-struct Zero {
-  T* out;
-  GPUDEM_HD void operator()(std::size_t k) const { out[k] = T{}; }
-};
 
 }  // namespace mesh_wall_kernels
 
@@ -182,7 +171,7 @@ class MeshWalls {
     candidates_.build(vertices_.data(), vertices_.size(), corners_.data(), ids_.size(),
                       position_radius, n, max_radius, skin);
     parallel_for(Space{}, vertices_.size(),
-                 mesh_wall_kernels::Copy<Vec3>{vertices_.data(), at_build_.data()});
+                 CopyArray<Vec3>{vertices_.data(), at_build_.data()});
     if constexpr (Law::history_size > 0) {
       DeviceArray<State, Space> fresh(candidates_.pairs());
       if (had_lists) {
@@ -192,7 +181,7 @@ class MeshWalls {
                          previous_candidates_.offsets(), previous_candidates_.triangles(),
                          history_.data(), fresh.data()});
       } else {
-        parallel_for(Space{}, fresh.size(), mesh_wall_kernels::Zero<State>{fresh.data()});
+        parallel_for(Space{}, fresh.size(), Fill<State>{fresh.data(), State{}});
       }
       history_.swap(fresh);
     }

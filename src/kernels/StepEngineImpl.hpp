@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "kernels/ArrayKernels.hpp"
 #include "kernels/CellList.hpp"
 #include "kernels/ContactForces.hpp"
 #include "kernels/DeviceArray.hpp"
@@ -59,20 +60,6 @@ struct Radius {
 struct ReadValue {
   const Real* value;
   GPUDEM_HD Real operator()(std::size_t i) const { return value[i]; }
-};
-
-template <class T>
-struct CopyArray {
-  const T* in;
-  T* out;
-  GPUDEM_HD void operator()(std::size_t k) const { out[k] = in[k]; }
-};
-
-template <class T>
-struct Fill {
-  T* out;
-  T value;
-  GPUDEM_HD void operator()(std::size_t k) const { out[k] = value; }
 };
 
 struct Iota {
