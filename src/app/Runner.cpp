@@ -68,6 +68,9 @@ std::vector<std::string> timeseries_columns(const Scene& scene) {
                                 "removed"};
   for (const WallSettings& w : scene.walls)
     for (const char* axis_name : {"fx", "fy", "fz"}) c.push_back(w.name + "_" + axis_name);
+  for (const MeshSettings& m : scene.meshes)
+    for (const char* axis_name : {"fx", "fy", "fz", "tx", "ty", "tz"})
+      c.push_back(m.name + "_" + axis_name);
   return c;
 }
 
@@ -83,10 +86,11 @@ std::vector<double> timeseries_row(double time, std::uint64_t step, const Diagno
                              d.potential_elastic,
                              d.max_overlap_ratio,
                              static_cast<double>(removed)};
-  for (const Vec3& f : d.wall_force) {
-    row.push_back(f.x);
-    row.push_back(f.y);
-    row.push_back(f.z);
+  const auto append = [&row](Vec3 v) { row.insert(row.end(), {v.x, v.y, v.z}); };
+  for (const Vec3& f : d.wall_force) append(f);
+  for (std::size_t m = 0; m < d.mesh_force.size(); ++m) {
+    append(d.mesh_force[m]);
+    append(d.mesh_torque[m]);
   }
   return row;
 }
@@ -103,6 +107,14 @@ void print_summary(const Scene& scene, const ParticleStore& particles, const Eng
       setup.dt, scene.simulation.dt_auto ? "auto" : "explicit", limits.contact_duration,
       limits.rayleigh, limits.stable, static_cast<unsigned long long>(steps),
       scene.simulation.end_time, setup.skin);
+  for (std::size_t m = 0; m < setup.meshes.size(); ++m) {
+    const TriangleMesh& mesh = setup.meshes[m].mesh;
+    std::printf("mesh %s: %zu triangles, %zu vertices", scene.meshes[m].name.c_str(),
+                mesh.triangles.size(), mesh.vertices.size());
+    if (mesh.skipped_degenerate > 0)
+      std::printf(" (%zu zero-area triangles skipped)", mesh.skipped_degenerate);
+    std::printf("\n");
+  }
   if (engine) {
     const std::string device =
         engine->backend_name() == "cuda" ? " (" + cuda::device_description() + ")" : "";
@@ -301,6 +313,7 @@ void adopt_checkpoint_step(EngineSetup& setup, const Scene& scene, const Checkpo
                      written + "dt_fraction = " + exact_decimal(c.dt_fraction) +
                          " but the scene gives " + exact_decimal(sim.dt_fraction) + fix);
   setup.dt = c.dt;
+  setup.start_step = c.step;
   if (scene.neighbor.skin <= 0) setup.skin = c.skin;
   if (c.step >= step_count(sim.end_time, c.dt))
     throw InputError(scene.file, 0, "simulation.end_time",

@@ -9,6 +9,8 @@
 #include "core/Config.hpp"
 #include "core/ContactModel.hpp"
 #include "core/MixingRule.hpp"
+#include "core/PrescribedMotion.hpp"
+#include "core/StlReader.hpp"
 #include "core/Vec3.hpp"
 
 namespace gpudem {
@@ -134,6 +136,17 @@ struct PreparationSettings {
   std::string bed_file;     ///< bed path (relative to the working directory); empty = default
 };
 
+/// One [[mesh]] entry: a triangle-mesh wall (a tool) from an STL file, placed and moved.
+struct MeshSettings {
+  std::string name;
+  std::string file;  ///< STL path, resolved relative to the scene file
+  int line = 0;      ///< line of `file` in the scene, for mesh errors
+  MaterialId material = 0;
+  MeshPlacement placement;
+  Vec3 centre;  ///< rotation centre at t = 0 [m] (default: the placement offset)
+  std::vector<MotionKeyframe> keyframes;  ///< none: the mesh stands still
+};
+
 struct Scene {
   std::string file;  ///< path of the scene file as given
   SimulationSettings simulation;
@@ -142,6 +155,7 @@ struct Scene {
   ContactSettings contact;
   NeighborSettings neighbor;
   std::vector<WallSettings> walls;
+  std::vector<MeshSettings> meshes;
   std::vector<ParticleSource> sources;
   OutputSettings output;
   CheckpointSettings checkpoint;

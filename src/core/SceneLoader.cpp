@@ -295,6 +295,71 @@ WallSettings read_wall(const TableReader& table, std::size_t index,
   return w;
 }
 
+/// The path string `key` names, resolved relative to the scene file's directory.
+std::string path_beside_scene(const TableReader& table, const std::string& key,
+                              const Scene& scene) {
+  const std::filesystem::path path = table.string(key);
+  const std::filesystem::path scene_dir = std::filesystem::path(scene.file).parent_path();
+  return path.is_absolute() ? path.string() : (scene_dir / path).lexically_normal().string();
+}
+
+/// [mesh.motion]: keyframe times [s], velocities [m/s] and angular velocities [rad/s] (zero
+/// when absent), one per time, times strictly increasing; the centre defaults to `offset`.
+void read_motion(const TableReader& mesh, MeshSettings& m) {
+  m.centre = m.placement.offset;
+  if (!mesh.has("motion")) return;
+  const TableReader motion = mesh.table("motion");
+  motion.allow_only({"centre", "times", "velocities", "angular_velocities"});
+  m.centre = motion.vec3("centre", "m", m.centre);
+  const std::vector<double> times = motion.numbers("times", any_value("s"));
+  for (std::size_t k = 1; k < times.size(); ++k)
+    if (!(times[k] > times[k - 1]))
+      motion.fail("times", "keyframe times must increase strictly (index " + std::to_string(k) +
+                               ")");
+  const std::vector<Vec3> v = motion.vec3s("velocities", "m/s", times.size());
+  const std::vector<Vec3> w = motion.has("angular_velocities")
+                                  ? motion.vec3s("angular_velocities", "rad/s", times.size())
+                                  : std::vector<Vec3>(times.size());
+  for (std::size_t k = 0; k < times.size(); ++k) m.keyframes.push_back({times[k], v[k], w[k]});
+}
+
+MeshSettings read_mesh(const TableReader& table, std::size_t index, const Scene& scene) {
+  table.allow_only({"name", "file", "material", "scale", "offset", "rotation_axis",
+                    "rotation_angle", "motion"});
+  MeshSettings m;
+  m.name = table.string("name", "mesh" + std::to_string(index));
+  m.file = path_beside_scene(table, "file", scene);
+  m.line = table.line("file");
+  m.material = table.has("material") ? material_index(table, "material", scene.materials) : 0;
+  m.placement.scale = table.number("scale", positive(""), 1.0);
+  m.placement.offset = table.vec3("offset", "m", Vec3{});
+  m.placement.rotation_axis = table.vec3("rotation_axis", "", Vec3{0, 0, 1});
+  if (!(norm(m.placement.rotation_axis) > 0))
+    table.fail_found("rotation_axis", "a non-zero axis");
+  m.placement.rotation_angle = table.number("rotation_angle", any_value("rad"), 0.0);
+  read_motion(table, m);
+  return m;
+}
+
+/// The [[mesh]] tables; names label force columns, so they differ from each other and from
+/// the walls' names.
+std::vector<MeshSettings> read_meshes(const TableReader& root, const Scene& scene) {
+  std::vector<MeshSettings> meshes;
+  const std::vector<TableReader> tables = root.array_of_tables("mesh");
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    MeshSettings mesh = read_mesh(tables[i], i, scene);
+    bool taken = false;
+    for (const WallSettings& w : scene.walls) taken = taken || w.name == mesh.name;
+    for (const MeshSettings& m : meshes) taken = taken || m.name == mesh.name;
+    if (taken)
+      tables[i].fail("name", "name '" + mesh.name +
+                                 "' is already used by a wall or mesh; names label the force "
+                                 "columns");
+    meshes.push_back(std::move(mesh));
+  }
+  return meshes;
+}
+
 std::vector<WallSettings> read_walls(const TableReader& root,
                                      const std::vector<Material>& materials) {
   std::vector<WallSettings> walls;
@@ -420,14 +485,6 @@ void refuse_keys(const TableReader& table, const std::vector<std::string>& keys,
     if (table.has(key)) table.fail(key, "'" + key + "' " + why);
 }
 
-/// The path string `key` names, resolved relative to the scene file's directory.
-std::string path_beside_scene(const TableReader& table, const std::string& key,
-                              const Scene& scene) {
-  const std::filesystem::path path = table.string(key);
-  const std::filesystem::path scene_dir = std::filesystem::path(scene.file).parent_path();
-  return path.is_absolute() ? path.string() : (scene_dir / path).lexically_normal().string();
-}
-
 /// A CSV source; its file is resolved relative to the scene file's directory, not opened.
 ParticleSource read_csv_source(const TableReader& table, const Scene& scene) {
   refuse_keys(table, kBoxOnlyKeys,
@@ -548,7 +605,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   apply_overrides(tree, overrides);
   const TableReader root(tree, path, "", "");
   root.allow_only({"simulation", "domain", "material", "contact", "pair", "neighbor", "wall",
-                   "insert", "output", "checkpoint", "preparation"});
+                   "mesh", "insert", "output", "checkpoint", "preparation"});
   Scene scene;
   scene.file = path;
   scene.simulation = read_simulation(root);
@@ -558,6 +615,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   scene.contact.pairs = read_pairs(root, scene.materials, scene.contact.mixing);
   scene.neighbor = read_neighbor(root);
   scene.walls = read_walls(root, scene.materials);
+  scene.meshes = read_meshes(root, scene);
   scene.sources = read_sources(root, scene);
   scene.output = read_output(root);
   scene.checkpoint = read_checkpoint(root);

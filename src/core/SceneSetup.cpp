@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/InputError.hpp"
+#include "core/StlReader.hpp"
 
 namespace gpudem {
 
@@ -161,6 +162,33 @@ double hertz_stable_step(const HertzPair& p, double v, bool mindlin) {
   return 2 / std::sqrt(omega2);
 }
 
+/// The materials of the plane walls and the mesh walls, each as often as it is used.
+std::vector<MaterialId> wall_materials(const Scene& scene) {
+  std::vector<MaterialId> ids;
+  for (const WallSettings& w : scene.walls) ids.push_back(w.material);
+  for (const MeshSettings& m : scene.meshes) ids.push_back(m.material);
+  return ids;
+}
+
+/// The mesh walls of the scene, read, placed and welded. An STL error becomes an error of the
+/// scene's `mesh[i].file` key, its message naming the STL file.
+std::vector<MeshWallSetup> mesh_walls(const Scene& scene) {
+  std::vector<MeshWallSetup> walls;
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshSettings& m = scene.meshes[i];
+    MeshWallSetup wall;
+    try {
+      wall.mesh = load_mesh(m.file, m.placement);
+    } catch (const InputError& e) {
+      throw InputError(scene.file, m.line, "mesh[" + std::to_string(i) + "].file", e.what());
+    }
+    wall.material = m.material;
+    wall.motion = PrescribedMotion(m.centre, m.keyframes);
+    walls.push_back(std::move(wall));
+  }
+  return walls;
+}
+
 /// Index of the smallest particle of each material; particles.size() for an absent material.
 std::vector<std::size_t> smallest_particle_per_material(const Scene& scene,
                                                         const ParticleStore& particles) {
@@ -191,8 +219,8 @@ std::vector<HertzPair> hertz_extreme_pairs(const Scene& scene, const ParticleSto
       pairs.push_back({ra * rb / (ra + rb), ma * mb / (ma + mb), effective_young(mat_a, mat_b),
                        effective_shear(mat_a, mat_b)});
     }
-    for (const WallSettings& w : scene.walls) {
-      const Material& wall = scene.materials[w.material];
+    for (const MaterialId id : wall_materials(scene)) {
+      const Material& wall = scene.materials[id];
       pairs.push_back({ra, ma, effective_young(mat_a, wall), effective_shear(mat_a, wall)});
     }
   }
@@ -277,6 +305,7 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   s.pair_params = pair_table(scene);
   for (const WallSettings& w : scene.walls)
     s.walls.push_back(PlaneWall{w.point, w.normal, w.material});
+  s.meshes = mesh_walls(scene);
   const double r_min = smallest_radius(particles);
   s.skin =
       scene.neighbor.skin > 0 ? scene.neighbor.skin : (std::isfinite(r_min) ? 0.5 * r_min : 0.0);

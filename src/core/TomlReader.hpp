@@ -320,6 +320,27 @@ class TableReader {
     return has(key) ? vec3(key, unit) : fallback;
   }
 
+  /// An array of `size` 3-vectors, e.g. [[0.7, 0, 0], [0.7, 0, 0]].
+  std::vector<Vec3> vec3s(const std::string& key, const std::string& unit,
+                          std::size_t size) const {
+    const toml::value& v = value(key);
+    const std::string expected = "an array of " + std::to_string(size) + " vectors [x, y, z]" +
+                                 (unit.empty() ? "" : " in " + unit);
+    if (!v.is_array() || v.as_array().size() != size) fail_found(key, expected);
+    std::vector<Vec3> result;
+    for (std::size_t i = 0; i < size; ++i) {
+      const toml::value& e = v.as_array()[i];
+      std::optional<double> x[3];
+      const bool triple = e.is_array() && e.as_array().size() == 3;
+      for (int k = 0; k < 3 && triple; ++k) x[k] = finite_number(e.as_array()[k]);
+      if (!triple || !x[0] || !x[1] || !x[2])
+        fail(key, "expected " + expected + ", got " + describe(e) + " at index " +
+                      std::to_string(i));
+      result.push_back(Vec3{*x[0], *x[1], *x[2]});
+    }
+    return result;
+  }
+
   std::array<bool, 3> bool3(const std::string& key, std::array<bool, 3> fallback) const {
     if (!has(key)) return fallback;
     const toml::value& v = value(key);

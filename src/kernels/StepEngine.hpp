@@ -31,6 +31,7 @@ struct EngineSetup {
   std::vector<ContactPairParams> pair_params;  ///< material_count² entries, row-major
   std::vector<PlaneWall> walls;
   std::vector<MeshWallSetup> meshes;  ///< triangle-mesh walls (tools)
+  std::uint64_t start_step = 0;  ///< step the run starts at (a restart's): the meshes' clock
 };
 
 /// Global quantities reduced over all particles; walls' forces are the forces the

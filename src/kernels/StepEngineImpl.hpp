@@ -115,9 +115,11 @@ class StepEngineImpl final : public StepEngine {
   static constexpr std::uint32_t kHistoryWidth = Law::history_size;
 
  public:
-  explicit StepEngineImpl(const EngineSetup& setup) : setup_(setup), meshes_(setup.meshes) {
+  explicit StepEngineImpl(const EngineSetup& setup)
+      : setup_(setup), meshes_(setup.meshes), steps_(setup.start_step) {
     pair_params_.upload(setup.pair_params);
     walls_.upload(setup.walls);
+    if (!meshes_.empty()) meshes_.set_time(steps_ * setup.dt);
   }
 
   void set_particles(const ParticleStore& p) override {
@@ -522,7 +524,7 @@ class StepEngineImpl final : public StepEngine {
   NeighborList<Space> neighbors_;
   NeighborList<Space> previous_neighbors_;
   MeshWalls<Space, Law> meshes_;
-  std::uint64_t steps_ = 0;  ///< steps taken by this engine (the meshes' clock)
+  std::uint64_t steps_ = 0;  ///< the run's step count (the meshes' clock)
   bool has_list_ = false;
   std::uint64_t removed_ = 0;
   std::uint64_t rebuilds_ = 0;
