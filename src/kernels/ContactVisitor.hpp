@@ -171,10 +171,12 @@ GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi,
   }
   if (set.overflow) visit.mesh_overflow_seen();
   const int kept = select_mesh_contacts(set, xi.w);
-  std::uint32_t entry[MeshContactCandidates::kCapacity];
-  for (int k = 0; k < kept; ++k)
+  std::uint32_t entry[MeshContactCandidates::kCapacity];  // list entry of each kept contact
+  for (int k = 0; k < kept; ++k) {
+    entry[k] = end;
     for (std::uint32_t e = begin; e < end; ++e)
       if (m.triangles[e] == set.items[k].ids.triangle) entry[k] = e;
+  }
   typename Law::State state[MeshContactCandidates::kCapacity];
   if constexpr (Law::history_size > 0)
     for (int k = 0; k < kept; ++k) state[k] = mesh_contact_state(s, begin, end, entry[k], entry, kept);
