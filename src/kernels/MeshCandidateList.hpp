@@ -14,11 +14,11 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
-#include <vector>
 
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
 #include "kernels/ArrayKernels.hpp"
+#include "kernels/CellList.hpp"
 #include "kernels/DeviceArray.hpp"
 #include "kernels/ParallelFor.hpp"
 #include "kernels/TriangleContact.hpp"
@@ -134,24 +134,12 @@ struct WriteCells {
   }
 };
 
-/// cell_begin[c] = first sorted slot whose cell is >= c (binary search; c = cell_count gives
-/// the total).
-struct CellBegin {
-  const std::uint64_t* sorted_key;
-  std::uint32_t pairs;
-  std::uint32_t* cell_begin;
-  GPUDEM_HD void operator()(std::size_t c) const {
-    std::uint32_t lo = 0, hi = pairs;
-    while (lo < hi) {
-      const std::uint32_t mid = lo + (hi - lo) / 2;
-      if (sorted_key[mid] < c) {
-        lo = mid + 1;
-      } else {
-        hi = mid;
-      }
-    }
-    cell_begin[c] = lo;
-  }
+/// Coordinate k of vertex i, times `sign` (+1 for the largest, −1 for minus the smallest).
+struct VertexCoordinate {
+  const Vec3* vertices;
+  int k;
+  Real sign;
+  GPUDEM_HD Real operator()(std::size_t i) const { return sign * axis(vertices[i], k); }
 };
 
 struct CountVisitor {
@@ -233,18 +221,13 @@ class MeshCandidateList {
   /// reach box overlaps at most two cells per axis), grown until the grid has <= max_cells.
   void plan_grid(const Vec3* vertices, std::size_t vertex_count, Real reach,
                  std::size_t max_cells) {
-    std::vector<Vec3> host(vertex_count);
-    DeviceArray<Vec3, Space> copy(vertex_count);
-    parallel_for(Space{}, vertex_count, CopyArray<Vec3>{vertices, copy.data()});
-    copy.download(host);
-    Vec3 lo{std::numeric_limits<Real>::max(), std::numeric_limits<Real>::max(),
-            std::numeric_limits<Real>::max()};
-    Vec3 hi = -1 * lo;
-    for (const Vec3& v : host)
-      for (int k = 0; k < 3; ++k) {
-        axis(lo, k) = std::fmin(axis(lo, k), axis(v, k));
-        axis(hi, k) = std::fmax(axis(hi, k), axis(v, k));
-      }
+    Vec3 lo, hi;  // bounding box of the vertices, reduced where they live
+    const Real lowest = -std::numeric_limits<Real>::max();
+    for (int k = 0; k < 3; ++k) {
+      using mesh_candidate_kernels::VertexCoordinate;
+      axis(hi, k) = reduce_max(Space{}, vertex_count, lowest, VertexCoordinate{vertices, k, 1});
+      axis(lo, k) = -reduce_max(Space{}, vertex_count, lowest, VertexCoordinate{vertices, k, -1});
+    }
     const Vec3 margin{reach, reach, reach};
     bins_.lo = lo - margin;
     const Vec3 extent = (hi + margin) - bins_.lo;
@@ -276,7 +259,8 @@ class MeshCandidateList {
         static_cast<std::size_t>(bins_.dims[0]) * bins_.dims[1] * bins_.dims[2];
     cell_begin_.resize(cells + 1);
     parallel_for(Space{}, cells + 1,
-                 CellBegin{keys_.data(), static_cast<std::uint32_t>(pairs), cell_begin_.data()});
+                 cell_list_kernels::FindCellBegin{keys_.data(), static_cast<std::uint32_t>(pairs),
+                                                  cell_begin_.data()});
     bins_.cell_begin = cell_begin_.data();
     bins_.binned = binned_.data();
   }
