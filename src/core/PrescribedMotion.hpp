@@ -32,6 +32,8 @@ class PrescribedMotion {
   /// increasing and every vector is finite.
   PrescribedMotion(Vec3 centre, std::vector<MotionKeyframe> keyframes);
 
+  /// No keyframes: the tool never moves.
+  bool stands_still() const { return keyframes_.empty(); }
   Vec3 velocity(double t) const;
   Vec3 angular_velocity(double t) const;
   /// ∫ v dt over [t0, t1], exact for the piecewise-linear v [m].

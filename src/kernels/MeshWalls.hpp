@@ -142,6 +142,7 @@ class MeshWalls {
       const PrescribedMotion& motion = setups_[m].motion;
       const Vec3 centre = motion.centre(t);
       kinematics.push_back({motion.velocity(t), motion.angular_velocity(t), centre});
+      if (motion.stands_still()) continue;  // its vertices keep their initial positions
       const std::size_t n = first_vertex_[m + 1] - first_vertex_[m];
       parallel_for(Space{}, n,
                    mesh_wall_kernels::PlaceVertices{initial_.data(), vertices_.data(),
