@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app/BedPreparation.hpp"
+#include "app/DomainSetup.hpp"
 #include "app/Progress.hpp"
 #include "comm/Checkpoint.hpp"
 #include "comm/OutputDirectory.hpp"
@@ -95,8 +96,16 @@ std::vector<double> timeseries_row(double time, std::uint64_t step, const Diagno
   return row;
 }
 
+/// Engine memory summed over all ranks [bytes]. Collective.
+double engine_memory(const MpiContext& mpi, const StepEngine& engine) {
+  double local = static_cast<double>(engine.memory_bytes()), total = local;
+  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, mpi.comm());
+  return total;
+}
+
+/// The start-up summary; engine_bytes < 0 when no engine was made (--check).
 void print_summary(const Scene& scene, const ParticleStore& particles, const EngineSetup& setup,
-                   const StepEngine* engine, std::uint64_t steps) {
+                   const StepEngine* engine, double engine_bytes, std::uint64_t steps) {
   const TimeStepLimits limits = time_step_limits(scene, particles);
   std::printf("scene %s: %zu particles, %zu materials, %zu walls, contact law %s\n",
               scene.file.c_str(), particles.size(), scene.materials.size(), scene.walls.size(),
@@ -119,8 +128,7 @@ void print_summary(const Scene& scene, const ParticleStore& particles, const Eng
     const std::string device =
         engine->backend_name() == "cuda" ? " (" + cuda::device_description() + ")" : "";
     std::printf("backend %s%s, %.1f bytes per particle\n", engine->backend_name().c_str(),
-                device.c_str(),
-                particles.size() ? double(engine->memory_bytes()) / particles.size() : 0.0);
+                device.c_str(), particles.size() ? engine_bytes / particles.size() : 0.0);
   }
   std::fflush(stdout);
 }
@@ -368,6 +376,8 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   const ParticleStore& particles = checkpoint ? checkpoint->particles : created;
   EngineSetup setup = make_engine_setup(scene, particles);
   if (checkpoint) adopt_checkpoint_step(setup, scene, *checkpoint, options.restart_file);
+  const std::unique_ptr<MpiDomain> domain = make_domain(scene, mpi, particles, setup);
+  setup.domain = domain.get();
   const std::uint64_t steps = step_count(scene.simulation.end_time, setup.dt);
   std::optional<SettleCheck> settle;
   if (scene.preparation.enabled) settle.emplace(scene, setup.dt);
@@ -377,7 +387,8 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
                 checkpoint->time, static_cast<unsigned long long>(checkpoint->step));
   if (options.check_only) {
     if (mpi.is_root()) {
-      print_summary(scene, particles, setup, nullptr, steps);
+      print_summary(scene, particles, setup, nullptr, -1, steps);
+      if (domain) print_decomposition(*domain);
       if (settle) print_preparation(scene, *settle, setup.dt);
       std::printf("scene is valid\n");
     }
@@ -387,7 +398,9 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   start_engine(*engine, particles, checkpoint ? &*checkpoint : nullptr, options.restart_file);
   if (!checkpoint) bed.apply_history(scene, mpi, *engine);
   prepare_output_directory(scene.output.dir);
-  if (banner) print_summary(scene, particles, setup, engine.get(), steps);
+  const double engine_bytes = engine_memory(mpi, *engine);
+  if (banner) print_summary(scene, particles, setup, engine.get(), engine_bytes, steps);
+  if (banner && domain) print_decomposition(*domain);
   if (banner && settle) print_preparation(scene, *settle, setup.dt);
   LoopStart start;
   if (checkpoint) start = {checkpoint->step, true, checkpoint->snapshots};

@@ -52,12 +52,6 @@ int main(int argc, char** argv) {
     return gpudem::kExitBadInput;
   }
 
-  if (mpi.size() > 1) {
-    print_error(mpi,
-                "this version runs on one MPI rank (the domain is not decomposed yet); "
-                "start it with mpirun -np 1");
-    return gpudem::kExitBadInput;
-  }
   try {
     return gpudem::run_scene(options, mpi);
   } catch (const gpudem::InputError& e) {

@@ -2,9 +2,11 @@ add_library(gpudem_comm STATIC
   comm/Checkpoint.cpp
   comm/Hdf5Io.cpp
   comm/MpiContext.cpp
+  comm/MpiDomain.cpp
   comm/OutputDirectory.cpp
   comm/SnapshotWriter.cpp
   comm/TimeSeriesWriter.cpp)
 target_include_directories(gpudem_comm PUBLIC ${HDF5_INCLUDE_DIRS})
 target_compile_definitions(gpudem_comm PUBLIC ${HDF5_DEFINITIONS})
-target_link_libraries(gpudem_comm PUBLIC gpudem_base MPI::MPI_CXX ${HDF5_C_LIBRARIES})
+target_link_libraries(gpudem_comm PUBLIC gpudem_base gpudem_decomposition MPI::MPI_CXX
+                      ${HDF5_C_LIBRARIES})

@@ -44,11 +44,13 @@ struct ContactHistory {
 };
 
 /// Where the history records of an engine live, as host copies: global ids in the engine's
-/// particle order, the full neighbour list in CSR form (the partners of particle i are slots
+/// particle order (its `rows` owned particles, then the ghost copies of other ranks'), the
+/// neighbour list of the owned particles in CSR form (the partners of particle i are slots
 /// neighbors[offsets[i] .. offsets[i + 1])) and the number of walls. Pair record e belongs to
-/// list entry e, wall record i·wall_count + w to particle i and wall w.
+/// list entry e, wall record i·wall_count + w to owned particle i and wall w.
 struct ContactSlots {
   std::vector<ParticleId> id;
+  std::size_t rows = 0;  ///< owned particles: the first `rows` of id
   std::vector<std::uint32_t> offsets;
   std::vector<std::uint32_t> neighbors;
   std::uint32_t wall_count = 0;
@@ -101,7 +103,7 @@ inline ContactHistory collect_history(const ContactSlots& slots, std::uint32_t w
   ContactHistory history;
   history.width = width;
   if (width == 0) return history;
-  for (std::size_t i = 0; i < slots.id.size(); ++i) {
+  for (std::size_t i = 0; i < slots.rows; ++i) {
     for (std::uint32_t e = slots.offsets[i]; e < slots.offsets[i + 1]; ++e)
       if (nonzero(&pair_values[e * width], width))
         history.add_pair(slots.id[i], slots.id[slots.neighbors[e]], &pair_values[e * width]);
@@ -127,10 +129,9 @@ inline void scatter_history(const ContactSlots& slots, std::uint32_t width,
            " values per contact but this contact law keeps " + std::to_string(width));
   check_lengths(history);
   std::unordered_map<ParticleId, std::uint32_t> slot;
-  for (std::size_t i = 0; i < slots.id.size(); ++i)
-    slot[slots.id[i]] = static_cast<std::uint32_t>(i);
+  for (std::size_t i = 0; i < slots.rows; ++i) slot[slots.id[i]] = static_cast<std::uint32_t>(i);
   pair_values.assign(slots.neighbors.size() * width, 0);
-  wall_values.assign(slots.id.size() * slots.wall_count * width, 0);
+  wall_values.assign(slots.rows * slots.wall_count * width, 0);
   for (std::size_t k = 0; k < history.pair_owner.size(); ++k) {
     const std::uint32_t owner = slot_of(slot, history.pair_owner[k]);
     const std::size_t e = pair_entry(slots, owner, history.pair_partner[k]);

@@ -117,10 +117,23 @@ struct OutputSettings {
   std::string dir = "out";      ///< output directory (relative to the working directory)
   double every = 0;             ///< [s] snapshot interval; 0 = first and last only
   double timeseries_every = 0;  ///< [s] time-series interval; 0 = about 200 rows per run
+  bool rank_field = false;      ///< write each particle's owning rank in snapshots
 };
 
 struct CheckpointSettings {
   double every = 0;  ///< [s] checkpoint interval; 0 = no checkpoints
+};
+
+enum class DecompositionMethod { Grid, Metis };
+enum class BalanceWork { Particles, Contacts };
+
+/// [decomposition]: how the box is split among the ranks (DESIGN §5).
+struct DecompositionSettings {
+  DecompositionMethod method = DecompositionMethod::Grid;
+  std::array<int, 3> dims{0, 0, 0};  ///< 0,0,0 = "auto"; else each >= 1
+  int dims_line = 0;                 ///< line of `dims` in the scene (0: absent)
+  double rebalance_every = 0;        ///< [s]; 0 = never
+  BalanceWork balance = BalanceWork::Particles;
 };
 
 /// [preparation]: the run settles a bed, trims it and saves it.
@@ -160,6 +173,7 @@ struct Scene {
   OutputSettings output;
   CheckpointSettings checkpoint;
   PreparationSettings preparation;
+  DecompositionSettings decomposition;
 };
 
 }  // namespace gpudem

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -562,12 +563,49 @@ std::vector<ParticleSource> read_sources(const TableReader& root, const Scene& s
 
 OutputSettings read_output(const TableReader& root) {
   const TableReader table = root.optional_table("output");
-  table.allow_only({"dir", "every", "timeseries_every"});
+  table.allow_only({"dir", "every", "timeseries_every", "rank_field"});
   OutputSettings o;
   o.dir = table.string("dir", o.dir);
   o.every = table.number("every", non_negative("s"), o.every);
   o.timeseries_every = table.number("timeseries_every", non_negative("s"), o.timeseries_every);
+  o.rank_field = table.boolean("rank_field", o.rank_field);
   return o;
+}
+
+/// `dims`: "auto" (returned as 0, 0, 0) or 3 integers >= 1; absent means "auto". Their product
+/// is checked against the rank count by the run.
+std::array<int, 3> read_dims(const TableReader& table) {
+  const std::array<int, 3> automatic{0, 0, 0};
+  if (!table.has("dims")) return automatic;
+  const toml::value& v = table.value("dims");
+  if (v.is_string() && v.as_string().str == "auto") return automatic;
+  const std::string expected = "\"auto\" or an array of 3 integers >= 1";
+  if (!v.is_array() || v.as_array().size() != 3) table.fail_found("dims", expected);
+  std::array<int, 3> dims{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const toml::value& e = v.as_array()[k];
+    if (!e.is_integer() || e.as_integer() < 1 || e.as_integer() > std::numeric_limits<int>::max())
+      table.fail_found("dims", expected);
+    dims[k] = static_cast<int>(e.as_integer());
+  }
+  return dims;
+}
+
+/// [decomposition]: grid (dims given or "auto") or METIS, and the load balancing schedule.
+DecompositionSettings read_decomposition(const TableReader& root) {
+  const TableReader table = root.optional_table("decomposition");
+  table.allow_only({"method", "dims", "rebalance_every", "balance"});
+  DecompositionSettings d;
+  d.method = named_choice(table, "method", {"grid", "metis"}, d.method);
+  if (d.method == DecompositionMethod::Metis && table.has("dims")) {
+    table.fail("dims",
+               "dims belongs to method = \"grid\"; method = \"metis\" chooses its own parts");
+  }
+  d.dims = read_dims(table);
+  d.dims_line = table.has("dims") ? table.line("dims") : 0;
+  d.rebalance_every = table.number("rebalance_every", non_negative("s"), d.rebalance_every);
+  d.balance = named_choice(table, "balance", {"particles", "contacts"}, d.balance);
+  return d;
 }
 
 CheckpointSettings read_checkpoint(const TableReader& root) {
@@ -605,7 +643,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   apply_overrides(tree, overrides);
   const TableReader root(tree, path, "", "");
   root.allow_only({"simulation", "domain", "material", "contact", "pair", "neighbor", "wall",
-                   "mesh", "insert", "output", "checkpoint", "preparation"});
+                   "mesh", "insert", "output", "checkpoint", "preparation", "decomposition"});
   Scene scene;
   scene.file = path;
   scene.simulation = read_simulation(root);
@@ -620,6 +658,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   scene.output = read_output(root);
   scene.checkpoint = read_checkpoint(root);
   scene.preparation = read_preparation(root, scene.simulation.gravity);
+  scene.decomposition = read_decomposition(root);
   return scene;
 }
 

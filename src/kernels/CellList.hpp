@@ -3,9 +3,9 @@
 /// and sorted by (class, cell).
 ///
 /// Use on a rebuild step:
-///   1. cells.bin(position_radius, n, box, skin);           // keys, sort, cell ranges
+///   1. cells.bin(position_radius, n, box, skin, region);   // keys, sort, cell ranges
 ///   2. permute(space, cells.order(), in, out, n);          // each particle array into cell order
-///   3. neighbors.build(cells, sorted_position_radius, n, box, skin);  // NeighborList.hpp
+///   3. neighbors.build(cells, sorted_position_radius, n, box, skin, &rows);  // NeighborList.hpp
 /// Slot k of the cell order holds the particle that had index order()[k]; the particles of
 /// cell c occupy slots [cell_begin()[c], cell_begin()[c + 1]).
 #include <algorithm>
@@ -19,6 +19,7 @@
 
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
+#include "kernels/BinRegion.hpp"
 #include "kernels/DeviceArray.hpp"
 #include "kernels/ParallelFor.hpp"
 #include "kernels/PeriodicBox.hpp"
@@ -99,12 +100,14 @@ class CellList {
                                   std::to_string(kMaxSizeClasses) + "]");
   }
 
-  /// Bins n particles (x, y, z, radius in Space memory) and sorts them by (class, cell). On a
-  /// periodic axis any image of a position is accepted; on the others, positions outside the box
-  /// belong to the edge cells. skin [m] >= 0 is the neighbour list's skin. Throws
-  /// std::invalid_argument when a periodic length is below 2 (2 r_max + skin), when a radius is
-  /// not finite and > 0, or when the skin is negative.
-  void bin(const Real4* position_radius, std::size_t n, const PeriodicBox& box, Real skin) {
+  /// Bins n particles (x, y, z, radius in Space memory, global box coordinates) into grids over
+  /// `region` and sorts them by (class, cell). On a periodic axis of the box any image of a
+  /// position is accepted; on the others, positions outside the region belong to its edge cells.
+  /// skin [m] >= 0 is the neighbour list's skin. Throws std::invalid_argument when a radius is
+  /// not finite and > 0, when the skin is negative, or when the region does not fit the box
+  /// (check_region).
+  void bin(const Real4* position_radius, std::size_t n, const PeriodicBox& box, Real skin,
+           const BinRegion& region) {
     if (n > std::numeric_limits<std::uint32_t>::max() / (kMaxCellsPerParticle + 1))
       throw std::invalid_argument("CellList: too many particles for 32-bit cell indices");
     n_ = n;
@@ -114,10 +117,16 @@ class CellList {
       r_min = -reduce_max(Space{}, n, -r_max, cell_list_kernels::NegativeRadius{position_radius});
     }
     if (n > 0) check_radii(r_min, r_max);
-    check_sizes(box, skin, r_max);
-    make_grids(position_radius, box, skin, r_min, r_max);
+    check_skin(skin);
+    for (int k = 0; k < 3; ++k) check_region(box, region, 2 * r_max + skin, k);
+    make_grids(position_radius, box, region, skin, r_min, r_max);
     sort_into_cells(position_radius);
     find_cell_begins();
+  }
+
+  /// Bins into grids over the whole box (a run on one rank).
+  void bin(const Real4* position_radius, std::size_t n, const PeriodicBox& box, Real skin) {
+    bin(position_radius, n, box, skin, whole_box_region(box));
   }
 
   /// Number of particles binned.
@@ -137,24 +146,42 @@ class CellList {
       throw std::invalid_argument("CellList: particle radii must be finite and > 0");
   }
 
-  static void check_sizes(const PeriodicBox& box, Real skin, Real r_max) {
+  static void check_skin(Real skin) {
     if (!(skin >= 0) || !std::isfinite(skin))
       throw std::invalid_argument("CellList: skin must be finite and >= 0");
-    const Real cutoff = 2 * r_max + skin;
-    for (int k = 0; k < 3; ++k)
-      if (box.periodic[k] && !(axis(box.length, k) >= 2 * cutoff)) {
-        std::ostringstream what;
-        what << "CellList: periodic length along "
-             << "xyz"[k] << " (" << axis(box.length, k)
-             << " m) must be at least 2 (2 r_max + skin) = " << 2 * cutoff << " m";
-        throw std::invalid_argument(what.str());
-      }
   }
 
-  void make_grids(const Real4* position_radius, const PeriodicBox& box, Real skin, Real r_min,
-                  Real r_max) {
+  /// Axis k of the region against the box, for cutoff = 2 r_max + skin. A periodic box length L
+  /// must be at least 2 cutoff, so that one image of a particle at most is within reach. A region
+  /// periodic on k must span the whole periodic axis. On a box-periodic axis where the region is
+  /// not periodic, its length plus the cutoff must not exceed L: the gap the region leaves is
+  /// then at least one cutoff, and two images of one partner are never both in reach of it.
+  static void check_region(const PeriodicBox& box, const BinRegion& region, Real cutoff, int k) {
+    const Real box_length = axis(box.length, k), length = axis(region.length, k);
+    const char name = "xyz"[k];
+    std::ostringstream what;
+    what << "CellList: ";
+    if (box.periodic[k] && !(box_length >= 2 * cutoff)) {
+      what << "periodic length along " << name << " (" << box_length
+           << " m) must be at least 2 (2 r_max + skin) = " << 2 * cutoff << " m";
+    } else if (region.periodic[k] && (!box.periodic[k] || length != box_length)) {
+      what << "a region periodic along " << name << " must span the whole periodic box length ("
+           << box_length << " m), not " << length << " m";
+    } else if (box.periodic[k] && !region.periodic[k] && !(length + cutoff <= box_length)) {
+      what << "region length along " << name << " (" << length << " m) plus 2 r_max + skin ("
+           << cutoff << " m) exceeds the periodic length " << box_length
+           << " m; bin the whole axis as periodic instead";
+    } else {
+      return;
+    }
+    throw std::invalid_argument(what.str());
+  }
+
+  void make_grids(const Real4* position_radius, const PeriodicBox& box, const BinRegion& region,
+                  Real skin, Real r_min, Real r_max) {
     grids_ = SizeClassGrids{};
     grids_.box = box;
+    grids_.region = region;
     grids_.skin = skin;
     grids_.radius_top = r_max;
     grids_.class_count = size_class_count(r_min, r_max, max_size_classes_);
@@ -168,7 +195,7 @@ class CellList {
             reduce_max(Space{}, n_, Real(0), cell_list_kernels::RadiusInClass{member});
         const std::size_t max_cells = std::min<std::size_t>(
             kMaxCellsPerParticle * particles, std::numeric_limits<int>::max());  // int per axis
-        g = make_cell_grid(box, 2 * radius + skin, Real(max_cells));
+        g = make_cell_grid(region, 2 * radius + skin, Real(max_cells));
         g.particles = particles;
         g.radius_max = radius;
       }

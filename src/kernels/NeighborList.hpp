@@ -3,10 +3,15 @@
 ///
 /// Particles i != j are neighbours when |d_ij| < r_i + r_j + skin, with d_ij = x_j − x_i reduced
 /// to its minimum image on periodic axes. The list is full: each pair is in both particles'
-/// lists, so forces can be summed one thread per particle without atomics. The neighbours of
-/// particle i are neighbors()[offsets()[i] .. offsets()[i + 1]), ascending. All indices are
-/// slots of the cell order (CellList.hpp). The caller rebuilds the list (bin, permute, build)
-/// once any particle has moved more than skin / 2 since the last build.
+/// lists, so forces can be summed one thread per particle without atomics. The caller rebuilds the
+/// list (bin, permute, build) once any particle has moved more than skin / 2 since the last build.
+///
+/// Two layouts. Built for every binned particle, row k holds the neighbours of slot k of the cell
+/// order (CellList.hpp) as ascending slots. Built for given rows (NeighborRows: a rank's owned
+/// particles, among owned + ghosts), row r holds the neighbours of the particle in slot
+/// rows.slot[r] as storage indices, ascending in the partners' keys (global ids), so that each
+/// force sum visits its partners in an order set by the ids alone, whatever the storage order or
+/// rank count.
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -33,19 +38,21 @@ struct NeighborSearch {
   template <class Visitor>
   GPUDEM_HD void for_each_candidate(std::uint32_t i, Visitor& visit) const {
     const Real4 p = position_radius[i];
+    const Vec3 binned = make_vec3(grids.binned(0, p.x), grids.binned(1, p.y), grids.binned(2, p.z));
     for (int c = 0; c < grids.class_count; ++c)
-      if (grids.grid[c].particles > 0) visit_class(i, p, grids.grid[c], visit);
+      if (grids.grid[c].particles > 0) visit_class(i, p, binned, grids.grid[c], visit);
   }
 
  private:
-  /// Candidates of one class: the cells of its grid within r_i + r_c + skin of particle i.
+  /// Candidates of one class: the cells of its grid within r_i + r_c + skin of particle i, whose
+  /// position as the grids see it is `binned`.
   template <class Visitor>
-  GPUDEM_HD void visit_class(std::uint32_t i, const Real4& p, const CellGrid& g,
+  GPUDEM_HD void visit_class(std::uint32_t i, const Real4& p, const Vec3& binned, const CellGrid& g,
                              Visitor& visit) const {
     const Real reach = p.w + g.radius_max + grids.skin;
-    const AxisSpan sx = axis_span(g, grids.box, 0, p.x, reach);
-    const AxisSpan sy = axis_span(g, grids.box, 1, p.y, reach);
-    const AxisSpan sz = axis_span(g, grids.box, 2, p.z, reach);
+    const AxisSpan sx = axis_span(g, grids.region, 0, binned.x, reach);
+    const AxisSpan sy = axis_span(g, grids.region, 1, binned.y, reach);
+    const AxisSpan sz = axis_span(g, grids.region, 2, binned.z, reach);
     for (int rz = 0; rz < sz.runs; ++rz)
       for (int z = sz.first[rz]; z <= sz.last[rz]; ++z)
         for (int ry = 0; ry < sy.runs; ++ry)
@@ -67,7 +74,44 @@ struct NeighborSearch {
   }
 };
 
+/// Rows of a list built for some of the binned particles only (a rank's owned particles), in the
+/// caller's storage order, holding storage indices ordered by partner key (global id).
+struct NeighborRows {
+  const std::uint32_t* slot;           ///< cell-order slot of row r's particle, `count` entries
+  std::size_t count;                   ///< number of rows
+  const std::uint32_t* index_of_slot;  ///< storage index of each slot's particle (cells.order())
+  const ParticleId* key;  ///< by storage index; each row ascending in key (ties: index)
+};
+
 namespace neighbor_list_kernels {
+
+/// What a row kernel needs of the rows: the slot of each row and the names of its entries. Null
+/// pointers give today's full layout: row k is slot k, entries are slots, ascending.
+struct RowLayout {
+  const std::uint32_t* slot = nullptr;
+  const std::uint32_t* index_of_slot = nullptr;
+  const ParticleId* key = nullptr;
+
+  GPUDEM_HD std::uint32_t slot_of_row(std::size_t r) const {
+    return slot ? slot[r] : static_cast<std::uint32_t>(r);
+  }
+  GPUDEM_HD std::uint32_t entry_of_slot(std::uint32_t j) const {
+    return index_of_slot ? index_of_slot[j] : j;
+  }
+  /// Entry a goes before entry b: ascending (key, index).
+  GPUDEM_HD bool before(std::uint32_t a, std::uint32_t b) const {
+    return key[a] < key[b] || (key[a] == key[b] && a < b);
+  }
+  /// Insertion sort of one row by (key, index); rows are short (tens of entries).
+  GPUDEM_HD void sort_row(std::uint32_t* row, std::uint32_t length) const {
+    for (std::uint32_t m = 1; m < length; ++m) {
+      const std::uint32_t entry = row[m];
+      std::uint32_t k = m;
+      for (; k > 0 && before(entry, row[k - 1]); --k) row[k] = row[k - 1];
+      row[k] = entry;
+    }
+  }
+};
 
 struct PairCounter {
   std::uint32_t examined = 0;
@@ -79,33 +123,39 @@ struct PairCounter {
 };
 
 struct PairWriter {
+  RowLayout layout;
   std::uint32_t* next;
   GPUDEM_HD void operator()(std::uint32_t j, bool within) {
-    if (within) *next++ = j;
+    if (within) *next++ = layout.entry_of_slot(j);
   }
 };
 
-/// kept[i], examined[i]: neighbours and candidates of particle i.
+/// kept[r], examined[r]: neighbours and candidates of row r's particle.
 struct CountNeighbors {
   NeighborSearch search;
+  RowLayout layout;
   std::uint32_t* kept;
   std::uint32_t* examined;
-  GPUDEM_HD void operator()(std::size_t i) const {
+  GPUDEM_HD void operator()(std::size_t r) const {
     PairCounter counter;
-    search.for_each_candidate(static_cast<std::uint32_t>(i), counter);
-    kept[i] = counter.kept;
-    examined[i] = counter.examined;
+    search.for_each_candidate(layout.slot_of_row(r), counter);
+    kept[r] = counter.kept;
+    examined[r] = counter.examined;
   }
 };
 
-/// Writes the neighbours of particle i from neighbors[offsets[i]] on.
+/// Writes the neighbours of row r's particle from neighbors[offsets[r]] on, sorted by key when
+/// the layout has keys.
 struct WriteNeighbors {
   NeighborSearch search;
+  RowLayout layout;
   const std::uint32_t* offsets;
   std::uint32_t* neighbors;
-  GPUDEM_HD void operator()(std::size_t i) const {
-    PairWriter writer{neighbors + offsets[i]};
-    search.for_each_candidate(static_cast<std::uint32_t>(i), writer);
+  GPUDEM_HD void operator()(std::size_t r) const {
+    std::uint32_t* row = neighbors + offsets[r];
+    PairWriter writer{layout, row};
+    search.for_each_candidate(layout.slot_of_row(r), writer);
+    if (layout.key) layout.sort_row(row, offsets[r + 1] - offsets[r]);
   }
 };
 
@@ -127,41 +177,43 @@ class NeighborList {
  public:
   /// Builds the list of the n particles binned in `cells`, whose positions and radii
   /// (x, y, z, radius) are given in cell order (cells.order()); box and skin [m] must be those of
-  /// the binning. Counts the neighbours, scans the counts into offsets, then writes them.
+  /// the binning. Without `rows`, one row per slot; with them, the given rows only (their
+  /// pointers in Space memory, slots < n). Counts the neighbours, scans the counts into offsets,
+  /// then writes them.
   void build(const CellList<Space>& cells, const Real4* sorted_position_radius, std::size_t n,
-             const PeriodicBox& box, Real skin) {
-    if (n != cells.size())
-      throw std::invalid_argument("NeighborList: particle count differs from the cell list's");
-    if (!same_box(box, cells.grids().box) || skin != cells.grids().skin)
-      throw std::invalid_argument("NeighborList: box or skin differs from the cell list's");
+             const PeriodicBox& box, Real skin, const NeighborRows* rows = nullptr) {
+    check_matches(cells, n, box, skin);
     const NeighborSearch search{cells.grids(), cells.cell_begin(), sorted_position_radius};
-    n_ = n;
-    offsets_.resize(n + 1);
-    candidates_per_particle_.resize(n);
-    parallel_for(Space{}, n,
-                 neighbor_list_kernels::CountNeighbors{search, offsets_.data(),
+    const neighbor_list_kernels::RowLayout layout = layout_of(rows);
+    n_ = rows ? rows->count : n;
+    offsets_.resize(n_ + 1);
+    candidates_per_particle_.resize(n_);
+    parallel_for(Space{}, n_,
+                 neighbor_list_kernels::CountNeighbors{search, layout, offsets_.data(),
                                                        candidates_per_particle_.data()});
-    pairs_kept_ = exclusive_scan(Space{}, offsets_.data(), offsets_.data(), n);
+    pairs_kept_ = exclusive_scan(Space{}, offsets_.data(), offsets_.data(), n_);
     if (pairs_kept_ > std::numeric_limits<std::uint32_t>::max())
       throw std::overflow_error("NeighborList: more than 2^32 - 1 neighbour entries");
     parallel_for(Space{}, 1,
-                 neighbor_list_kernels::StoreValue{offsets_.data() + n,
+                 neighbor_list_kernels::StoreValue{offsets_.data() + n_,
                                                    static_cast<std::uint32_t>(pairs_kept_)});
     neighbors_.resize(pairs_kept_);
-    parallel_for(Space{}, n,
-                 neighbor_list_kernels::WriteNeighbors{search, offsets_.data(), neighbors_.data()});
+    parallel_for(
+        Space{}, n_,
+        neighbor_list_kernels::WriteNeighbors{search, layout, offsets_.data(), neighbors_.data()});
     candidates_examined_ = static_cast<std::uint64_t>(
-        reduce_sum(Space{}, n, neighbor_list_kernels::ValueOf{candidates_per_particle_.data()}));
+        reduce_sum(Space{}, n_, neighbor_list_kernels::ValueOf{candidates_per_particle_.data()}));
   }
 
-  /// Number of particles in the list.
+  /// Number of rows in the list: n, or rows.count when built for given rows.
   std::size_t size() const { return n_; }
-  /// n + 1 entries; the neighbours of i are neighbors()[offsets()[i] .. offsets()[i + 1]).
+  /// size() + 1 entries; row r is neighbors()[offsets()[r] .. offsets()[r + 1]).
   const std::uint32_t* offsets() const { return offsets_.data(); }
   const std::uint32_t* neighbors() const { return neighbors_.data(); }
   /// Ordered pairs (i, j) tested against the criterion in the last build.
   std::uint64_t candidates_examined() const { return candidates_examined_; }
-  /// Ordered pairs kept in the last build: the list's length, twice the number of pairs.
+  /// Ordered pairs kept in the last build: the list's length (without rows, twice the number of
+  /// pairs).
   std::uint64_t pairs_kept() const { return pairs_kept_; }
   /// Bytes held in Space memory.
   std::size_t memory_bytes() const {
@@ -169,6 +221,21 @@ class NeighborList {
   }
 
  private:
+  static void check_matches(const CellList<Space>& cells, std::size_t n, const PeriodicBox& box,
+                            Real skin) {
+    if (n != cells.size())
+      throw std::invalid_argument("NeighborList: particle count differs from the cell list's");
+    if (!same_box(box, cells.grids().box) || skin != cells.grids().skin)
+      throw std::invalid_argument("NeighborList: box or skin differs from the cell list's");
+  }
+
+  static neighbor_list_kernels::RowLayout layout_of(const NeighborRows* rows) {
+    if (!rows) return {};
+    if (rows->count > 0 && (!rows->slot || !rows->index_of_slot || !rows->key))
+      throw std::invalid_argument("NeighborList: rows need slots, storage indices and keys");
+    return {rows->slot, rows->index_of_slot, rows->key};
+  }
+
   static bool same_box(const PeriodicBox& a, const PeriodicBox& b) {
     for (int k = 0; k < 3; ++k)
       if (axis(a.lo, k) != axis(b.lo, k) || axis(a.length, k) != axis(b.length, k) ||

@@ -16,6 +16,7 @@
 
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
+#include "kernels/BinRegion.hpp"
 #include "kernels/PeriodicBox.hpp"
 
 namespace gpudem {
@@ -45,9 +46,10 @@ GPUDEM_HD inline int size_class(Real r, Real r_top, int class_count) {
   return c;
 }
 
-/// A regular grid of cells over the box. On a periodic axis the cells tile the length exactly, so
-/// a periodic image of a point lies a whole number of grid lengths away from the point's cell;
-/// on a non-periodic axis, points outside the box belong to the edge cells.
+/// A regular grid of cells over a rank's region (BinRegion.hpp). On an axis where the region is
+/// periodic the cells tile its length exactly, so a periodic image of a point lies a whole number
+/// of grid lengths away from the point's cell; on the other axes, points outside the region belong
+/// to the edge cells.
 struct CellGrid {
   int cells[3] = {1, 1, 1};      ///< cells along x, y, z
   Real side[3] = {1, 1, 1};      ///< [m] cell edge along x, y, z
@@ -73,10 +75,11 @@ GPUDEM_HD inline int clamp_cell(Real c, int n) {
 /// Cell coordinate c wrapped into [0, n).
 GPUDEM_HD inline int wrap_cell(Real c, int n) { return clamp_cell(c - n * floor(c / n), n); }
 
-/// Cell coordinate of position x along axis k: wrapped on a periodic axis, clamped otherwise.
-GPUDEM_HD inline int cell_coordinate(const CellGrid& g, const PeriodicBox& box, int k, Real x) {
-  const Real c = floor((x - axis(box.lo, k)) / g.side[k]);
-  return box.periodic[k] ? wrap_cell(c, g.cells[k]) : clamp_cell(c, g.cells[k]);
+/// Cell coordinate of x (a region image, region_image) along axis k: wrapped where the region is
+/// periodic, clamped otherwise.
+GPUDEM_HD inline int cell_coordinate(const CellGrid& g, const BinRegion& region, int k, Real x) {
+  const Real c = floor((x - axis(region.lo, k)) / g.side[k]);
+  return region.periodic[k] ? wrap_cell(c, g.cells[k]) : clamp_cell(c, g.cells[k]);
 }
 
 /// The cells along one axis within reach of a point, as at most two ascending runs of cell
@@ -88,15 +91,15 @@ struct AxisSpan {
   int runs = 1;
 };
 
-/// Cells of grid g along axis k that overlap [x − reach, x + reach].
-GPUDEM_HD inline AxisSpan axis_span(const CellGrid& g, const PeriodicBox& box, int k, Real x,
+/// Cells of grid g along axis k that overlap [x − reach, x + reach], x a region image.
+GPUDEM_HD inline AxisSpan axis_span(const CellGrid& g, const BinRegion& region, int k, Real x,
                                     Real reach) {
   const int n = g.cells[k];
-  const Real offset = x - axis(box.lo, k);
+  const Real offset = x - axis(region.lo, k);
   const Real from = floor((offset - reach) / g.side[k] - kSpanMarginCells);
   const Real to = floor((offset + reach) / g.side[k] + kSpanMarginCells);
   AxisSpan span;
-  if (!box.periodic[k]) {
+  if (!region.periodic[k]) {
     span.first[0] = clamp_cell(from, n);
     span.last[0] = clamp_cell(to, n);
     return span;
@@ -125,28 +128,29 @@ inline Real cells_along(Real length, Real side) {
   return std::max(Real(1), std::floor(length / side));
 }
 
-/// Grid over the box with cell edges of at least min_side (> 0) and at most max_cells (>= 1)
+/// Grid over the region with cell edges of at least min_side (> 0) and at most max_cells (>= 1)
 /// cells; the edges grow beyond min_side only as far as max_cells requires.
-inline CellGrid make_cell_grid(const PeriodicBox& box, Real min_side, Real max_cells) {
+inline CellGrid make_cell_grid(const BinRegion& region, Real min_side, Real max_cells) {
   Real side = min_side;
-  const auto total = [&box](Real s) {
-    return cells_along(box.length.x, s) * cells_along(box.length.y, s) *
-           cells_along(box.length.z, s);
+  const auto total = [&region](Real s) {
+    return cells_along(region.length.x, s) * cells_along(region.length.y, s) *
+           cells_along(region.length.z, s);
   };
   while (total(side) > max_cells) side *= Real(1.25);
   CellGrid g;
   for (int k = 0; k < 3; ++k) {
-    const Real length = axis(box.length, k);
+    const Real length = axis(region.length, k);
     const Real n = cells_along(length, side);
     g.cells[k] = static_cast<int>(n);
-    g.side[k] = box.periodic[k] ? length / n : std::max(length / n, side);
+    g.side[k] = region.periodic[k] ? length / n : std::max(length / n, side);
   }
   return g;
 }
 
 /// The class grids of one binning, with everything a search thread needs to use them.
 struct SizeClassGrids {
-  PeriodicBox box;
+  PeriodicBox box;      ///< the global box, for minimum-image distances only
+  BinRegion region;     ///< the part of the box the grids cover
   Real skin = 0;        ///< [m] added to every pair's contact distance
   Real radius_top = 0;  ///< [m] largest radius, upper bound of class 0
   int class_count = 1;
@@ -155,11 +159,15 @@ struct SizeClassGrids {
 
   GPUDEM_HD int class_of(Real radius) const { return size_class(radius, radius_top, class_count); }
 
+  /// Coordinate x along axis k as the grids see it: its image nearest the region.
+  GPUDEM_HD Real binned(int k, Real x) const { return region_image(box, region, k, x); }
+
   /// Index, among all grids' cells, of the cell that holds particle p (x, y, z, radius).
   GPUDEM_HD std::uint32_t cell_of(const Real4& p) const {
     const CellGrid& g = grid[class_of(p.w)];
-    return cell_index(g, cell_coordinate(g, box, 0, p.x), cell_coordinate(g, box, 1, p.y),
-                      cell_coordinate(g, box, 2, p.z));
+    return cell_index(g, cell_coordinate(g, region, 0, binned(0, p.x)),
+                      cell_coordinate(g, region, 1, binned(1, p.y)),
+                      cell_coordinate(g, region, 2, binned(2, p.z)));
   }
 };
 

@@ -13,6 +13,7 @@
 #include "core/Scene.hpp"
 #include "core/ContactModel.hpp"
 #include "core/ContactParams.hpp"
+#include "kernels/DomainLink.hpp"
 #include "kernels/MeshWallSetup.hpp"
 #include "kernels/PeriodicBox.hpp"
 #include "kernels/PlaneWall.hpp"
@@ -32,6 +33,9 @@ struct EngineSetup {
   std::vector<PlaneWall> walls;
   std::vector<MeshWallSetup> meshes;  ///< triangle-mesh walls (tools)
   std::uint64_t start_step = 0;  ///< step the run starts at (a restart's): the meshes' clock
+  /// This rank's part of the decomposed domain; null: a run on one rank. Must outlive the
+  /// engine.
+  const DomainLink* domain = nullptr;
 };
 
 /// Global quantities reduced over all particles; walls' forces are the forces the
@@ -62,34 +66,38 @@ class StepEngine {
  public:
   virtual ~StepEngine() = default;
 
-  /// Replaces the engine's particles with `particles` (copied into the engine's space) and
-  /// evaluates the initial forces.
+  /// Replaces the engine's particles with those of `particles` this rank owns (copied into the
+  /// engine's space) and evaluates the initial forces. Collective, like every call below that
+  /// changes or reduces the state: all ranks make it at the same point.
   virtual void set_particles(const ParticleStore& particles) = 0;
-  /// Copies the current particle state back to the host, in the engine's order, with the
+  /// Copies this rank's owned particles back to the host, in the engine's order, with the
   /// forces and torques of the last evaluation.
   virtual void get_particles(ParticleStore& particles) const = 0;
 
-  /// The history records (Law::history_size values each) of every contact whose record is not
-  /// all zero, keyed by global ids.
+  /// The history records (Law::history_size values each) of every contact of an owned particle
+  /// whose record is not all zero, keyed by global ids.
   virtual void get_contact_history(ContactHistory& history) const = 0;
   /// Gives every contact listed in `history` its record and every other contact a zero
-  /// record; call after set_particles or restore_particles. Throws std::invalid_argument for a
-  /// history of another width, an entry naming an unknown particle, a pair that is not in the
+  /// record; call after set_particles or restore_particles. On several ranks each takes the
+  /// records of the particles it owns. Throws std::invalid_argument for a history of another
+  /// width, an entry naming an unknown particle (on one rank), a pair that is not in the
   /// neighbour list, or a wall index beyond the walls. Forces are not re-evaluated.
   virtual void set_contact_history(const ContactHistory& history) = 0;
 
   /// Positions and radii at the last neighbour-list build, in the order of get_particles.
   virtual void get_list_positions(std::vector<Real4>& position_radius) const = 0;
-  /// Replaces the particles to continue a saved run bit-for-bit: `particles` and
-  /// `list_positions` as get_particles and get_list_positions gave them. Unlike
+  /// Replaces the particles to continue a saved run bit-for-bit, on any number of ranks:
+  /// `particles` and `list_positions` as get_particles and get_list_positions gave them on all
+  /// ranks of the saved run; each rank takes those whose list position it owns. Unlike
   /// set_particles it keeps the forces and torques of `particles` (evaluated from half-step
   /// velocities that the saved state no longer holds) and builds the neighbour list at the
-  /// positions of the saved engine's last build, so that list, the next rebuild and every sum
-  /// follow the saved engine's order. Springs are zero until set_contact_history;
-  /// removed_count() continues from `removed`.
+  /// positions of the saved engine's last build, so that the list and the next rebuild follow
+  /// the saved run (every sum runs in partner-id order, whatever the particle order). Springs
+  /// are zero until set_contact_history; removed_count() continues from `removed`.
   virtual void restore_particles(const ParticleStore& particles,
                                  const std::vector<Real4>& list_positions,
                                  std::uint64_t removed) = 0;
+  /// Particles on all ranks.
   virtual std::size_t particle_count() const = 0;
 
   /// Advances one time step dt.

@@ -1,20 +1,26 @@
 #pragma once
-/// The step engine for one execution space and one contact law (DESIGN §4 on one rank): the
-/// same code is instantiated for HostSpace and CudaSpace and for every valid law
+/// The step engine for one execution space and one contact law (DESIGN §4): this rank's owned
+/// particles followed by ghost copies of other ranks' particles, stepped with the rank's
+/// DomainLink (one rank when the setup names none). The same code is instantiated for HostSpace and CudaSpace and for every valid law
 /// (EngineFactory.hpp). Include the backend's ParallelFor header first.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <unordered_set>
 
 #include "kernels/ArrayKernels.hpp"
 #include "kernels/CellList.hpp"
 #include "kernels/ContactForces.hpp"
 #include "kernels/DeviceArray.hpp"
 #include "kernels/Diagnostics.hpp"
+#include "kernels/DomainLink.hpp"
+#include "kernels/GhostExchange.hpp"
 #include "kernels/Integrators.hpp"
 #include "kernels/MeshWalls.hpp"
 #include "kernels/NeighborList.hpp"
+#include "kernels/ParticleMigration.hpp"
 #include "kernels/Permute.hpp"
 #include "kernels/StepEngine.hpp"
 
@@ -79,10 +85,10 @@ struct GatherRows {
   }
 };
 
-/// Carries contact history over a neighbour rebuild: for each new list entry of particle k,
-/// the history of the old entry of the same particle (old index previous_index[k]) with the
+/// Carries contact history over a neighbour rebuild: for each new list entry of owned
+/// particle k, the record that particle k's previous row (row previous_index[k]) held for the
 /// same partner global id, or zero for a new contact. Contact history is keyed by global id,
-/// never by position in a list.
+/// never by position in a list, so rows that arrived from another rank fit in as well.
 template <class State>
 struct RemapPairHistory {
   const std::uint32_t* offsets;
@@ -90,8 +96,7 @@ struct RemapPairHistory {
   const ParticleId* id;
   const std::uint32_t* previous_index;
   const std::uint32_t* previous_offsets;
-  const std::uint32_t* previous_neighbors;
-  const ParticleId* previous_id;
+  const ParticleId* previous_partner;
   const State* previous_history;
   State* history;
   GPUDEM_HD void operator()(std::size_t k) const {
@@ -100,12 +105,43 @@ struct RemapPairHistory {
       const ParticleId partner = id[neighbors[e]];
       State carried{};
       for (std::uint32_t f = previous_offsets[old]; f < previous_offsets[old + 1]; ++f)
-        if (previous_id[previous_neighbors[f]] == partner) {
+        if (previous_partner[f] == partner) {
           carried = previous_history[f];
           break;
         }
       history[e] = carried;
     }
+  }
+};
+
+/// partner[e] = id[neighbors[e]]: a list's entries as global ids.
+struct PartnerIds {
+  const std::uint32_t* neighbors;
+  const ParticleId* id;
+  ParticleId* partner;
+  GPUDEM_HD void operator()(std::size_t e) const { partner[e] = id[neighbors[e]]; }
+};
+
+/// slot_of[i] = the cell-order slot of owned particle i (index_of_slot[slot] = i).
+struct SlotOfOwned {
+  const std::uint32_t* index_of_slot;
+  std::size_t owned;
+  std::uint32_t* slot_of;
+  GPUDEM_HD void operator()(std::size_t slot) const {
+    const std::uint32_t i = index_of_slot[slot];
+    if (i < owned) slot_of[i] = static_cast<std::uint32_t>(slot);
+  }
+};
+
+/// Swaps the first n values of two arrays.
+template <class T>
+struct SwapValues {
+  T* a;
+  T* b;
+  GPUDEM_HD void operator()(std::size_t k) const {
+    const T t = a[k];
+    a[k] = b[k];
+    b[k] = t;
   }
 };
 
@@ -116,26 +152,35 @@ class StepEngineImpl final : public StepEngine {
 
  public:
   explicit StepEngineImpl(const EngineSetup& setup)
-      : setup_(setup), meshes_(setup.meshes), steps_(setup.start_step) {
+      : setup_(setup),
+        one_rank_(setup.box),
+        domain_(setup.domain ? *setup.domain : one_rank_),
+        meshes_(setup.meshes),
+        steps_(setup.start_step) {
     pair_params_.upload(setup.pair_params);
     walls_.upload(setup.walls);
     if (!meshes_.empty()) meshes_.set_time(steps_ * setup.dt);
   }
 
-  void set_particles(const ParticleStore& p) override {
-    upload_particles(p);
+  void set_particles(const ParticleStore& all) override {
+    const std::vector<std::size_t> mine = owned_indices(all.position_radius);
+    upload_particles(select(all, mine));
+    count_particles();
     has_list_ = false;
     rebuild();
     compute_forces();
   }
 
-  void restore_particles(const ParticleStore& p, const std::vector<Real4>& list_positions,
+  void restore_particles(const ParticleStore& all, const std::vector<Real4>& list_positions,
                          std::uint64_t removed) override {
-    if (list_positions.size() != p.size() || p.force.size() != p.size() ||
-        p.torque.size() != p.size())
+    if (list_positions.size() != all.size() || all.force.size() != all.size() ||
+        all.torque.size() != all.size())
       throw std::invalid_argument("restore_particles: arrays differ in length");
+    const std::vector<std::size_t> mine = owned_indices(list_positions);
+    const ParticleStore p = select(all, mine);
     upload_particles(p);
-    position_at_build_.upload(list_positions);
+    count_particles();
+    position_at_build_.upload(select(list_positions, mine));
     DeviceArray<Vec3, Space> saved_force, saved_torque;
     saved_force.upload(p.force);
     saved_torque.upload(p.torque);
@@ -151,10 +196,15 @@ class StepEngineImpl final : public StepEngine {
     position_radius_.download(p.position_radius);
     velocity_inv_mass_.download(p.velocity_inv_mass);
     angular_velocity_.download(p.angular_velocity);
-    force_.download(p.force);
-    torque_.download(p.torque);
     id_.download(p.id);
     material_.download(p.material);
+    p.position_radius.resize(owned_);  // the ghosts belong to other ranks
+    p.velocity_inv_mass.resize(owned_);
+    p.angular_velocity.resize(owned_);
+    p.id.resize(owned_);
+    p.material.resize(owned_);
+    force_.download(p.force);
+    torque_.download(p.torque);
   }
 
   void get_contact_history(ContactHistory& history) const override {
@@ -164,7 +214,12 @@ class StepEngineImpl final : public StepEngine {
 
   void set_contact_history(const ContactHistory& history) override {
     std::vector<Real> pair_values, wall_values;
-    scatter_history(contact_slots(), kHistoryWidth, history, pair_values, wall_values);
+    const ContactSlots slots = contact_slots();
+    if (domain_.ranks() > 1)
+      scatter_history(slots, kHistoryWidth, records_of_owned(history, slots), pair_values,
+                      wall_values);
+    else
+      scatter_history(slots, kHistoryWidth, history, pair_values, wall_values);
     if constexpr (kHistoryWidth > 0) {
       upload_states(pair_values, pair_history_);
       upload_states(wall_values, wall_history_);
@@ -175,16 +230,20 @@ class StepEngineImpl final : public StepEngine {
     position_at_build_.download(position_radius);
   }
 
-  std::size_t particle_count() const override { return id_.size(); }
+  std::size_t particle_count() const override { return global_count_; }
 
   void step() override {
     const Real dt = setup_.dt;
     const bool verlet = setup_.integrator == IntegratorKind::VelocityVerlet;
     kick(verlet ? Real(0.5) * dt : dt);
-    parallel_for(Space{}, size(), Drift{position_radius_.data(), velocity_inv_mass_.data(), dt});
+    parallel_for(Space{}, owned_,
+                 Drift{position_radius_.data(), velocity_inv_mass_.data(), dt});
     ++steps_;
     if (!meshes_.empty()) meshes_.set_time(steps_ * dt);
-    if (needs_rebuild()) rebuild();
+    if (needs_rebuild())
+      rebuild();
+    else if (domain_.ranks() > 1)
+      ghosts_.update(domain_, arrays(), owned_);
     compute_forces();
     if (verlet) kick(Real(0.5) * dt);
   }
@@ -195,56 +254,22 @@ class StepEngineImpl final : public StepEngine {
   }
 
   bool find_unhealthy(double limit, HealthFailure& failure) const override {
-    const HealthScore score{position_radius_.data(), velocity_inv_mass_.data(),
-                            overlap_ratio_.data()};
-    if (reduce_max(Space{}, size(), Real(0), score) <= limit) return false;
-    ParticleStore host;
-    get_particles(host);
-    std::vector<Real> ratio;
-    overlap_ratio_.download(ratio);
-    const HealthScore host_score{host.position_radius.data(), host.velocity_inv_mass.data(),
-                                 ratio.data()};
-    for (std::size_t i = 0; i < host.size(); ++i) {
-      const Real s = host_score(i);
-      if (s <= limit) continue;
-      failure =
-          HealthFailure{host.id[i], xyz(host.position_radius[i]), ratio[i],
-                        s == kNonFiniteScore, ratio[i] == kMeshOverflowScore};
-      return true;
-    }
-    return false;
+    const bool here = find_unhealthy_here(limit, failure);
+    if (domain_.ranks() == 1) return here;
+    const int first = domain_.first_rank_with(here);
+    if (first == domain_.ranks()) return false;
+    std::vector<char> bytes(sizeof(HealthFailure));
+    std::memcpy(bytes.data(), &failure, sizeof(HealthFailure));
+    domain_.broadcast(bytes, first);
+    std::memcpy(&failure, bytes.data(), sizeof(HealthFailure));
+    return true;
   }
 
   Diagnostics diagnostics() const override {
-    Diagnostics d;
-    const std::size_t n = size();
-    const ParticleView view = particle_view();
-    d.particle_count = n;
-    d.kinetic_translational =
-        reduce_sum(Space{}, n, TranslationalEnergy{velocity_inv_mass_.data()});
-    d.kinetic_rotational =
-        reduce_sum(Space{}, n,
-                   RotationalEnergy{velocity_inv_mass_.data(), position_radius_.data(),
-                                    angular_velocity_.data()});
-    d.potential_gravity = reduce_sum(
-        Space{}, n,
-        GravityEnergy{velocity_inv_mass_.data(), position_radius_.data(), setup_.gravity});
-    DeviceArray<Real, Space> contacts(n), energy(n);
-    const std::uint32_t bodies = wall_count() + meshes_.count();
-    DeviceArray<Vec3, Space> body_force(n * bodies), mesh_torque(n * meshes_.count());
-    parallel_for(Space{}, n,
-                 ContactTerms<Law>{view, contact_scene(), contacts.data(), energy.data(),
-                                   body_force.data(), mesh_torque.data()});
-    d.potential_elastic = reduce_sum(Space{}, n, ReadValue{energy.data()});
-    d.contact_count =
-        static_cast<std::uint64_t>(std::llround(reduce_sum(Space{}, n, ReadValue{contacts.data()})));
-    d.max_overlap_ratio = reduce_max(Space{}, n, Real(0), ReadValue{overlap_ratio_.data()});
-    for (std::uint32_t w = 0; w < wall_count(); ++w)
-      d.wall_force.push_back(column_sum(body_force, bodies, w));
-    for (std::uint32_t m = 0; m < meshes_.count(); ++m) {
-      d.mesh_force.push_back(column_sum(body_force, bodies, wall_count() + m));
-      d.mesh_torque.push_back(column_sum(mesh_torque, meshes_.count(), m));
-    }
+    double contact_share = 0;
+    Diagnostics d = local_diagnostics(contact_share);
+    if (domain_.ranks() > 1) sum_over_ranks(d, contact_share);
+    d.particle_count = global_count_;
     return d;
   }
 
@@ -256,13 +281,66 @@ class StepEngineImpl final : public StepEngine {
            force_.bytes() + torque_.bytes() + id_.bytes() + material_.bytes() +
            overlap_ratio_.bytes() + position_at_build_.bytes() + pair_history_.bytes() +
            wall_history_.bytes() + scratch_bytes() + cells_.memory_bytes() +
-           neighbors_.memory_bytes() + meshes_.memory_bytes();
+           neighbors_.memory_bytes() + meshes_.memory_bytes() + ghosts_.memory_bytes();
   }
 
   std::string backend_name() const override { return Space::name; }
 
  private:
-  std::size_t size() const { return id_.size(); }
+  ParticleArrays arrays() {
+    return ParticleArrays{position_radius_.data(), velocity_inv_mass_.data(),
+                          angular_velocity_.data(), id_.data(), material_.data()};
+  }
+
+  /// Indices of the particles at `where` that this rank owns (all of them on one rank).
+  std::vector<std::size_t> owned_indices(const std::vector<Real4>& where) const {
+    std::vector<std::size_t> mine;
+    mine.reserve(domain_.ranks() == 1 ? where.size() : where.size() / domain_.ranks());
+    for (std::size_t i = 0; i < where.size(); ++i)
+      if (domain_.ranks() == 1 || domain_.owner_of(xyz(where[i])) == domain_.rank())
+        mine.push_back(i);
+    return mine;
+  }
+
+  template <class T>
+  static std::vector<T> select(const std::vector<T>& all, const std::vector<std::size_t>& rows) {
+    if (all.empty()) return all;
+    std::vector<T> out;
+    out.reserve(rows.size());
+    for (const std::size_t i : rows) out.push_back(all[i]);
+    return out;
+  }
+
+  static ParticleStore select(const ParticleStore& all, const std::vector<std::size_t>& rows) {
+    ParticleStore p;
+    p.position_radius = select(all.position_radius, rows);
+    p.velocity_inv_mass = select(all.velocity_inv_mass, rows);
+    p.angular_velocity = select(all.angular_velocity, rows);
+    p.force = select(all.force, rows);
+    p.torque = select(all.torque, rows);
+    p.id = select(all.id, rows);
+    p.material = select(all.material, rows);
+    return p;
+  }
+
+  /// The records of `history` whose owner is one of this rank's particles.
+  static ContactHistory records_of_owned(const ContactHistory& history,
+                                         const ContactSlots& slots) {
+    const std::unordered_set<ParticleId> owned(slots.id.begin(), slots.id.begin() + slots.rows);
+    ContactHistory mine;
+    mine.width = history.width;
+    const std::uint32_t w = history.width;
+    for (std::size_t k = 0; k < history.pair_owner.size(); ++k)
+      if (owned.count(history.pair_owner[k]))
+        mine.add_pair(history.pair_owner[k], history.pair_partner[k], &history.pair_values[k * w]);
+    for (std::size_t k = 0; k < history.wall_owner.size(); ++k)
+      if (owned.count(history.wall_owner[k]))
+        mine.add_wall(history.wall_owner[k], history.wall_index[k], &history.wall_values[k * w]);
+    return mine;
+  }
+
+  /// The particle count over all ranks.
+  void count_particles() { global_count_ = std::llround(domain_.sum(double(owned_))); }
 
   /// Uploads the particle arrays and sizes the per-particle work arrays; wall histories zero,
   /// torques zero (a law without spin never writes them).
@@ -272,50 +350,50 @@ class StepEngineImpl final : public StepEngine {
     angular_velocity_.upload(p.angular_velocity);
     id_.upload(p.id);
     material_.upload(p.material);
-    const std::size_t n = p.size();
-    force_.resize(n);
-    torque_.resize(n);
-    overlap_ratio_.resize(n);
-    parallel_for(Space{}, n, Fill<Vec3>{torque_.data(), Vec3{}});
+    owned_ = p.size();
+    force_.resize(owned_);
+    torque_.resize(owned_);
+    overlap_ratio_.resize(owned_);
+    parallel_for(Space{}, owned_, Fill<Vec3>{torque_.data(), Vec3{}});
     if constexpr (kHistoryWidth > 0) {
-      wall_history_.resize(n * wall_count());
+      wall_history_.resize(owned_ * wall_count());
       parallel_for(Space{}, wall_history_.size(), Fill<State>{wall_history_.data(), State{}});
     }
   }
 
   /// The neighbour list of a restored state, built at the saved positions of the last build
-  /// (position_at_build_): binning them reproduces the saved cell order, so the permutation is
-  /// the identity for a state saved by this engine; it is applied anyway, to the forces too,
-  /// so any order stays consistent.
+  /// (position_at_build_) as the saved engine built it, with ghosts at their saved positions
+  /// too; the particles then take their saved current state again, ghosts included.
   void build_list_at_saved_positions(DeviceArray<Vec3, Space>& force,
                                      DeviceArray<Vec3, Space>& torque) {
-    const std::size_t n = size();
-    previous_index_.resize(n);
-    cells_.bin(position_at_build_.data(), n, setup_.box, setup_.skin);
-    reorder(cells_.order(), n);
-    permute_array(cells_.order(), n, position_at_build_);
-    permute_array(cells_.order(), n, force);
-    permute_array(cells_.order(), n, torque);
-    neighbors_.build(cells_, position_at_build_.data(), n, setup_.box, setup_.skin);
-    meshes_.rebuild(position_at_build_.data(), n, largest_radius(), setup_.skin,
+    position_radius_.swap(position_at_build_);
+    iota(previous_index_, owned_);
+    sort_owned_by_cell();
+    permute_array(cells_.order(), owned_, position_at_build_);
+    permute_array(cells_.order(), owned_, force);
+    permute_array(cells_.order(), owned_, torque);
+    build_halo_and_list();
+    meshes_.rebuild(position_radius_.data(), owned_, largest_radius(), setup_.skin,
                     previous_index_.data(), false);
+    parallel_for(Space{}, owned_,
+                 SwapValues<Real4>{position_radius_.data(), position_at_build_.data()});
+    if (domain_.ranks() > 1) ghosts_.update(domain_, arrays(), owned_);
     if constexpr (kHistoryWidth > 0) pair_history_.resize(neighbors_.pairs_kept());
     zero_history();
     has_list_ = true;
   }
 
-  /// Σ over particles of column `column` of a per-(particle, column) load array.
+  /// Σ over owned particles of column `column` of a per-(particle, column) load array.
   Vec3 column_sum(const DeviceArray<Vec3, Space>& load, std::uint32_t columns,
                   std::uint32_t column) const {
     Vec3 sum;
     for (int k = 0; k < 3; ++k)
-      axis(sum, k) =
-          reduce_sum(Space{}, size(), LoadComponent{load.data(), columns, column, k});
+      axis(sum, k) = reduce_sum(Space{}, owned_, LoadComponent{load.data(), columns, column, k});
     return sum;
   }
 
   Real largest_radius() const {
-    return reduce_max(Space{}, size(), Real(0), Radius{position_radius_.data()});
+    return reduce_max(Space{}, owned_, Real(0), Radius{position_radius_.data()});
   }
 
   void zero_history() {
@@ -341,13 +419,15 @@ class StepEngineImpl final : public StepEngine {
     states.upload(host);
   }
 
-  /// Host copies of the ids and the neighbour list, for contact-history conversions.
+  /// Host copies of the ids (owned, then ghosts) and the owned particles' neighbour list,
+  /// for contact-history conversions.
   ContactSlots contact_slots() const {
     ContactSlots slots;
     id_.download(slots.id);
-    slots.offsets = download_raw(neighbors_.offsets(), has_list_ ? size() + 1 : 0);
+    slots.rows = owned_;
+    slots.offsets = download_raw(neighbors_.offsets(), has_list_ ? owned_ + 1 : 0);
     slots.neighbors = download_raw(neighbors_.neighbors(), has_list_ ? neighbors_.pairs_kept() : 0);
-    if (slots.offsets.empty()) slots.offsets.assign(size() + 1, 0);
+    if (slots.offsets.empty()) slots.offsets.assign(owned_ + 1, 0);
     slots.wall_count = wall_count();
     return slots;
   }
@@ -376,7 +456,7 @@ class StepEngineImpl final : public StepEngine {
   }
 
   void kick(Real h) {
-    parallel_for(Space{}, size(),
+    parallel_for(Space{}, owned_,
                  Kick<Law::needs_spin>{velocity_inv_mass_.data(), angular_velocity_.data(),
                                        force_.data(), torque_.data(), position_radius_.data(), h});
   }
@@ -384,7 +464,7 @@ class StepEngineImpl final : public StepEngine {
   std::uint32_t wall_count() const { return static_cast<std::uint32_t>(setup_.walls.size()); }
 
   void compute_forces() {
-    parallel_for(Space{}, size(),
+    parallel_for(Space{}, owned_,
                  ComputeForces<Law>{particle_view(),
                                     contact_scene(),
                                     setup_.gravity,
@@ -395,47 +475,223 @@ class StepEngineImpl final : public StepEngine {
                                     overlap_ratio_.data()});
   }
 
-  /// The lists stay valid while no particle and no mesh vertex moved more than skin/2.
-  bool needs_rebuild() const {
-    const Real moved2 =
-        reduce_max(Space{}, size(), Real(0),
-                   DisplacementSquared{position_radius_.data(), position_at_build_.data()});
-    const Real half_skin = Real(0.5) * setup_.skin;
-    return moved2 > half_skin * half_skin || meshes_.moved_beyond(half_skin);
+  bool find_unhealthy_here(double limit, HealthFailure& failure) const {
+    const HealthScore score{position_radius_.data(), velocity_inv_mass_.data(),
+                            overlap_ratio_.data()};
+    if (reduce_max(Space{}, owned_, Real(0), score) <= limit) return false;
+    ParticleStore host;
+    get_particles(host);
+    std::vector<Real> ratio;
+    overlap_ratio_.download(ratio);
+    const HealthScore host_score{host.position_radius.data(), host.velocity_inv_mass.data(),
+                                 ratio.data()};
+    for (std::size_t i = 0; i < host.size(); ++i) {
+      const Real s = host_score(i);
+      if (s <= limit) continue;
+      failure = HealthFailure{host.id[i], xyz(host.position_radius[i]), ratio[i],
+                              s == kNonFiniteScore, ratio[i] == kMeshOverflowScore};
+      return true;
+    }
+    return false;
   }
 
-  /// Wraps periodic images, removes particles that left the box, sorts by cell, rebuilds the
-  /// neighbour list and carries the contact history over to it.
+  /// The diagnostics of this rank's particles; `contact_share` is its (fractional) share of
+  /// the contact count, a pair counting half on each side.
+  Diagnostics local_diagnostics(double& contact_share) const {
+    Diagnostics d;
+    const std::size_t n = owned_;
+    const ParticleView view = particle_view();
+    d.kinetic_translational =
+        reduce_sum(Space{}, n, TranslationalEnergy{velocity_inv_mass_.data()});
+    d.kinetic_rotational =
+        reduce_sum(Space{}, n,
+                   RotationalEnergy{velocity_inv_mass_.data(), position_radius_.data(),
+                                    angular_velocity_.data()});
+    d.potential_gravity = reduce_sum(
+        Space{}, n,
+        GravityEnergy{velocity_inv_mass_.data(), position_radius_.data(), setup_.gravity});
+    DeviceArray<Real, Space> contacts(n), energy(n);
+    const std::uint32_t bodies = wall_count() + meshes_.count();
+    DeviceArray<Vec3, Space> body_force(n * bodies), mesh_torque(n * meshes_.count());
+    parallel_for(Space{}, n,
+                 ContactTerms<Law>{view, contact_scene(), contacts.data(), energy.data(),
+                                   body_force.data(), mesh_torque.data()});
+    d.potential_elastic = reduce_sum(Space{}, n, ReadValue{energy.data()});
+    contact_share = reduce_sum(Space{}, n, ReadValue{contacts.data()});
+    d.contact_count = static_cast<std::uint64_t>(std::llround(contact_share));
+    d.max_overlap_ratio = reduce_max(Space{}, n, Real(0), ReadValue{overlap_ratio_.data()});
+    for (std::uint32_t w = 0; w < wall_count(); ++w)
+      d.wall_force.push_back(column_sum(body_force, bodies, w));
+    for (std::uint32_t m = 0; m < meshes_.count(); ++m) {
+      d.mesh_force.push_back(column_sum(body_force, bodies, wall_count() + m));
+      d.mesh_torque.push_back(column_sum(mesh_torque, meshes_.count(), m));
+    }
+    return d;
+  }
+
+  /// Sums (and for the overlap, maximises) a rank's diagnostics over all ranks.
+  void sum_over_ranks(Diagnostics& d, double contact_share) const {
+    std::vector<double> v = {contact_share, d.kinetic_translational, d.kinetic_rotational,
+                             d.potential_gravity, d.potential_elastic};
+    const auto append = [&v](const std::vector<Vec3>& loads) {
+      for (const Vec3& f : loads) v.insert(v.end(), {f.x, f.y, f.z});
+    };
+    append(d.wall_force);
+    append(d.mesh_force);
+    append(d.mesh_torque);
+    domain_.sum(v);
+    d.contact_count = static_cast<std::uint64_t>(std::llround(v[0]));
+    d.kinetic_translational = v[1];
+    d.kinetic_rotational = v[2];
+    d.potential_gravity = v[3];
+    d.potential_elastic = v[4];
+    std::size_t k = 5;
+    for (std::vector<Vec3>* loads : {&d.wall_force, &d.mesh_force, &d.mesh_torque})
+      for (Vec3& f : *loads) {
+        f = Vec3{v[k], v[k + 1], v[k + 2]};
+        k += 3;
+      }
+    d.max_overlap_ratio = domain_.max(d.max_overlap_ratio);
+  }
+
+  /// The lists stay valid while no particle on any rank and no mesh vertex moved more than
+  /// skin/2.
+  bool needs_rebuild() const {
+    const Real moved2 =
+        reduce_max(Space{}, owned_, Real(0),
+                   DisplacementSquared{position_radius_.data(), position_at_build_.data()});
+    const Real half_skin = Real(0.5) * setup_.skin;
+    return domain_.max(moved2) > half_skin * half_skin || meshes_.moved_beyond(half_skin);
+  }
+
+  /// Wraps periodic images, removes particles that left the box, migrates particles to the
+  /// ranks that own their positions, sorts by cell, exchanges ghosts, rebuilds the neighbour
+  /// list and carries the contact history over to it.
   void rebuild() {
-    parallel_for(Space{}, size(), WrapPositions{position_radius_.data(), setup_.box});
-    std::swap(neighbors_, previous_neighbors_);
-    previous_id_.resize(size());
-    parallel_for(Space{}, size(), CopyArray<ParticleId>{id_.data(), previous_id_.data()});
-    previous_index_.resize(size());
-    parallel_for(Space{}, size(), Iota{previous_index_.data()});
+    keep_previous_rows();
+    resize_shared(owned_);  // the ghosts are planned anew
+    parallel_for(Space{}, owned_, WrapPositions{position_radius_.data(), setup_.box});
     remove_leavers();
-    const std::size_t n = size();
-    cells_.bin(position_radius_.data(), n, setup_.box, setup_.skin);
-    reorder(cells_.order(), n);
-    neighbors_.build(cells_, position_radius_.data(), n, setup_.box, setup_.skin);
-    meshes_.rebuild(position_radius_.data(), n, largest_radius(), setup_.skin,
+    if (domain_.ranks() > 1) migrate_particles();
+    sort_owned_by_cell();
+    build_halo_and_list();
+    meshes_.rebuild(position_radius_.data(), owned_, largest_radius(), setup_.skin,
                     previous_index_.data(), has_list_);
     remap_pair_history();
-    position_at_build_.resize(n);
-    parallel_for(Space{}, n, CopyArray<Real4>{position_radius_.data(), position_at_build_.data()});
+    position_at_build_.resize(owned_);
+    parallel_for(Space{}, owned_,
+                 CopyArray<Real4>{position_radius_.data(), position_at_build_.data()});
     ++rebuilds_;
+  }
+
+  /// Keeps each owned particle's list row as (partner id, history) records for the remap.
+  void keep_previous_rows() {
+    iota(previous_index_, owned_);
+    if constexpr (kHistoryWidth > 0) {
+      if (!has_list_) return;
+      previous_offsets_.resize(owned_ + 1);
+      parallel_for(Space{}, owned_ + 1,
+                   CopyArray<std::uint32_t>{neighbors_.offsets(), previous_offsets_.data()});
+      previous_partner_.resize(neighbors_.pairs_kept());
+      parallel_for(Space{}, previous_partner_.size(),
+                   PartnerIds{neighbors_.neighbors(), id_.data(), previous_partner_.data()});
+      previous_history_.swap(pair_history_);
+    }
+  }
+
+  /// Particles that another rank owns go there with their state and history (host-staged).
+  void migrate_particles() {
+    const std::uint32_t walls = kHistoryWidth > 0 ? wall_count() : 0;
+    const MigratingParticles<State> moved = migrate(migrating_particles(walls), walls, domain_);
+    position_radius_.upload(moved.position_radius);
+    velocity_inv_mass_.upload(moved.velocity_inv_mass);
+    angular_velocity_.upload(moved.angular_velocity);
+    id_.upload(moved.id);
+    material_.upload(moved.material);
+    owned_ = moved.size();
+    force_.resize(owned_);
+    torque_.resize(owned_);
+    overlap_ratio_.resize(owned_);
+    iota(previous_index_, owned_);
+    if constexpr (kHistoryWidth > 0) {
+      wall_history_.upload(moved.wall_history);
+      previous_offsets_.upload(moved.row_offsets);
+      previous_partner_.upload(moved.row_partner);
+      previous_history_.upload(moved.row_history);
+    }
+  }
+
+  /// Host copies of the owned particles with their history rows (in their current order).
+  MigratingParticles<State> migrating_particles(std::uint32_t walls) const {
+    MigratingParticles<State> p;
+    position_radius_.download(p.position_radius);
+    velocity_inv_mass_.download(p.velocity_inv_mass);
+    angular_velocity_.download(p.angular_velocity);
+    id_.download(p.id);
+    material_.download(p.material);
+    p.row_offsets.assign(owned_ + 1, 0);
+    if constexpr (kHistoryWidth > 0) {
+      if (walls > 0) wall_history_.download(p.wall_history);
+      if (has_list_) {
+        std::vector<std::uint32_t> index, offsets;
+        previous_index_.download(index);
+        previous_offsets_.download(offsets);
+        std::vector<ParticleId> partner;
+        std::vector<State> history;
+        previous_partner_.download(partner);
+        previous_history_.download(history);
+        p.row_partner.clear();
+        for (std::size_t i = 0; i < owned_; ++i) {
+          for (std::uint32_t f = offsets[index[i]]; f < offsets[index[i] + 1]; ++f) {
+            p.row_partner.push_back(partner[f]);
+            p.row_history.push_back(history[f]);
+          }
+          p.row_offsets[i + 1] = static_cast<std::uint32_t>(p.row_partner.size());
+        }
+      }
+    }
+    return p;
+  }
+
+  void sort_owned_by_cell() {
+    cells_.bin(position_radius_.data(), owned_, setup_.box, setup_.skin, domain_.region());
+    reorder(cells_.order(), owned_);
+  }
+
+  /// Receives the ghosts (on several ranks) and builds the owned particles' neighbour rows,
+  /// each ordered by partner id so that no sum depends on particle order or rank count.
+  void build_halo_and_list() {
+    std::size_t ghosts = 0;
+    if (domain_.ranks() > 1) {
+      ghosts = ghosts_.plan(domain_, arrays(), owned_);
+      resize_shared(owned_ + ghosts);
+      ghosts_.fill(arrays(), owned_);
+    }
+    if (ghosts == 0) {  // the storage order is the cell order of the last binning
+      iota(identity_, owned_);
+      const NeighborRows rows{identity_.data(), owned_, identity_.data(), id_.data()};
+      neighbors_.build(cells_, position_radius_.data(), owned_, setup_.box, setup_.skin, &rows);
+      return;
+    }
+    const std::size_t total = owned_ + ghosts;
+    cells_.bin(position_radius_.data(), total, setup_.box, setup_.skin, domain_.region());
+    sorted_position_.resize(total);
+    permute(Space{}, cells_.order(), position_radius_.data(), sorted_position_.data(), total);
+    slot_of_owned_.resize(owned_);
+    parallel_for(Space{}, total, SlotOfOwned{cells_.order(), owned_, slot_of_owned_.data()});
+    const NeighborRows rows{slot_of_owned_.data(), owned_, cells_.order(), id_.data()};
+    neighbors_.build(cells_, sorted_position_.data(), total, setup_.box, setup_.skin, &rows);
   }
 
   void remap_pair_history() {
     if constexpr (kHistoryWidth > 0) {
       DeviceArray<State, Space> fresh(neighbors_.pairs_kept());
       if (has_list_) {
-        parallel_for(Space{}, size(),
+        parallel_for(Space{}, owned_,
                      RemapPairHistory<State>{neighbors_.offsets(), neighbors_.neighbors(),
                                              id_.data(), previous_index_.data(),
-                                             previous_neighbors_.offsets(),
-                                             previous_neighbors_.neighbors(), previous_id_.data(),
-                                             pair_history_.data(), fresh.data()});
+                                             previous_offsets_.data(), previous_partner_.data(),
+                                             previous_history_.data(), fresh.data()});
       } else {
         parallel_for(Space{}, fresh.size(), Fill<State>{fresh.data(), State{}});
       }
@@ -444,10 +700,14 @@ class StepEngineImpl final : public StepEngine {
     has_list_ = true;
   }
 
+  /// Removes the owned particles outside the box; removed_ counts them over all ranks.
   void remove_leavers() {
-    const std::size_t n = size();
+    const std::size_t n = owned_;
     const auto leavers = static_cast<std::size_t>(
         std::llround(reduce_sum(Space{}, n, IsLeaver{position_radius_.data(), setup_.box})));
+    const auto all_leavers = static_cast<std::uint64_t>(std::llround(domain_.sum(double(leavers))));
+    removed_ += all_leavers;
+    global_count_ -= all_leavers;
     if (leavers == 0) return;
     sort_key_.resize(n);
     sort_index_.resize(n);
@@ -456,12 +716,12 @@ class StepEngineImpl final : public StepEngine {
         LeaverKey{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
     sort_by_key(Space{}, sort_key_.data(), sort_index_.data(), n);
     reorder(sort_index_.data(), n);
-    resize(n - leavers);
-    removed_ += leavers;
+    resize_owned(n - leavers);
   }
 
   /// Applies the permutation `order` (slot k takes particle order[k]) to every per-particle
-  /// array whose value must survive a rebuild (forces are recomputed right after).
+  /// array of the owned particles whose value must survive a rebuild (forces are recomputed
+  /// right after).
   void reorder(const std::uint32_t* order, std::size_t n) {
     permute_array(order, n, position_radius_);
     permute_array(order, n, velocity_inv_mass_);
@@ -484,12 +744,23 @@ class StepEngineImpl final : public StepEngine {
     a.swap(out);
   }
 
-  void resize(std::size_t n) {
+  static void iota(DeviceArray<std::uint32_t, Space>& a, std::size_t n) {
+    a.resize(n);
+    parallel_for(Space{}, n, Iota{a.data()});
+  }
+
+  /// Sizes the arrays that hold ghosts after the owned particles.
+  void resize_shared(std::size_t n) {
     position_radius_.resize(n);
     velocity_inv_mass_.resize(n);
     angular_velocity_.resize(n);
     id_.resize(n);
     material_.resize(n);
+  }
+
+  void resize_owned(std::size_t n) {
+    owned_ = n;
+    resize_shared(n);
     force_.resize(n);
     torque_.resize(n);
     overlap_ratio_.resize(n);
@@ -499,34 +770,46 @@ class StepEngineImpl final : public StepEngine {
 
   std::size_t scratch_bytes() const {
     return sort_key_.bytes() + sort_index_.bytes() + previous_index_.bytes() +
-           previous_id_.bytes() + previous_neighbors_.memory_bytes();
+           previous_offsets_.bytes() + previous_partner_.bytes() + previous_history_.bytes() +
+           identity_.bytes() + slot_of_owned_.bytes() + sorted_position_.bytes();
   }
 
   EngineSetup setup_;
+  OneRankDomain one_rank_;
+  const DomainLink& domain_;  ///< setup.domain, or one_rank_ when there is none
   DeviceArray<ContactPairParams, Space> pair_params_;
   DeviceArray<PlaneWall, Space> walls_;
+  // Per particle: the owned_ owned particles, then (the first five) the ghosts.
   DeviceArray<Real4, Space> position_radius_;
   DeviceArray<Real4, Space> velocity_inv_mass_;
   DeviceArray<Vec3, Space> angular_velocity_;
-  DeviceArray<Vec3, Space> force_;
-  DeviceArray<Vec3, Space> torque_;
   DeviceArray<ParticleId, Space> id_;
   DeviceArray<MaterialId, Space> material_;
+  DeviceArray<Vec3, Space> force_;
+  DeviceArray<Vec3, Space> torque_;
   DeviceArray<Real, Space> overlap_ratio_;
   DeviceArray<Real4, Space> position_at_build_;
-  DeviceArray<std::uint64_t, Space> sort_key_;
-  DeviceArray<std::uint32_t, Space> sort_index_;
   DeviceArray<State, Space> pair_history_;  ///< per neighbour-list entry (empty: no history)
   DeviceArray<State, Space> wall_history_;  ///< per (particle, wall) (empty: no history)
-  DeviceArray<std::uint32_t, Space> previous_index_;  ///< index before this rebuild's reorders
-  DeviceArray<ParticleId, Space> previous_id_;
+  // Rebuild scratch.
+  DeviceArray<std::uint64_t, Space> sort_key_;
+  DeviceArray<std::uint32_t, Space> sort_index_;
+  DeviceArray<std::uint32_t, Space> previous_index_;  ///< row of each particle's previous list
+  DeviceArray<std::uint32_t, Space> previous_offsets_;  ///< previous rows, keyed by partner id
+  DeviceArray<ParticleId, Space> previous_partner_;
+  DeviceArray<State, Space> previous_history_;
+  DeviceArray<std::uint32_t, Space> identity_;
+  DeviceArray<std::uint32_t, Space> slot_of_owned_;
+  DeviceArray<Real4, Space> sorted_position_;  ///< owned and ghosts in cell order
   CellList<Space> cells_;
   NeighborList<Space> neighbors_;
-  NeighborList<Space> previous_neighbors_;
   MeshWalls<Space, Law> meshes_;
+  GhostExchange<Space, Law::needs_spin> ghosts_;
+  std::size_t owned_ = 0;
+  std::uint64_t global_count_ = 0;  ///< particles on all ranks
   std::uint64_t steps_ = 0;  ///< the run's step count (the meshes' clock)
   bool has_list_ = false;
-  std::uint64_t removed_ = 0;
+  std::uint64_t removed_ = 0;  ///< on all ranks
   std::uint64_t rebuilds_ = 0;
 };
 

@@ -1,11 +1,11 @@
-# Rank-count cases run through mpirun. Until the domain is decomposed, a start with more than
-# one rank must stop at once with exit code 2 and a message, writing nothing.
+# Decomposed runs through mpirun at 1 to 4 ranks (--oversubscribe): the same physics as one
+# rank, restarts across rank counts and momentum conservation (scripts/decomposed_runs.py).
 find_program(GPUDEM_MPIRUN NAMES mpirun mpiexec REQUIRED)
-add_test(NAME cli_refuses_two_ranks
-  COMMAND ${CMAKE_COMMAND}
-    -DMPIRUN=${GPUDEM_MPIRUN} -DBINARY=$<TARGET_FILE:gpudem-mpi>
-    -DSCENE=${PROJECT_SOURCE_DIR}/inputs/quickstart.toml
-    -DOUT=${CMAKE_CURRENT_BINARY_DIR}/two_ranks_out
-    -P ${CMAKE_CURRENT_SOURCE_DIR}/mpi/scripts/RefuseRanks.cmake)
-set_tests_properties(cli_refuses_two_ranks PROPERTIES LABELS mpi TIMEOUT 60
-  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+foreach(case same-physics restart momentum)
+  add_test(NAME mpi_${case}
+    COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/mpi/scripts/decomposed_runs.py
+      --binary $<TARGET_FILE:gpudem-mpi> --mpirun ${GPUDEM_MPIRUN}
+      --work ${CMAKE_CURRENT_BINARY_DIR}/mpi_${case} ${case})
+  set_tests_properties(mpi_${case} PROPERTIES LABELS mpi TIMEOUT 900
+    ENVIRONMENT "OMPI_MCA_rmaps_base_oversubscribe=1")
+endforeach()

@@ -1,7 +1,8 @@
 // Cell list and full neighbour list on the host backend, checked against an O(n^2) search with
 // the same criterion, |minimum image of x_j - x_i| < r_i + r_j + skin. Neighbour sets must match
 // exactly: both sides evaluate the same expression, and random coordinates land within an ulp of
-// a cutoff with negligible probability.
+// a cutoff with negligible probability. Rows built for a rank's owned particles (binned with
+// their ghosts over the rank's region) are checked the same way, as sequences of global ids.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,12 +10,14 @@
 #include <cstdint>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "kernels/BinRegion.hpp"
 #include "kernels/CellList.hpp"
 #include "kernels/NeighborList.hpp"
 #include "kernels/Permute.hpp"
@@ -383,6 +386,280 @@ TEST(CellList, RejectsBadSizes) {
   EXPECT_THROW(cells.bin(p.data(), p.size(), box, -skin), std::invalid_argument);
   EXPECT_THROW(CellList<HostSpace>(0), std::invalid_argument);
   EXPECT_THROW(CellList<HostSpace>(kMaxSizeClasses + 1), std::invalid_argument);
+}
+
+// Rows for a rank's owned particles. A cloud is split between two ranks by x; each rank holds
+// its owned particles, then ghost copies of every other particle within the ghost width
+// 2 r_max + skin of its block (by minimum image on a periodic x), at their global coordinates, and
+// bins a region: its block grown by the ghost width, or the whole x axis where that would not
+// fit the periodic box. Rows, as global ids, are compared with the O(n^2) search over the cloud.
+
+constexpr ParticleId kFirstId = ParticleId(1) << 40;  // ids beyond 32 bits
+
+/// Global ids: kFirstId + a random permutation of 0 .. n - 1.
+std::vector<ParticleId> shuffled_ids(std::size_t n, std::uint64_t seed) {
+  std::vector<ParticleId> id(n);
+  std::iota(id.begin(), id.end(), kFirstId);
+  std::shuffle(id.begin(), id.end(), std::mt19937_64(seed));
+  return id;
+}
+
+/// A rank's slab [lo, hi) along x.
+struct Block {
+  Real lo, hi;
+};
+
+/// Two halves of the box along x, shifted by `shift` box lengths (on a periodic x, a shifted
+/// block straddles the periodic boundary).
+std::vector<Block> two_blocks(const PeriodicBox& box, Real shift) {
+  const Real lo = box.lo.x + shift * box.length.x, mid = lo + box.length.x / 2;
+  return {{lo, mid}, {mid, lo + box.length.x}};
+}
+
+/// The image of x in [lo, lo + L) on a periodic x (up to rounding); x itself otherwise.
+Real image_from(Real lo, const PeriodicBox& box, Real x) {
+  const Real L = box.length.x;
+  return box.periodic[0] ? x - L * std::floor((x - lo) / L) : x;
+}
+
+/// The block that owns x: block 0 below the cut at blocks[1].lo, block 1 from it on (on a
+/// non-periodic x, particles up to skin / 2 outside the box belong to the end blocks).
+std::size_t owner_of(const std::vector<Block>& blocks, const PeriodicBox& box, Real x) {
+  if (!box.periodic[0]) return x < blocks[1].lo ? 0 : 1;
+  const Real y = image_from(blocks[0].lo, box, x);
+  return y >= blocks[0].lo && y < blocks[1].lo ? 0 : 1;
+}
+
+/// Distance along x from x to the block, by minimum image on a periodic x.
+Real distance_to_block(const Block& b, const PeriodicBox& box, Real x) {
+  const Real y = image_from(b.lo, box, x);
+  const Real above = std::max(y - b.hi, Real(0)), below = std::max(b.lo - y, Real(0));
+  return box.periodic[0] ? std::min(above, b.lo + box.length.x - y) : std::max(above, below);
+}
+
+/// The block grown by the ghost width along x, the whole box along y and z; the whole periodic
+/// x axis when the grown block plus the ghost width (= 2 r_max + skin) exceeds the box length.
+BinRegion region_of(const Block& b, const PeriodicBox& box, Real ghost_width) {
+  BinRegion r = whole_box_region(box);
+  const Real grown = b.hi - b.lo + 2 * ghost_width;
+  if (box.periodic[0] && grown + ghost_width > box.length.x) return r;
+  r.lo.x = b.lo - ghost_width;
+  r.length.x = grown;
+  r.periodic[0] = false;
+  return r;
+}
+
+/// One rank's particles: owned first, ghosts after, each group in random storage order.
+struct RankParticles {
+  std::vector<Real4> position_radius;
+  std::vector<ParticleId> id;
+  std::size_t owned = 0;
+};
+
+RankParticles split(const std::vector<Real4>& cloud, const std::vector<ParticleId>& id,
+                    const PeriodicBox& box, const std::vector<Block>& blocks,
+                    std::size_t rank_index, Real ghost_width, std::uint64_t seed) {
+  std::vector<std::size_t> owned, ghosts;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (owner_of(blocks, box, cloud[i].x) == rank_index)
+      owned.push_back(i);
+    else if (distance_to_block(blocks[rank_index], box, cloud[i].x) < ghost_width)
+      ghosts.push_back(i);
+  }
+  std::mt19937_64 rng(seed);
+  std::shuffle(owned.begin(), owned.end(), rng);
+  std::shuffle(ghosts.begin(), ghosts.end(), rng);
+  RankParticles rank;
+  rank.owned = owned.size();
+  owned.insert(owned.end(), ghosts.begin(), ghosts.end());
+  for (std::size_t i : owned) {
+    rank.position_radius.push_back(cloud[i]);
+    rank.id.push_back(id[i]);
+  }
+  return rank;
+}
+
+/// Neighbour rows of owned particles as global ids, by the owned particle's id.
+using IdRows = std::map<ParticleId, std::vector<ParticleId>>;
+
+IdRows reference_rows(const std::vector<Real4>& cloud, const std::vector<ParticleId>& id,
+                      const PeriodicBox& box, Real skin) {
+  const Lists lists = brute_force(cloud, box, skin);
+  IdRows rows;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    std::vector<ParticleId>& row = rows[id[i]];
+    for (std::uint32_t j : lists[i]) row.push_back(id[j]);
+    std::sort(row.begin(), row.end());
+  }
+  return rows;
+}
+
+/// The rows the list holds for the rank's owned particles.
+struct RankRows {
+  IdRows by_id;                   ///< rows as global ids, in list order
+  std::size_t ghost_entries = 0;  ///< entries that are ghosts
+};
+
+/// bin over the region, permute, build rows for the owned particles; checks the CSR layout.
+RankRows build_rows(const RankParticles& rank, const PeriodicBox& box, Real skin,
+                    const BinRegion& region) {
+  const std::size_t n = rank.position_radius.size();
+  CellList<HostSpace> cells;
+  cells.bin(rank.position_radius.data(), n, box, skin, region);
+  std::vector<Real4> sorted(n);
+  permute(HostSpace{}, cells.order(), rank.position_radius.data(), sorted.data(), n);
+  std::vector<std::uint32_t> slot_of_index(n);
+  for (std::uint32_t k = 0; k < n; ++k) slot_of_index[cells.order()[k]] = k;
+  const NeighborRows rows{slot_of_index.data(), rank.owned, cells.order(), rank.id.data()};
+  NeighborList<HostSpace> list;
+  list.build(cells, sorted.data(), n, box, skin, &rows);
+  EXPECT_EQ(list.size(), rank.owned);
+  EXPECT_EQ(list.offsets()[0], 0u);
+  EXPECT_EQ(list.offsets()[rank.owned], list.pairs_kept());
+  RankRows result;
+  for (std::size_t r = 0; r < rank.owned; ++r) {
+    std::vector<ParticleId>& row = result.by_id[rank.id[r]];
+    for (std::uint32_t e = list.offsets()[r]; e < list.offsets()[r + 1]; ++e) {
+      const std::uint32_t index = list.neighbors()[e];
+      row.push_back(rank.id.at(index));  // throws, failing the test, for an index >= n
+      result.ghost_entries += index >= rank.owned ? 1 : 0;
+    }
+  }
+  return result;
+}
+
+bool strictly_ascending(const std::vector<ParticleId>& row) {
+  return std::adjacent_find(row.begin(), row.end(), std::greater_equal<ParticleId>()) == row.end();
+}
+
+struct RegionCase {
+  SearchCase cloud;
+  bool whole_axis;  ///< the region must be the whole periodic x axis
+  Real shift;       ///< of the blocks, in box lengths
+};
+
+void PrintTo(const RegionCase& c, std::ostream* os) { *os << c.cloud.name; }
+
+class RegionRows : public ::testing::TestWithParam<RegionCase> {};
+
+/// Each owned particle's row holds exactly its brute-force neighbours over the whole cloud, as
+/// global ids in strictly ascending order; every particle is owned by one rank; pairs across
+/// the cut exist (ghost entries), so the ghost layer is exercised.
+TEST_P(RegionRows, OwnedRowsEqualBruteForceOverTheCloud) {
+  const RegionCase& c = GetParam();
+  const PeriodicBox box = make_box(c.cloud);
+  const std::vector<Real4> cloud = make_particles(c.cloud, box);
+  const std::vector<ParticleId> id = shuffled_ids(cloud.size(), 777);
+  const Sizes s = sizes_of(c.cloud.law);
+  const Real ghost_width = 2 * s.r_max + s.skin;
+  const IdRows reference = reference_rows(cloud, id, box, s.skin);
+  const std::vector<Block> blocks = two_blocks(box, c.shift);
+  std::size_t owned = 0;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    const Block& block = blocks[b];
+    const BinRegion region = region_of(block, box, ghost_width);
+    ASSERT_EQ(region.periodic[0], c.whole_axis);
+    const RankParticles rank = split(cloud, id, box, blocks, b, ghost_width, 99 + b);
+    const RankRows rows = build_rows(rank, box, s.skin, region);
+    std::cout << c.cloud.name << " block [" << block.lo << ", " << block.hi << "): " << rank.owned
+              << " owned, " << rank.id.size() - rank.owned << " ghosts, " << rows.ghost_entries
+              << " ghost entries\n";
+    EXPECT_GT(rows.ghost_entries, 0u);
+    ASSERT_EQ(rows.by_id.size(), rank.owned);
+    for (const auto& row : rows.by_id) {
+      ASSERT_TRUE(strictly_ascending(row.second)) << "row of id " << row.first;
+      ASSERT_EQ(row.second, reference.at(row.first)) << "neighbours of id " << row.first;
+    }
+    owned += rank.owned;
+  }
+  EXPECT_EQ(owned, cloud.size());
+}
+
+std::vector<RegionCase> region_cases() {
+  const bool open[3] = {false, false, false}, x[3] = {true, false, false},
+             all[3] = {true, true, true};
+  std::vector<RegionCase> cases;
+  const auto add = [&cases](std::string name, RadiusLaw law, const bool* periodic, Shape shape,
+                            bool whole_axis, Real shift) {
+    cases.push_back(
+        {{name, law, {periodic[0], periodic[1], periodic[2]}, shape, 3000}, whole_axis, shift});
+  };
+  add("uniform_open", RadiusLaw::uniform, open, Shape::cube, false, 0);
+  add("bimodal_open", RadiusLaw::bimodal, open, Shape::cube, false, 0);
+  add("uniform_periodic_all", RadiusLaw::uniform, all, Shape::cube, false, 0);
+  add("uniform_periodic_all_straddling", RadiusLaw::uniform, all, Shape::cube, false, 0.25);
+  add("monodisperse_periodic_x", RadiusLaw::monodisperse, x, Shape::cube, false, 0);
+  add("bimodal_periodic_x_small", RadiusLaw::bimodal, x, Shape::cube, true, 0.25);
+  add("monodisperse_periodic_thin", RadiusLaw::monodisperse, all, Shape::thin_x, true, 0);
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Clouds, RegionRows, ::testing::ValuesIn(region_cases()),
+                         [](const auto& info) { return info.param.cloud.name; });
+
+/// Rows for every particle of one rank, ids a random permutation: each row strictly ascending in
+/// id and equal to the brute-force neighbours.
+TEST(NeighborRows, RowsAscendInGlobalId) {
+  const SearchCase c{"uniform", RadiusLaw::uniform, {true, true, true}, Shape::cube, 3000};
+  const PeriodicBox box = make_box(c);
+  const std::vector<Real4> cloud = make_particles(c, box);
+  const std::vector<ParticleId> id = shuffled_ids(cloud.size(), 2024);
+  const Real skin = sizes_of(c.law).skin;
+  RankParticles rank{cloud, id, cloud.size()};
+  const RankRows rows = build_rows(rank, box, skin, whole_box_region(box));
+  const IdRows reference = reference_rows(cloud, id, box, skin);
+  ASSERT_EQ(rows.by_id.size(), cloud.size());
+  std::size_t entries = 0;
+  for (const auto& row : rows.by_id) {
+    ASSERT_TRUE(strictly_ascending(row.second)) << "row of id " << row.first;
+    ASSERT_EQ(row.second, reference.at(row.first)) << "neighbours of id " << row.first;
+    entries += row.second.size();
+  }
+  EXPECT_GT(entries, cloud.size()) << "too sparse to test anything";
+  EXPECT_EQ(rows.ghost_entries, 0u);
+}
+
+/// A rank's rows, as id sequences, do not depend on the storage order of its particles.
+TEST(NeighborRows, RowsDoNotDependOnStorageOrder) {
+  const SearchCase c{"bimodal", RadiusLaw::bimodal, {true, false, true}, Shape::cube, 3000};
+  const PeriodicBox box = make_box(c);
+  const std::vector<Real4> cloud = make_particles(c, box);
+  const std::vector<ParticleId> id = shuffled_ids(cloud.size(), 5);
+  const Sizes s = sizes_of(c.law);
+  const Real ghost_width = 2 * s.r_max + s.skin;
+  const std::vector<Block> blocks = two_blocks(box, 0);
+  const BinRegion region = region_of(blocks[1], box, ghost_width);
+  const RankParticles first = split(cloud, id, box, blocks, 1, ghost_width, 1);
+  const RankParticles second = split(cloud, id, box, blocks, 1, ghost_width, 2);
+  ASSERT_NE(first.id, second.id) << "the two storage orders must differ";
+  const RankRows a = build_rows(first, box, s.skin, region),
+                 b = build_rows(second, box, s.skin, region);
+  EXPECT_GT(a.ghost_entries, 0u);
+  EXPECT_EQ(a.by_id, b.by_id);
+}
+
+/// A region on a periodic axis: not periodic, its length plus 2 r_max + skin must not exceed
+/// the box length; periodic, it must span the box length on an axis periodic in the box.
+TEST(CellList, RejectsRegionsThatDoNotFitThePeriodicBox) {
+  PeriodicBox box;
+  box.length = make_vec3(1.0, 1.0, 1.0);
+  box.periodic[0] = true;
+  const Real skin = 0.01, radius = 0.02;  // 2 r_max + skin = 0.05 m
+  const std::vector<Real4> p = {{0.5, 0.5, 0.5, radius}, {0.55, 0.5, 0.5, radius}};
+  CellList<HostSpace> cells;
+  BinRegion region = whole_box_region(box);
+  region.periodic[0] = false;
+  region.lo.x = 0.3;
+  region.length.x = 0.949;  // 0.949 + 0.05 <= 1
+  EXPECT_NO_THROW(cells.bin(p.data(), p.size(), box, skin, region));
+  region.length.x = 0.951;  // 0.951 + 0.05 > 1
+  EXPECT_THROW(cells.bin(p.data(), p.size(), box, skin, region), std::invalid_argument);
+  region.periodic[0] = true;  // periodic, but shorter than the box
+  EXPECT_THROW(cells.bin(p.data(), p.size(), box, skin, region), std::invalid_argument);
+  region.length.x = 1.0;
+  EXPECT_NO_THROW(cells.bin(p.data(), p.size(), box, skin, region));
+  region.periodic[1] = true;  // periodic on an axis the box does not wrap
+  EXPECT_THROW(cells.bin(p.data(), p.size(), box, skin, region), std::invalid_argument);
 }
 
 }  // namespace

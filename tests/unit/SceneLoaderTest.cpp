@@ -762,5 +762,89 @@ TEST_F(SceneLoaderTest, PairValuesAreChecked) {
                first_pair_line(), "pair", "expected an array of tables [[pair]], got a table");
 }
 
+/// The base scene followed by `tables`.
+std::string with_tables(const std::string& tables) { return std::string(kBaseScene) + tables; }
+
+/// Line of the first line of `tables` in with_tables(tables).
+int first_appended_line() {
+  const std::string scene = kBaseScene;
+  return static_cast<int>(std::count(scene.begin(), scene.end(), '\n')) + 1;
+}
+
+TEST_F(SceneLoaderTest, DecompositionDefaultsToAnAutomaticGrid) {
+  const Scene s = load_text(kBaseScene);
+  EXPECT_EQ(s.decomposition.method, DecompositionMethod::Grid);
+  EXPECT_EQ(s.decomposition.dims, (std::array<int, 3>{0, 0, 0}));
+  EXPECT_EQ(s.decomposition.dims_line, 0);
+  EXPECT_DOUBLE_EQ(s.decomposition.rebalance_every, 0);
+  EXPECT_EQ(s.decomposition.balance, BalanceWork::Particles);
+  EXPECT_FALSE(s.output.rank_field);
+}
+
+TEST_F(SceneLoaderTest, DecompositionAndRankFieldRead) {
+  const int line = first_appended_line();
+  const Scene grid = load_text(
+      with_tables("[decomposition]\nmethod = \"grid\"\ndims = [2, 1, 3]\nrebalance_every = 0.05\n"
+                  "balance = \"contacts\"\n[output]\nrank_field = true\n"));
+  EXPECT_EQ(grid.decomposition.method, DecompositionMethod::Grid);
+  EXPECT_EQ(grid.decomposition.dims, (std::array<int, 3>{2, 1, 3}));
+  EXPECT_EQ(grid.decomposition.dims_line, line + 2);
+  EXPECT_DOUBLE_EQ(grid.decomposition.rebalance_every, 0.05);
+  EXPECT_EQ(grid.decomposition.balance, BalanceWork::Contacts);
+  EXPECT_TRUE(grid.output.rank_field);
+
+  const Scene automatic = load_text(with_tables("[decomposition]\ndims = \"auto\"\n"));
+  EXPECT_EQ(automatic.decomposition.dims, (std::array<int, 3>{0, 0, 0}));
+  EXPECT_EQ(automatic.decomposition.dims_line, line + 1);
+
+  const Scene metis = load_text(with_tables("[decomposition]\nmethod = \"metis\"\n"));
+  EXPECT_EQ(metis.decomposition.method, DecompositionMethod::Metis);
+  EXPECT_EQ(metis.decomposition.dims, (std::array<int, 3>{0, 0, 0}));
+
+  const Scene overridden = load_text(kBaseScene, {"decomposition.dims=[1, 2, 2]"});
+  EXPECT_EQ(overridden.decomposition.dims, (std::array<int, 3>{1, 2, 2}));
+  EXPECT_EQ(overridden.decomposition.dims_line, 0);
+}
+
+TEST_F(SceneLoaderTest, DecompositionDimsAreAutoOrThreePositiveIntegers) {
+  const int line = first_appended_line() + 1;
+  const std::string expected = "expected \"auto\" or an array of 3 integers >= 1, got ";
+  for (const auto& [dims, found] :
+       {std::make_pair("[2, 0, 1]", "[2, 0, 1]"), std::make_pair("[2, 2]", "[2, 2]"),
+        std::make_pair("[2.0, 1, 1]", "[2.0, 1, 1]"), std::make_pair("[-1, 1, 1]", "[-1, 1, 1]"),
+        std::make_pair("\"automatic\"", "the string \"automatic\""), std::make_pair("4", "4")}) {
+    expect_error(load_error(with_tables(std::string("[decomposition]\ndims = ") + dims)), line,
+                 "decomposition.dims", expected + found);
+  }
+}
+
+TEST_F(SceneLoaderTest, DecompositionDimsBelongToTheGrid) {
+  const int line = first_appended_line() + 2;
+  for (const char* dims : {"[1, 1, 2]", "\"auto\""}) {
+    expect_error(
+        load_error(with_tables(std::string("[decomposition]\nmethod = \"metis\"\ndims = ") + dims)),
+        line, "decomposition.dims",
+        "dims belongs to method = \"grid\"; method = \"metis\" chooses its own parts");
+  }
+}
+
+TEST_F(SceneLoaderTest, DecompositionValuesAreChecked) {
+  const int line = first_appended_line() + 1;
+  expect_error(load_error(with_tables("[decomposition]\nmethod = \"parmetis\"")), line,
+               "decomposition.method",
+               "expected one of \"grid\", \"metis\", got the string \"parmetis\"");
+  expect_error(load_error(with_tables("[decomposition]\nbalance = \"work\"")), line,
+               "decomposition.balance",
+               "expected one of \"particles\", \"contacts\", got the string \"work\"");
+  expect_error(load_error(with_tables("[decomposition]\nrebalance_every = -0.1")), line,
+               "decomposition.rebalance_every", "expected a number >= 0 [s], got -0.1");
+  expect_error(load_error(with_tables("[decomposition]\ndim = [1, 1, 1]")), line,
+               "decomposition.dim", "unknown key 'dim' in [decomposition]; did you mean 'dims'?");
+  expect_error(load_error(with_tables("[output]\nrank_field = 1")), line, "output.rank_field",
+               "expected true or false, got 1");
+  expect_error(load_error(with_tables("[decompositon]\nmethod = \"grid\"")), first_appended_line(),
+               "decompositon", "did you mean 'decomposition'?");
+}
+
 }  // namespace
 }  // namespace gpudem

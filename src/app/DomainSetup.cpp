@@ -1,0 +1,79 @@
+#include "app/DomainSetup.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "core/InputError.hpp"
+
+namespace gpudem {
+
+namespace {
+
+Real largest_radius(const ParticleStore& particles) {
+  Real r_max = 0;
+  for (const Real4& p : particles.position_radius) r_max = std::max(r_max, p.w);
+  return r_max;
+}
+
+/// The bounding box of the particles' spheres, [lo, hi].
+std::pair<Vec3, Vec3> bed_bounds(const ParticleStore& particles, const PeriodicBox& box) {
+  if (particles.size() == 0) return {box.lo, box.lo + box.length};
+  constexpr Real kHuge = std::numeric_limits<Real>::max();
+  Vec3 lo{kHuge, kHuge, kHuge}, hi{-kHuge, -kHuge, -kHuge};
+  for (const Real4& p : particles.position_radius)
+    for (int k = 0; k < 3; ++k) {
+      axis(lo, k) = std::min(axis(lo, k), axis(xyz(p), k) - p.w);
+      axis(hi, k) = std::max(axis(hi, k), axis(xyz(p), k) + p.w);
+    }
+  return {lo, hi};
+}
+
+/// Particles per coarse cell.
+std::vector<double> particles_per_cell(const CoarseGrid& cells, const ParticleStore& particles) {
+  std::vector<double> work(cells.count(), 0.0);
+  for (const Real4& p : particles.position_radius) work[cells.cell_of(xyz(p))] += 1;
+  return work;
+}
+
+}  // namespace
+
+std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi,
+                                       const ParticleStore& particles, const EngineSetup& setup) {
+  if (mpi.size() == 1) return nullptr;
+  if (!scene.meshes.empty())
+    throw InputError(scene.file, scene.meshes.front().line, "mesh",
+                     "triangle-mesh walls run on one rank in this version; start the run with "
+                     "mpirun -np 1");
+  const Real ghost_width = 2 * largest_radius(particles) + setup.skin;
+  const CoarseGrid cells = CoarseGrid::over(setup.box, ghost_width);
+  const std::vector<double> work = particles_per_cell(cells, particles);
+  const DecompositionSettings& settings = scene.decomposition;
+  if (settings.method == DecompositionMethod::Metis)
+    return std::make_unique<MpiDomain>(
+        mpi.comm(),
+        Decomposition::from_owners(cells, metis_owners(cells, work, mpi.size()), mpi.size()),
+        ghost_width);
+  const auto [bed_lo, bed_hi] = bed_bounds(particles, setup.box);
+  const std::array<int, 3> dims =
+      choose_grid_dims(mpi.size(), bed_lo, bed_hi, setup.gravity, cells, settings.dims,
+                       scene.file, settings.dims_line);
+  return std::make_unique<MpiDomain>(
+      mpi.comm(), Decomposition::grid(cells, balanced_cuts(cells, dims, work)), ghost_width);
+}
+
+void print_decomposition(const MpiDomain& domain) {
+  const Decomposition& d = domain.decomposition();
+  const CoarseGrid& cells = d.cells();
+  if (d.is_grid())
+    std::printf("decomposition: grid %zu x %zu x %zu blocks", d.cuts()[0].size() - 1,
+                d.cuts()[1].size() - 1, d.cuts()[2].size() - 1);
+  else
+    std::printf("decomposition: metis, %d parts", d.ranks());
+  std::printf(" over %d x %d x %d coarse cells, ghost width %.4g m\n", cells.n[0], cells.n[1],
+              cells.n[2], domain.ghost_width());
+}
+
+}  // namespace gpudem

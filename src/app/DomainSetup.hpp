@@ -1,0 +1,26 @@
+#pragma once
+/// The domain decomposition of a run on several ranks (DESIGN §5), made once at start-up from
+/// the scene's [decomposition] table and the particles the run starts with.
+#include <memory>
+
+#include "comm/MpiContext.hpp"
+#include "comm/MpiDomain.hpp"
+#include "core/ParticleStore.hpp"
+#include "core/Scene.hpp"
+#include "kernels/StepEngine.hpp"
+
+namespace gpudem {
+
+/// This rank's part of the domain on mpi.size() ranks, or null on one rank. Coarse cells of
+/// edge at least the ghost width 2 r_max + skin (r_max over `particles`) are weighted by the
+/// particles they hold; "grid" cuts the particle bed into blocks of equal particle counts
+/// along each axis, "metis" partitions the cell graph. Throws InputError for dims that do not
+/// multiply to the rank count, more ranks than coarse cells, or triangle-mesh walls (they run
+/// on one rank in this version).
+std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi,
+                                       const ParticleStore& particles, const EngineSetup& setup);
+
+/// One line describing the decomposition (rank 0 prints it).
+void print_decomposition(const MpiDomain& domain);
+
+}  // namespace gpudem

@@ -1,0 +1,87 @@
+#include "comm/MpiDomain.hpp"
+
+#include <climits>
+#include <cstdint>
+#include <stdexcept>
+#include <utility>
+
+namespace gpudem {
+
+namespace {
+
+int message_size(std::size_t bytes) {
+  if (bytes > static_cast<std::size_t>(INT_MAX))
+    throw std::overflow_error("MpiDomain: a message of more than 2^31 - 1 bytes");
+  return static_cast<int>(bytes);
+}
+
+}  // namespace
+
+MpiDomain::MpiDomain(MPI_Comm comm, Decomposition decomposition, Real ghost_width)
+    : comm_(comm), decomposition_(std::move(decomposition)), ghost_width_(ghost_width) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+  if (decomposition_.ranks() != size_)
+    throw std::invalid_argument("MpiDomain: the decomposition is for another rank count");
+  region_ = decomposition_.region(rank_, ghost_width_, ghost_width_);
+}
+
+double MpiDomain::max(double value) const {
+  double result = value;
+  MPI_Allreduce(&value, &result, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return result;
+}
+
+void MpiDomain::sum(std::vector<double>& values) const {
+  if (values.empty()) return;
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE,
+                MPI_SUM, comm_);
+}
+
+int MpiDomain::first_rank_with(bool flag) const {
+  const int mine = flag ? rank_ : size_;
+  int first = mine;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm_);
+  return first;
+}
+
+void MpiDomain::broadcast(std::vector<char>& bytes, int root) const {
+  std::uint64_t n = bytes.size();
+  MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm_);
+  bytes.resize(n);
+  if (n > 0) MPI_Bcast(bytes.data(), message_size(n), MPI_BYTE, root, comm_);
+}
+
+void MpiDomain::exchange(const RankBuffers& outgoing, RankBuffers& incoming) const {
+  std::vector<std::uint64_t> send_bytes(size_), receive_bytes(size_);
+  for (int q = 0; q < size_; ++q) send_bytes[q] = outgoing[q].size();
+  MPI_Alltoall(send_bytes.data(), 1, MPI_UINT64_T, receive_bytes.data(), 1, MPI_UINT64_T, comm_);
+  incoming.assign(size_, {});
+  for (int q = 0; q < size_; ++q) incoming[q].resize(receive_bytes[q]);
+  exchange_known(outgoing, incoming);
+}
+
+void MpiDomain::exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const {
+  constexpr int kTag = 7;
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * static_cast<std::size_t>(size_));
+  for (int q = 0; q < size_; ++q) {
+    if (q == rank_) {
+      incoming[q] = outgoing[q];
+      continue;
+    }
+    if (incoming[q].empty()) continue;
+    requests.emplace_back();
+    MPI_Irecv(incoming[q].data(), message_size(incoming[q].size()), MPI_BYTE, q, kTag, comm_,
+              &requests.back());
+  }
+  for (int q = 0; q < size_; ++q) {
+    if (q == rank_ || outgoing[q].empty()) continue;
+    requests.emplace_back();
+    MPI_Isend(outgoing[q].data(), message_size(outgoing[q].size()), MPI_BYTE, q, kTag, comm_,
+              &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+}
+
+}  // namespace gpudem

@@ -1,0 +1,45 @@
+#pragma once
+/// The engine's DomainLink over MPI (DESIGN §5): ownership, ghost destinations and bin region
+/// from a Decomposition, reductions by MPI_Allreduce, byte exchanges by point-to-point
+/// messages (sizes first by MPI_Alltoall where the receiver cannot know them).
+#include <mpi.h>
+
+#include "comm/Decomposition.hpp"
+#include "kernels/DomainLink.hpp"
+
+namespace gpudem {
+
+class MpiDomain final : public DomainLink {
+ public:
+  /// ghost_width [m]: 2 r_max + skin, the reach of a ghost beyond its owner's cells and the
+  /// largest contact distance.
+  MpiDomain(MPI_Comm comm, Decomposition decomposition, Real ghost_width);
+
+  int rank() const override { return rank_; }
+  int ranks() const override { return size_; }
+  BinRegion region() const override { return region_; }
+  int owner_of(Vec3 p) const override { return decomposition_.owner_of(p); }
+  void ghost_ranks(Vec3 p, std::vector<int>& out) const override {
+    decomposition_.ghost_ranks(p, rank_, ghost_width_, out);
+  }
+  double max(double value) const override;
+  void sum(std::vector<double>& values) const override;
+  using DomainLink::sum;
+  int first_rank_with(bool flag) const override;
+  void broadcast(std::vector<char>& bytes, int root) const override;
+  void exchange(const RankBuffers& outgoing, RankBuffers& incoming) const override;
+  void exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const override;
+
+  const Decomposition& decomposition() const { return decomposition_; }
+  Real ghost_width() const { return ghost_width_; }
+
+ private:
+  MPI_Comm comm_;
+  int rank_ = 0;
+  int size_ = 1;
+  Decomposition decomposition_;
+  Real ghost_width_;
+  BinRegion region_;
+};
+
+}  // namespace gpudem

@@ -1,0 +1,77 @@
+#pragma once
+/// What the step engine asks of the domain decomposition (DESIGN §4–5): where this rank bins,
+/// who owns a position, which ranks need a particle as a ghost, reductions over all ranks and
+/// the exchange of byte buffers between ranks. The engine knows nothing of MPI: comm/MpiDomain
+/// implements this over MPI, OneRankDomain for a run on one rank (nothing to exchange).
+#include <cstdint>
+#include <vector>
+
+#include "core/Config.hpp"
+#include "core/Vec3.hpp"
+#include "kernels/BinRegion.hpp"
+#include "kernels/PeriodicBox.hpp"
+
+namespace gpudem {
+
+/// Bytes for or from each rank, indexed by rank.
+using RankBuffers = std::vector<std::vector<char>>;
+
+class DomainLink {
+ public:
+  virtual ~DomainLink() = default;
+
+  virtual int rank() const = 0;
+  virtual int ranks() const = 0;
+  /// Where this rank bins its owned particles and ghosts.
+  virtual BinRegion region() const = 0;
+  /// The rank that owns a particle at p (a position in the global box).
+  virtual int owner_of(Vec3 p) const = 0;
+  /// The ranks other than this one that need a particle at p as a ghost (ascending).
+  virtual void ghost_ranks(Vec3 p, std::vector<int>& out) const = 0;
+
+  /// Collective reductions over all ranks.
+  virtual double max(double value) const = 0;
+  virtual void sum(std::vector<double>& values) const = 0;  ///< element-wise, in place
+  double sum(double value) const {
+    std::vector<double> v{value};
+    sum(v);
+    return v[0];
+  }
+  /// The lowest rank for which `flag` is true (ranks() when none), collective.
+  virtual int first_rank_with(bool flag) const = 0;
+  /// `bytes` of rank `root` on every rank, collective.
+  virtual void broadcast(std::vector<char>& bytes, int root) const = 0;
+
+  /// Sends outgoing[q] to each rank q and returns what each rank sent here in incoming[q]
+  /// (outgoing has ranks() entries; empty ones send nothing). Collective.
+  virtual void exchange(const RankBuffers& outgoing, RankBuffers& incoming) const = 0;
+  /// Like exchange when the receiver already knows how many bytes come from each rank:
+  /// incoming[q] must be sized by the caller. Collective over the ranks that exchange.
+  virtual void exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const = 0;
+};
+
+/// A run on one rank: the region is the whole box, every particle is owned, nothing travels.
+class OneRankDomain final : public DomainLink {
+ public:
+  explicit OneRankDomain(const PeriodicBox& box) : region_(whole_box_region(box)) {}
+  int rank() const override { return 0; }
+  int ranks() const override { return 1; }
+  BinRegion region() const override { return region_; }
+  int owner_of(Vec3) const override { return 0; }
+  void ghost_ranks(Vec3, std::vector<int>& out) const override { out.clear(); }
+  double max(double value) const override { return value; }
+  void sum(std::vector<double>&) const override {}
+  int first_rank_with(bool flag) const override { return flag ? 0 : 1; }
+  void broadcast(std::vector<char>&, int) const override {}
+  void exchange(const RankBuffers& outgoing, RankBuffers& incoming) const override {
+    incoming = outgoing;
+  }
+  void exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const override {
+    incoming = outgoing;
+  }
+
+ private:
+  BinRegion region_;
+};
+
+}  // namespace gpudem

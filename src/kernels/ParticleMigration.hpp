@@ -1,0 +1,127 @@
+#pragma once
+/// Migration (DESIGN §4): on a rebuild step, owned particles whose position another rank owns
+/// travel there with all their state and their contact history: the wall records and the
+/// records of their own side of each particle contact, keyed by the partner's global id so
+/// that they find their contacts again in the new rank's neighbour list. Host code over host
+/// copies; the engine stages its arrays through it.
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "core/Config.hpp"
+#include "core/Vec3.hpp"
+#include "kernels/DomainLink.hpp"
+
+namespace gpudem {
+
+/// A rank's owned particles as host copies, with their pair history as rows keyed by partner
+/// id: particle i's records are row_partner / row_history [row_offsets[i], row_offsets[i + 1]).
+template <class State>
+struct MigratingParticles {
+  std::vector<Real4> position_radius;
+  std::vector<Real4> velocity_inv_mass;
+  std::vector<Vec3> angular_velocity;
+  std::vector<ParticleId> id;
+  std::vector<MaterialId> material;
+  std::vector<State> wall_history;  ///< wall_count records per particle
+  std::vector<std::uint32_t> row_offsets{0};
+  std::vector<ParticleId> row_partner;
+  std::vector<State> row_history;
+
+  std::size_t size() const { return id.size(); }
+
+  /// Appends particle i of `from` (which has `walls` wall records per particle).
+  void append(const MigratingParticles& from, std::size_t i, std::uint32_t walls) {
+    position_radius.push_back(from.position_radius[i]);
+    velocity_inv_mass.push_back(from.velocity_inv_mass[i]);
+    angular_velocity.push_back(from.angular_velocity[i]);
+    id.push_back(from.id[i]);
+    material.push_back(from.material[i]);
+    wall_history.insert(wall_history.end(), from.wall_history.begin() + i * walls,
+                        from.wall_history.begin() + (i + 1) * walls);
+    for (std::uint32_t e = from.row_offsets[i]; e < from.row_offsets[i + 1]; ++e) {
+      row_partner.push_back(from.row_partner[e]);
+      row_history.push_back(from.row_history[e]);
+    }
+    row_offsets.push_back(static_cast<std::uint32_t>(row_partner.size()));
+  }
+};
+
+namespace migration_detail {
+
+template <class T>
+void put(std::vector<char>& out, const T& value) {
+  const char* bytes = reinterpret_cast<const char*>(&value);
+  out.insert(out.end(), bytes, bytes + sizeof(T));
+}
+
+template <class T>
+T take(const std::vector<char>& in, std::size_t& at) {
+  T value;
+  std::memcpy(&value, in.data() + at, sizeof(T));
+  at += sizeof(T);
+  return value;
+}
+
+/// Particle i of `p` as bytes: its state, its wall records, then its row count and rows.
+template <class State>
+void pack(const MigratingParticles<State>& p, std::size_t i, std::uint32_t walls,
+          std::vector<char>& out) {
+  put(out, p.position_radius[i]);
+  put(out, p.velocity_inv_mass[i]);
+  put(out, p.angular_velocity[i]);
+  put(out, p.id[i]);
+  put(out, p.material[i]);
+  for (std::uint32_t w = 0; w < walls; ++w) put(out, p.wall_history[i * walls + w]);
+  put(out, p.row_offsets[i + 1] - p.row_offsets[i]);
+  for (std::uint32_t e = p.row_offsets[i]; e < p.row_offsets[i + 1]; ++e) {
+    put(out, p.row_partner[e]);
+    put(out, p.row_history[e]);
+  }
+}
+
+/// Appends the particles packed in `in` to `p`.
+template <class State>
+void unpack(const std::vector<char>& in, std::uint32_t walls, MigratingParticles<State>& p) {
+  std::size_t at = 0;
+  while (at < in.size()) {
+    p.position_radius.push_back(take<Real4>(in, at));
+    p.velocity_inv_mass.push_back(take<Real4>(in, at));
+    p.angular_velocity.push_back(take<Vec3>(in, at));
+    p.id.push_back(take<ParticleId>(in, at));
+    p.material.push_back(take<MaterialId>(in, at));
+    for (std::uint32_t w = 0; w < walls; ++w) p.wall_history.push_back(take<State>(in, at));
+    const auto rows = take<std::uint32_t>(in, at);
+    for (std::uint32_t e = 0; e < rows; ++e) {
+      p.row_partner.push_back(take<ParticleId>(in, at));
+      p.row_history.push_back(take<State>(in, at));
+    }
+    p.row_offsets.push_back(static_cast<std::uint32_t>(p.row_partner.size()));
+  }
+}
+
+}  // namespace migration_detail
+
+/// Sends every particle of `local` that another rank owns to that rank and returns the
+/// particles this rank keeps followed by those it received (in the order of the sending
+/// ranks). Collective.
+template <class State>
+MigratingParticles<State> migrate(const MigratingParticles<State>& local, std::uint32_t walls,
+                                  const DomainLink& domain) {
+  MigratingParticles<State> kept;
+  RankBuffers outgoing(domain.ranks());
+  for (std::size_t i = 0; i < local.size(); ++i) {
+    const int owner = domain.owner_of(xyz(local.position_radius[i]));
+    if (owner == domain.rank())
+      kept.append(local, i, walls);
+    else
+      migration_detail::pack(local, i, walls, outgoing[owner]);
+  }
+  RankBuffers incoming;
+  domain.exchange(outgoing, incoming);
+  for (const std::vector<char>& bytes : incoming) migration_detail::unpack(bytes, walls, kept);
+  return kept;
+}
+
+}  // namespace gpudem
