@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -38,10 +39,22 @@ std::vector<double> particles_per_cell(const CoarseGrid& cells, const ParticleSt
   return work;
 }
 
+/// METIS parts of the coarse cells; more ranks than cells is an input error.
+std::vector<int> metis_parts(const Scene& scene, const CoarseGrid& cells,
+                             const std::vector<double>& work, int ranks) {
+  if (static_cast<std::size_t>(ranks) > cells.count())
+    throw InputError(scene.file, 0, "decomposition.method",
+                     "metis needs at least one coarse cell per rank: " + std::to_string(ranks) +
+                         " ranks but " + std::to_string(cells.count()) +
+                         " cells of the ghost width; use fewer ranks");
+  return metis_owners(cells, work, ranks);
+}
+
 }  // namespace
 
 std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi,
-                                       const ParticleStore& particles, const EngineSetup& setup) {
+                                       const ParticleStore& particles, const EngineSetup& setup,
+                                       bool gpu_aware) {
   if (mpi.size() == 1) return nullptr;
   if (!scene.meshes.empty())
     throw InputError(scene.file, scene.meshes.front().line, "mesh",
@@ -54,14 +67,14 @@ std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi
   if (settings.method == DecompositionMethod::Metis)
     return std::make_unique<MpiDomain>(
         mpi.comm(),
-        Decomposition::from_owners(cells, metis_owners(cells, work, mpi.size()), mpi.size()),
-        ghost_width);
+        Decomposition::from_owners(cells, metis_parts(scene, cells, work, mpi.size()), mpi.size()),
+        ghost_width, gpu_aware);
   const auto [bed_lo, bed_hi] = bed_bounds(particles, setup.box);
-  const std::array<int, 3> dims =
-      choose_grid_dims(mpi.size(), bed_lo, bed_hi, setup.gravity, cells, settings.dims,
-                       scene.file, settings.dims_line);
-  return std::make_unique<MpiDomain>(
-      mpi.comm(), Decomposition::grid(cells, balanced_cuts(cells, dims, work)), ghost_width);
+  const std::array<int, 3> dims = choose_grid_dims(mpi.size(), bed_lo, bed_hi, setup.gravity, cells,
+                                                   settings.dims, scene.file, settings.dims_line);
+  return std::make_unique<MpiDomain>(mpi.comm(),
+                                     Decomposition::grid(cells, balanced_cuts(cells, dims, work)),
+                                     ghost_width, gpu_aware);
 }
 
 void print_decomposition(const MpiDomain& domain) {
@@ -72,8 +85,9 @@ void print_decomposition(const MpiDomain& domain) {
                 d.cuts()[1].size() - 1, d.cuts()[2].size() - 1);
   else
     std::printf("decomposition: metis, %d parts", d.ranks());
-  std::printf(" over %d x %d x %d coarse cells, ghost width %.4g m\n", cells.n[0], cells.n[1],
-              cells.n[2], domain.ghost_width());
+  std::printf(" over %d x %d x %d coarse cells, ghost width %.4g m; MPI buffers %s\n", cells.n[0],
+              cells.n[1], cells.n[2], domain.ghost_width(),
+              domain.gpu_aware() ? "on the device (GPU-aware MPI)" : "staged through host memory");
 }
 
 }  // namespace gpudem

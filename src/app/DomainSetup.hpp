@@ -16,9 +16,10 @@ namespace gpudem {
 /// particles they hold; "grid" cuts the particle bed into blocks of equal particle counts
 /// along each axis, "metis" partitions the cell graph. Throws InputError for dims that do not
 /// multiply to the rank count, more ranks than coarse cells, or triangle-mesh walls (they run
-/// on one rank in this version).
+/// on one rank in this version). gpu_aware: MPI accepts device buffers (GpuAwareMpi.hpp).
 std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi,
-                                       const ParticleStore& particles, const EngineSetup& setup);
+                                       const ParticleStore& particles, const EngineSetup& setup,
+                                       bool gpu_aware);
 
 /// One line describing the decomposition (rank 0 prints it).
 void print_decomposition(const MpiDomain& domain);

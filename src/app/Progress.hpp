@@ -1,6 +1,6 @@
 #pragma once
-/// Rank 0's progress line: simulated time, step, steps/s, particle-steps/s and ETA, printed at
-/// most once per `interval` seconds of wall time.
+/// Rank 0's progress line: simulated time, step, steps/s, particle-steps/s, ETA and, on several
+/// ranks, the load imbalance, printed at most once per `interval` seconds of wall time.
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -18,8 +18,10 @@ class Progress {
         last_(start_),
         last_step_(first_step) {}
 
-  /// Prints when the interval has passed or `force` is set.
-  void update(double time, std::uint64_t step, std::size_t particles, bool force = false) {
+  /// Prints when the interval has passed or `force` is set. imbalance: max/mean work over the
+  /// ranks (shown when above 1).
+  void update(double time, std::uint64_t step, std::size_t particles, double imbalance,
+              bool force = false) {
     if (!enabled_) return;
     const auto now = Clock::now();
     if (!force && seconds(last_, now) < interval_) return;
@@ -29,9 +31,11 @@ class Progress {
     const double eta = rate > 0 ? (total_ - step) / rate : 0;
     std::printf(
         "t = %.6g s  step %llu/%llu  %.4g steps/s  %.4g particle-steps/s  "
-        "elapsed %.1f s  ETA %.1f s\n",
+        "elapsed %.1f s  ETA %.1f s",
         time, static_cast<unsigned long long>(step), static_cast<unsigned long long>(total_), rate,
         rate * static_cast<double>(particles), elapsed, eta);
+    if (imbalance > 1) std::printf("  imbalance %.3f", imbalance);
+    std::printf("\n");
     std::fflush(stdout);
     last_ = now;
     last_step_ = step;

@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "comm/GpuAwareMpi.hpp"
+
 namespace gpudem {
 
 enum class BackendChoice { Auto, Host, Cuda };
@@ -13,6 +15,7 @@ struct RunOptions {
   std::string output_dir;              ///< --output-dir (empty: the scene's output.dir)
   std::string restart_file;            ///< --restart: checkpoint to continue from (empty: none)
   BackendChoice backend = BackendChoice::Auto;
+  GpuAwareChoice gpu_aware_mpi = GpuAwareChoice::Auto;  ///< --gpu-aware-mpi
   bool check_only = false;  ///< --check
   bool quiet = false;       ///< --quiet
 };

@@ -9,6 +9,7 @@
 
 #include "app/BedPreparation.hpp"
 #include "app/DomainSetup.hpp"
+#include "app/LoadBalance.hpp"
 #include "app/Progress.hpp"
 #include "comm/Checkpoint.hpp"
 #include "comm/OutputDirectory.hpp"
@@ -30,7 +31,16 @@ constexpr double kOverlapLimit = 0.5;
 /// Seconds of wall time between progress lines.
 constexpr double kProgressInterval = 2.0;
 
-std::unique_ptr<StepEngine> make_engine(BackendChoice choice, const EngineSetup& setup) {
+/// A CUDA engine on this rank's GPU: node-local rank modulo the visible devices, so the ranks
+/// of a node spread over its GPUs (several ranks may share one).
+std::unique_ptr<StepEngine> make_cuda_engine_on_node(const MpiContext& mpi,
+                                                     const EngineSetup& setup) {
+  cuda::select_device(mpi.local_rank() % cuda::device_count());
+  return make_cuda_engine(setup);
+}
+
+std::unique_ptr<StepEngine> make_engine(BackendChoice choice, const MpiContext& mpi,
+                                        const EngineSetup& setup) {
   switch (choice) {
     case BackendChoice::Host:
       return make_host_engine(setup);
@@ -39,11 +49,11 @@ std::unique_ptr<StepEngine> make_engine(BackendChoice choice, const EngineSetup&
         throw InputError("", 0, "--backend",
                          cuda::compiled_in() ? "cuda requested but no CUDA device is visible"
                                              : "cuda requested but this build has no CUDA backend");
-      return make_cuda_engine(setup);
+      return make_cuda_engine_on_node(mpi, setup);
     case BackendChoice::Auto:
       break;
   }
-  return cuda::device_count() > 0 ? make_cuda_engine(setup) : make_host_engine(setup);
+  return cuda::device_count() > 0 ? make_cuda_engine_on_node(mpi, setup) : make_host_engine(setup);
 }
 
 /// Steps between two events `every` seconds apart (at least 1).
@@ -66,7 +76,8 @@ std::vector<std::string> timeseries_columns(const Scene& scene) {
                                 "potential_gravity",
                                 "potential_elastic",
                                 "max_overlap_ratio",
-                                "removed"};
+                                "removed",
+                                "imbalance"};
   for (const WallSettings& w : scene.walls)
     for (const char* axis_name : {"fx", "fy", "fz"}) c.push_back(w.name + "_" + axis_name);
   for (const MeshSettings& m : scene.meshes)
@@ -76,7 +87,7 @@ std::vector<std::string> timeseries_columns(const Scene& scene) {
 }
 
 std::vector<double> timeseries_row(double time, std::uint64_t step, const Diagnostics& d,
-                                   std::uint64_t removed) {
+                                   std::uint64_t removed, double imbalance) {
   std::vector<double> row = {time,
                              static_cast<double>(step),
                              static_cast<double>(d.particle_count),
@@ -86,7 +97,8 @@ std::vector<double> timeseries_row(double time, std::uint64_t step, const Diagno
                              d.potential_gravity,
                              d.potential_elastic,
                              d.max_overlap_ratio,
-                             static_cast<double>(removed)};
+                             static_cast<double>(removed),
+                             imbalance};
   const auto append = [&row](Vec3 v) { row.insert(row.end(), {v.x, v.y, v.z}); };
   for (const Vec3& f : d.wall_force) append(f);
   for (std::size_t m = 0; m < d.mesh_force.size(); ++m) {
@@ -153,10 +165,12 @@ std::optional<SeriesResume> series_resume(const LoopStart& start) {
 class TimeLoop {
  public:
   TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine, const EngineSetup& setup,
-           bool quiet, const LoopStart& start, const SettleCheck* settle)
+           const LoadBalance& balance, bool quiet, const LoopStart& start,
+           const SettleCheck* settle)
       : scene_(scene),
         mpi_(mpi),
         engine_(engine),
+        balance_(balance),
         dt_(setup.dt),
         skin_(setup.skin),
         first_step_(start.step),
@@ -183,6 +197,7 @@ class TimeLoop {
       engine_.step();
       HealthFailure failure;
       if (engine_.find_unhealthy(kOverlapLimit, failure)) return stop_unstable(step, failure);
+      balance_.maybe_rebalance(step, engine_);
       const bool last = step == total_steps_;
       const bool snapshot = last || step % snapshot_every_ == 0;
       const std::optional<Diagnostics> row = record(step, snapshot);
@@ -190,7 +205,7 @@ class TimeLoop {
       if (settled && !snapshot) write_snapshot(step * dt_, step);
       if (checkpoint_every_ > 0 && (last || settled || step % checkpoint_every_ == 0))
         checkpoint(step);
-      progress_.update(step * dt_, step, engine_.particle_count(), last || settled);
+      progress_.update(step * dt_, step, engine_.particle_count(), imbalance_, last || settled);
       if (settled) {
         settled_step_ = step;
         return finish(step);
@@ -243,13 +258,16 @@ class TimeLoop {
                     static_cast<unsigned long long>(removed));
       reported_removed_ = removed;
       row = engine_.diagnostics();
-      series_.append(timeseries_row(time, step, *row, removed));
+      imbalance_ = balance_.imbalance(engine_);
+      series_.append(timeseries_row(time, step, *row, removed, imbalance_));
     }
     if (snapshot) write_snapshot(time, step);
     return row;
   }
 
+  /// Writes a snapshot after checking that no particle was lost or duplicated between ranks.
   void write_snapshot(double time, std::uint64_t step) {
+    engine_.check_particles_conserved();
     engine_.get_particles(host_);
     snapshots_.write(host_, time, step);
   }
@@ -268,8 +286,7 @@ class TimeLoop {
                    "stiffness and initial overlaps.\n",
                    static_cast<unsigned long long>(step), step * dt_,
                    static_cast<unsigned long long>(f.id), f.position.x, f.position.y, f.position.z,
-                   describe(f).c_str(),
-                   snapshots_.files().back().c_str());
+                   describe(f).c_str(), snapshots_.files().back().c_str());
     return kExitUnstable;
   }
 
@@ -282,6 +299,7 @@ class TimeLoop {
   const Scene& scene_;
   const MpiContext& mpi_;
   StepEngine& engine_;
+  const LoadBalance& balance_;
   double dt_;
   double skin_;
   std::uint64_t first_step_;
@@ -297,6 +315,7 @@ class TimeLoop {
   std::optional<std::uint64_t> settled_step_;
   ParticleStore host_;
   std::uint64_t reported_removed_ = 0;
+  double imbalance_ = 1;  ///< at the last time-series row
 };
 
 /// A restart continues with the checkpoint's time step and skin (DESIGN §8): an explicit
@@ -376,7 +395,8 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   const ParticleStore& particles = checkpoint ? checkpoint->particles : created;
   EngineSetup setup = make_engine_setup(scene, particles);
   if (checkpoint) adopt_checkpoint_step(setup, scene, *checkpoint, options.restart_file);
-  const std::unique_ptr<MpiDomain> domain = make_domain(scene, mpi, particles, setup);
+  const std::unique_ptr<MpiDomain> domain =
+      make_domain(scene, mpi, particles, setup, use_gpu_aware_mpi(options.gpu_aware_mpi));
   setup.domain = domain.get();
   const std::uint64_t steps = step_count(scene.simulation.end_time, setup.dt);
   std::optional<SettleCheck> settle;
@@ -394,7 +414,7 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
     }
     return kExitOk;
   }
-  std::unique_ptr<StepEngine> engine = make_engine(options.backend, setup);
+  std::unique_ptr<StepEngine> engine = make_engine(options.backend, mpi, setup);
   start_engine(*engine, particles, checkpoint ? &*checkpoint : nullptr, options.restart_file);
   if (!checkpoint) bed.apply_history(scene, mpi, *engine);
   prepare_output_directory(scene.output.dir);
@@ -404,7 +424,9 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   if (banner && settle) print_preparation(scene, *settle, setup.dt);
   LoopStart start;
   if (checkpoint) start = {checkpoint->step, true, checkpoint->snapshots};
-  TimeLoop loop(scene, mpi, *engine, setup, options.quiet, start, settle ? &*settle : nullptr);
+  const LoadBalance balance(scene, mpi, domain.get(), setup.dt);
+  TimeLoop loop(scene, mpi, *engine, setup, balance, options.quiet, start,
+                settle ? &*settle : nullptr);
   const int code = loop.run();
   if (code != kExitOk || !settle) return code;
   return finish_preparation(scene, mpi, *engine, loop, setup.dt);

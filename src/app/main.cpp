@@ -39,6 +39,14 @@ int main(int argc, char** argv) {
       {"cuda", gpudem::BackendChoice::Cuda}};
   app.add_option("--backend", options.backend, "compute backend: host, cuda or auto")
       ->transform(CLI::CheckedTransformer(backends, CLI::ignore_case));
+  const std::map<std::string, gpudem::GpuAwareChoice> gpu_aware{
+      {"auto", gpudem::GpuAwareChoice::Auto},
+      {"on", gpudem::GpuAwareChoice::On},
+      {"off", gpudem::GpuAwareChoice::Off}};
+  app.add_option("--gpu-aware-mpi", options.gpu_aware_mpi,
+                 "hand device buffers to MPI: auto (ask the MPI library), on, or off (stage "
+                 "through host memory)")
+      ->transform(CLI::CheckedTransformer(gpu_aware, CLI::ignore_case));
   app.add_flag("--quiet", options.quiet, "no banner and no progress lines");
 
   try {

@@ -524,6 +524,10 @@ std::array<std::vector<int>, 3> rebalance_cuts(const CoarseGrid& cells,
   return moved;
 }
 
+/// Total vertex weight METIS may sum without overflowing a 32-bit idx_t, with room for the
+/// empty cells' unit weights.
+constexpr double kMetisWeightBudget = 1.0e9;
+
 std::vector<int> metis_owners(const CoarseGrid& cells, const std::vector<double>& cell_work,
                               int ranks) {
   require_cell_work(cells, cell_work);
@@ -533,11 +537,15 @@ std::vector<int> metis_owners(const CoarseGrid& cells, const std::vector<double>
                                 std::to_string(cells.count()) +
                                 " coarse cells: every rank needs at least one cell");
   if (ranks == 1) return std::vector<int>(cells.count(), 0);
+  // METIS sums the weights in idx_t (32 bits here): large beds get a smaller scale.
+  double total = 0;
+  for (const double w : cell_work) total += w;
+  const double scale = std::min(kMetisWorkScale, kMetisWeightBudget / std::max(total, 1.0));
   std::vector<idx_t> xadj{0}, adjncy, vwgt;
   for (std::size_t i = 0; i < cells.count(); ++i) {
     for (std::size_t j : adjacent_cells(cells, i)) adjncy.push_back(static_cast<idx_t>(j));
     xadj.push_back(static_cast<idx_t>(adjncy.size()));
-    vwgt.push_back(static_cast<idx_t>(1 + std::llround(cell_work[i])));
+    vwgt.push_back(static_cast<idx_t>(1 + std::llround(scale * cell_work[i])));
   }
   idx_t vertices = static_cast<idx_t>(cells.count()), constraints = 1, parts = ranks, cut = 0;
   idx_t options[METIS_NOPTIONS];

@@ -116,8 +116,14 @@ std::array<std::vector<int>, 3> rebalance_cuts(const CoarseGrid& cells,
                                                const std::array<std::vector<int>, 3>& cuts,
                                                const std::vector<double>& cell_work, int max_shift);
 
+/// Vertex weight of one unit of work in the METIS graph (an empty cell weighs 1); smaller when
+/// the total work would overflow METIS's 32-bit weight sums.
+constexpr double kMetisWorkScale = 64;
+
 /// METIS_PartGraphKway of the coarse-cell graph (26-neighbour adjacency with periodic wrap, no
-/// self or duplicate edges), vertex weight = 1 + round(cell_work) (empty cells still count),
+/// self or duplicate edges), vertex weight = 1 + round(kMetisWorkScale · cell_work): an empty
+/// cell weighs as little as 1/kMetisWorkScale of a unit of work, so a bed filling a small part
+/// of a large domain is still split by its work, and parts stay contiguous through empty cells;
 /// deterministic (fixed METIS seed). ranks == 1: all zero. More ranks than cells:
 /// std::invalid_argument. Returns the owner of each cell.
 std::vector<int> metis_owners(const CoarseGrid& cells, const std::vector<double>& cell_work,

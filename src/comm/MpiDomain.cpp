@@ -17,12 +17,28 @@ int message_size(std::size_t bytes) {
 
 }  // namespace
 
-MpiDomain::MpiDomain(MPI_Comm comm, Decomposition decomposition, Real ghost_width)
-    : comm_(comm), decomposition_(std::move(decomposition)), ghost_width_(ghost_width) {
+MpiDomain::MpiDomain(MPI_Comm comm, Decomposition decomposition, Real ghost_width, bool gpu_aware)
+    : comm_(comm),
+      decomposition_(std::move(decomposition)),
+      ghost_width_(ghost_width),
+      gpu_aware_(gpu_aware) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
   if (decomposition_.ranks() != size_)
     throw std::invalid_argument("MpiDomain: the decomposition is for another rank count");
+  region_ = decomposition_.region(rank_, ghost_width_, ghost_width_);
+}
+
+void MpiDomain::propose(Decomposition next) {
+  if (next.ranks() != size_)
+    throw std::invalid_argument("MpiDomain: the decomposition is for another rank count");
+  pending_ = std::move(next);
+}
+
+void MpiDomain::begin_rebuild() {
+  if (!pending_) return;
+  decomposition_ = std::move(*pending_);
+  pending_.reset();
   region_ = decomposition_.region(rank_, ghost_width_, ghost_width_);
 }
 
@@ -34,8 +50,14 @@ double MpiDomain::max(double value) const {
 
 void MpiDomain::sum(std::vector<double>& values) const {
   if (values.empty()) return;
-  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE,
-                MPI_SUM, comm_);
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM,
+                comm_);
+}
+
+std::uint64_t MpiDomain::wrapping_sum(std::uint64_t value) const {
+  std::uint64_t total = value;
+  MPI_Allreduce(&value, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
+  return total;
 }
 
 int MpiDomain::first_rank_with(bool flag) const {

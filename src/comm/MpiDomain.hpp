@@ -4,6 +4,8 @@
 /// messages (sizes first by MPI_Alltoall where the receiver cannot know them).
 #include <mpi.h>
 
+#include <optional>
+
 #include "comm/Decomposition.hpp"
 #include "kernels/DomainLink.hpp"
 
@@ -13,7 +15,8 @@ class MpiDomain final : public DomainLink {
  public:
   /// ghost_width [m]: 2 r_max + skin, the reach of a ghost beyond its owner's cells and the
   /// largest contact distance.
-  MpiDomain(MPI_Comm comm, Decomposition decomposition, Real ghost_width);
+  /// gpu_aware: the MPI library accepts device pointers (GpuAwareMpi.hpp).
+  MpiDomain(MPI_Comm comm, Decomposition decomposition, Real ghost_width, bool gpu_aware);
 
   int rank() const override { return rank_; }
   int ranks() const override { return size_; }
@@ -25,20 +28,30 @@ class MpiDomain final : public DomainLink {
   double max(double value) const override;
   void sum(std::vector<double>& values) const override;
   using DomainLink::sum;
+  std::uint64_t wrapping_sum(std::uint64_t value) const override;
   int first_rank_with(bool flag) const override;
   void broadcast(std::vector<char>& bytes, int root) const override;
   void exchange(const RankBuffers& outgoing, RankBuffers& incoming) const override;
   void exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const override;
 
+  /// Hands over a decomposition (a rebalance) that takes over at the next rebuild step;
+  /// every rank must propose the same one.
+  void propose(Decomposition next);
+  void begin_rebuild() override;
+
   const Decomposition& decomposition() const { return decomposition_; }
   Real ghost_width() const { return ghost_width_; }
+  /// Whether buffers in device memory may go to MPI as they are.
+  bool gpu_aware() const { return gpu_aware_; }
 
  private:
   MPI_Comm comm_;
   int rank_ = 0;
   int size_ = 1;
   Decomposition decomposition_;
+  std::optional<Decomposition> pending_;
   Real ghost_width_;
+  bool gpu_aware_;
   BinRegion region_;
 };
 

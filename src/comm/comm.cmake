@@ -2,6 +2,7 @@ add_library(gpudem_comm STATIC
   comm/Checkpoint.cpp
   comm/Hdf5Io.cpp
   comm/MpiContext.cpp
+  comm/GpuAwareMpi.cpp
   comm/MpiDomain.cpp
   comm/OutputDirectory.cpp
   comm/SnapshotWriter.cpp

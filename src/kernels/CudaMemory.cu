@@ -24,6 +24,14 @@ int device_count() {
   return n;
 }
 
+void select_device(int index) { check(cudaSetDevice(index), "cudaSetDevice"); }
+
+int current_device() {
+  int device = 0;
+  check(cudaGetDevice(&device), "cudaGetDevice");
+  return device;
+}
+
 std::string device_description() {
   int device = 0;
   check(cudaGetDevice(&device), "cudaGetDevice");

@@ -10,6 +10,10 @@ namespace gpudem::cuda {
 bool compiled_in();
 /// Number of visible CUDA devices (0 when none or when not compiled in).
 int device_count();
+/// Makes device `index` (in [0, device_count())) the current device of this process.
+void select_device(int index);
+/// Index of the current device.
+int current_device();
 /// Name and memory of the current device, for the start-up banner.
 std::string device_description();
 

@@ -14,6 +14,8 @@ namespace {
 
 bool compiled_in() { return false; }
 int device_count() { return 0; }
+void select_device(int) { unavailable(); }
+int current_device() { unavailable(); }
 std::string device_description() { return "none"; }
 void* allocate(std::size_t) { unavailable(); }
 void release(void* ptr) {

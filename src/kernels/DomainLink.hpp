@@ -22,6 +22,9 @@ class DomainLink {
 
   virtual int rank() const = 0;
   virtual int ranks() const = 0;
+  /// Called by the engine at the start of each rebuild step, before any particle moves
+  /// between ranks: the moment a new decomposition may take over (a rebalance).
+  virtual void begin_rebuild() {}
   /// Where this rank bins its owned particles and ghosts.
   virtual BinRegion region() const = 0;
   /// The rank that owns a particle at p (a position in the global box).
@@ -37,6 +40,8 @@ class DomainLink {
     sum(v);
     return v[0];
   }
+  /// Σ over ranks modulo 2^64 (checksums). Collective.
+  virtual std::uint64_t wrapping_sum(std::uint64_t value) const = 0;
   /// The lowest rank for which `flag` is true (ranks() when none), collective.
   virtual int first_rank_with(bool flag) const = 0;
   /// `bytes` of rank `root` on every rank, collective.
@@ -61,6 +66,7 @@ class OneRankDomain final : public DomainLink {
   void ghost_ranks(Vec3, std::vector<int>& out) const override { out.clear(); }
   double max(double value) const override { return value; }
   void sum(std::vector<double>&) const override {}
+  std::uint64_t wrapping_sum(std::uint64_t value) const override { return value; }
   int first_rank_with(bool flag) const override { return flag ? 0 : 1; }
   void broadcast(std::vector<char>&, int) const override {}
   void exchange(const RankBuffers& outgoing, RankBuffers& incoming) const override {

@@ -35,7 +35,7 @@ struct EngineSetup {
   std::uint64_t start_step = 0;  ///< step the run starts at (a restart's): the meshes' clock
   /// This rank's part of the decomposed domain; null: a run on one rank. Must outlive the
   /// engine.
-  const DomainLink* domain = nullptr;
+  DomainLink* domain = nullptr;
 };
 
 /// Global quantities reduced over all particles; walls' forces are the forces the
@@ -99,6 +99,15 @@ class StepEngine {
                                  std::uint64_t removed) = 0;
   /// Particles on all ranks.
   virtual std::size_t particle_count() const = 0;
+  /// Particles this rank owns.
+  virtual std::size_t owned_count() const = 0;
+  /// Neighbour-list entries of each owned particle, in the order of get_particles.
+  virtual void get_list_lengths(std::vector<std::uint32_t>& lengths) const = 0;
+
+  /// Checks that no particle was lost or duplicated between ranks: the particle count and a
+  /// checksum of the ids over all ranks equal those of the particles given, less the removed
+  /// ones. Throws std::runtime_error saying what differs. Collective.
+  virtual void check_particles_conserved() const = 0;
 
   /// Advances one time step dt.
   virtual void step() = 0;

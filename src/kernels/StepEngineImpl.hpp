@@ -1,8 +1,9 @@
 #pragma once
 /// The step engine for one execution space and one contact law (DESIGN §4): this rank's owned
 /// particles followed by ghost copies of other ranks' particles, stepped with the rank's
-/// DomainLink (one rank when the setup names none). The same code is instantiated for HostSpace and CudaSpace and for every valid law
-/// (EngineFactory.hpp). Include the backend's ParallelFor header first.
+/// DomainLink (one rank when the setup names none). The same code is instantiated for HostSpace and
+/// CudaSpace and for every valid law (EngineFactory.hpp). Include the backend's ParallelFor header
+/// first.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -165,7 +166,7 @@ class StepEngineImpl final : public StepEngine {
   void set_particles(const ParticleStore& all) override {
     const std::vector<std::size_t> mine = owned_indices(all.position_radius);
     upload_particles(select(all, mine));
-    count_particles();
+    count_particles(all.id);
     has_list_ = false;
     rebuild();
     compute_forces();
@@ -179,7 +180,7 @@ class StepEngineImpl final : public StepEngine {
     const std::vector<std::size_t> mine = owned_indices(list_positions);
     const ParticleStore p = select(all, mine);
     upload_particles(p);
-    count_particles();
+    count_particles(all.id);
     position_at_build_.upload(select(list_positions, mine));
     DeviceArray<Vec3, Space> saved_force, saved_torque;
     saved_force.upload(p.force);
@@ -231,13 +232,34 @@ class StepEngineImpl final : public StepEngine {
   }
 
   std::size_t particle_count() const override { return global_count_; }
+  std::size_t owned_count() const override { return owned_; }
+
+  void get_list_lengths(std::vector<std::uint32_t>& lengths) const override {
+    const std::vector<std::uint32_t> offsets =
+        download_raw(neighbors_.offsets(), has_list_ ? owned_ + 1 : 0);
+    lengths.assign(owned_, 0);
+    for (std::size_t i = 0; i + 1 < offsets.size(); ++i) lengths[i] = offsets[i + 1] - offsets[i];
+  }
+
+  void check_particles_conserved() const override {
+    std::vector<ParticleId> ids;
+    id_.download(ids);
+    ids.resize(owned_);
+    const std::uint64_t count = domain_.wrapping_sum(owned_);
+    const std::uint64_t checksum = domain_.wrapping_sum(id_checksum(ids));
+    if (count != global_count_ || checksum != expected_id_sum_)
+      throw std::runtime_error(
+          "particles were lost or duplicated between ranks: " + std::to_string(count) +
+          " particles on " + std::to_string(domain_.ranks()) + " ranks where there should be " +
+          std::to_string(global_count_) +
+          (checksum != expected_id_sum_ ? " and their ids differ from the expected set" : ""));
+  }
 
   void step() override {
     const Real dt = setup_.dt;
     const bool verlet = setup_.integrator == IntegratorKind::VelocityVerlet;
     kick(verlet ? Real(0.5) * dt : dt);
-    parallel_for(Space{}, owned_,
-                 Drift{position_radius_.data(), velocity_inv_mass_.data(), dt});
+    parallel_for(Space{}, owned_, Drift{position_radius_.data(), velocity_inv_mass_.data(), dt});
     ++steps_;
     if (!meshes_.empty()) meshes_.set_time(steps_ * dt);
     if (needs_rebuild())
@@ -324,8 +346,7 @@ class StepEngineImpl final : public StepEngine {
   }
 
   /// The records of `history` whose owner is one of this rank's particles.
-  static ContactHistory records_of_owned(const ContactHistory& history,
-                                         const ContactSlots& slots) {
+  static ContactHistory records_of_owned(const ContactHistory& history, const ContactSlots& slots) {
     const std::unordered_set<ParticleId> owned(slots.id.begin(), slots.id.begin() + slots.rows);
     ContactHistory mine;
     mine.width = history.width;
@@ -339,8 +360,24 @@ class StepEngineImpl final : public StepEngine {
     return mine;
   }
 
-  /// The particle count over all ranks.
-  void count_particles() { global_count_ = std::llround(domain_.sum(double(owned_))); }
+  /// The particle count over all ranks and the checksum of their ids, from `all_ids` (every
+  /// rank holds them all when the particles are set).
+  void count_particles(const std::vector<ParticleId>& all_ids) {
+    global_count_ = all_ids.size();
+    expected_id_sum_ = id_checksum(all_ids);
+  }
+
+  /// Σ splitmix64(id) modulo 2^64: equal for equal id sets, whatever their order.
+  static std::uint64_t id_checksum(const std::vector<ParticleId>& ids) {
+    std::uint64_t sum = 0;
+    for (const ParticleId id : ids) {
+      std::uint64_t z = id + 0x9e3779b97f4a7c15ULL;
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+      sum += z ^ (z >> 31);
+    }
+    return sum;
+  }
 
   /// Uploads the particle arrays and sizes the per-particle work arrays; wall histories zero,
   /// torques zero (a law without spin never writes them).
@@ -449,10 +486,10 @@ class StepEngineImpl final : public StepEngine {
   }
 
   ContactScene<Law> contact_scene() const {
-    return ContactScene<Law>{neighbors_.offsets(), neighbors_.neighbors(), pair_params_.data(),
-                             setup_.material_count, walls_.data(),         wall_count(),
-                             setup_.box,            pair_history_.data(),  wall_history_.data(),
-                             meshes_.view(),        meshes_.history()};
+    return ContactScene<Law>{
+        neighbors_.offsets(), neighbors_.neighbors(), pair_params_.data(), setup_.material_count,
+        walls_.data(),        wall_count(),           setup_.box,          pair_history_.data(),
+        wall_history_.data(), meshes_.view(),         meshes_.history()};
   }
 
   void kick(Real h) {
@@ -568,11 +605,15 @@ class StepEngineImpl final : public StepEngine {
   /// ranks that own their positions, sorts by cell, exchanges ghosts, rebuilds the neighbour
   /// list and carries the contact history over to it.
   void rebuild() {
+    domain_.begin_rebuild();
     keep_previous_rows();
     resize_shared(owned_);  // the ghosts are planned anew
     parallel_for(Space{}, owned_, WrapPositions{position_radius_.data(), setup_.box});
     remove_leavers();
     if (domain_.ranks() > 1) migrate_particles();
+#ifndef NDEBUG
+    check_particles_conserved();
+#endif
     sort_owned_by_cell();
     build_halo_and_list();
     meshes_.rebuild(position_radius_.data(), owned_, largest_radius(), setup_.skin,
@@ -705,18 +746,22 @@ class StepEngineImpl final : public StepEngine {
     const std::size_t n = owned_;
     const auto leavers = static_cast<std::size_t>(
         std::llround(reduce_sum(Space{}, n, IsLeaver{position_radius_.data(), setup_.box})));
-    const auto all_leavers = static_cast<std::uint64_t>(std::llround(domain_.sum(double(leavers))));
+    const std::uint64_t all_leavers = domain_.wrapping_sum(leavers);
     removed_ += all_leavers;
     global_count_ -= all_leavers;
-    if (leavers == 0) return;
-    sort_key_.resize(n);
-    sort_index_.resize(n);
-    parallel_for(
-        Space{}, n,
-        LeaverKey{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
-    sort_by_key(Space{}, sort_key_.data(), sort_index_.data(), n);
-    reorder(sort_index_.data(), n);
-    resize_owned(n - leavers);
+    std::uint64_t leaver_ids = 0;
+    if (leavers > 0) {
+      sort_key_.resize(n);
+      sort_index_.resize(n);
+      parallel_for(
+          Space{}, n,
+          LeaverKey{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
+      sort_by_key(Space{}, sort_key_.data(), sort_index_.data(), n);
+      reorder(sort_index_.data(), n);
+      leaver_ids = id_checksum(download_raw(id_.data() + (n - leavers), leavers));
+      resize_owned(n - leavers);
+    }
+    if (all_leavers > 0) expected_id_sum_ -= domain_.wrapping_sum(leaver_ids);
   }
 
   /// Applies the permutation `order` (slot k takes particle order[k]) to every per-particle
@@ -776,7 +821,7 @@ class StepEngineImpl final : public StepEngine {
 
   EngineSetup setup_;
   OneRankDomain one_rank_;
-  const DomainLink& domain_;  ///< setup.domain, or one_rank_ when there is none
+  DomainLink& domain_;  ///< setup.domain, or one_rank_ when there is none
   DeviceArray<ContactPairParams, Space> pair_params_;
   DeviceArray<PlaneWall, Space> walls_;
   // Per particle: the owned_ owned particles, then (the first five) the ghosts.
@@ -794,7 +839,7 @@ class StepEngineImpl final : public StepEngine {
   // Rebuild scratch.
   DeviceArray<std::uint64_t, Space> sort_key_;
   DeviceArray<std::uint32_t, Space> sort_index_;
-  DeviceArray<std::uint32_t, Space> previous_index_;  ///< row of each particle's previous list
+  DeviceArray<std::uint32_t, Space> previous_index_;    ///< row of each particle's previous list
   DeviceArray<std::uint32_t, Space> previous_offsets_;  ///< previous rows, keyed by partner id
   DeviceArray<ParticleId, Space> previous_partner_;
   DeviceArray<State, Space> previous_history_;
@@ -806,8 +851,9 @@ class StepEngineImpl final : public StepEngine {
   MeshWalls<Space, Law> meshes_;
   GhostExchange<Space, Law::needs_spin> ghosts_;
   std::size_t owned_ = 0;
-  std::uint64_t global_count_ = 0;  ///< particles on all ranks
-  std::uint64_t steps_ = 0;  ///< the run's step count (the meshes' clock)
+  std::uint64_t global_count_ = 0;     ///< particles on all ranks
+  std::uint64_t expected_id_sum_ = 0;  ///< id_checksum of the particles on all ranks
+  std::uint64_t steps_ = 0;            ///< the run's step count (the meshes' clock)
   bool has_list_ = false;
   std::uint64_t removed_ = 0;  ///< on all ranks
   std::uint64_t rebuilds_ = 0;

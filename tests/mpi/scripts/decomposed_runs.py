@@ -12,6 +12,11 @@ CASE is one of:
                 series agree to 1e-12 relative (their sums do run in another order).
   restart       the same scene run straight at N = 1 against a run checkpointed half-way at
                 N = 3 or 4 and continued at N = 2 or 1: final states equal bit for bit.
+  balance       tests/mpi/scenes/corner.toml (a bed settling into one end of a channel, on
+                2 x 2 blocks) with and without rebalancing: without, the final imbalance
+                (max/mean particles per rank, time-series column "imbalance") is above 1.3;
+                with rebalance_every = 0.01 s it is below 1.2, for the grid and for METIS, and
+                the final states equal the unbalanced run's bit for bit.
   momentum      tests/mpi/scenes/periodic_gas.toml (closed periodic box, no gravity) at N = 4:
                 total momentum conserved to 1e-12 of the total |momentum|, and the final state
                 equal to N = 1 bit for bit.
@@ -141,6 +146,29 @@ def restart(runner):
         compare_states(runner, name, reference, out)
 
 
+def final_imbalance(out):
+    return float(series(out)[-1]["imbalance"])
+
+
+def balance(runner):
+    scene = SCENES / "corner.toml"
+    blocks = "decomposition.dims=[2,2,1]"
+    fixed = runner.run("fixed_blocks", scene, 4, blocks)
+    worst = final_imbalance(fixed)
+    print(f"fixed blocks: final imbalance {worst:.3f}")
+    if not worst > 1.3:
+        runner.fail(f"fixed blocks: imbalance {worst:.3f}, the scene no longer unbalances them")
+    rebalance = "decomposition.rebalance_every=0.01"
+    metis = 'decomposition.method="metis"'
+    for name, method in (("rebalanced_blocks", blocks), ("rebalanced_metis", metis)):
+        out = runner.run(name, scene, 4, rebalance, method)
+        value = final_imbalance(out)
+        print(f"{name}: final imbalance {value:.3f}")
+        if not value < 1.2:
+            runner.fail(f"{name}: final imbalance {value:.3f}, not below 1.2")
+        compare_states(runner, name, fixed, out)
+
+
 def momentum(runner):
     scene = SCENES / "periodic_gas.toml"
     reference = runner.run("gas_n1", scene, 1)
@@ -165,12 +193,14 @@ def main():
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", required=True)
     parser.add_argument("--work", required=True)
-    parser.add_argument("case", choices=["same-physics", "restart", "momentum"])
+    parser.add_argument("case", choices=["same-physics", "restart", "balance", "momentum"])
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     runner = Runner(args.binary, args.mpirun, args.work)
-    {"same-physics": same_physics, "restart": restart, "momentum": momentum}[args.case](runner)
+    cases = {"same-physics": same_physics, "restart": restart, "balance": balance,
+             "momentum": momentum}
+    cases[args.case](runner)
     for line in runner.failures:
         print(line)
     return 1 if runner.failures else 0
