@@ -778,20 +778,18 @@ TEST_F(SceneLoaderTest, DecompositionDefaultsToAnAutomaticGrid) {
   EXPECT_EQ(s.decomposition.dims_line, 0);
   EXPECT_DOUBLE_EQ(s.decomposition.rebalance_every, 0);
   EXPECT_EQ(s.decomposition.balance, BalanceWork::Particles);
-  EXPECT_FALSE(s.output.rank_field);
 }
 
-TEST_F(SceneLoaderTest, DecompositionAndRankFieldRead) {
+TEST_F(SceneLoaderTest, DecompositionRead) {
   const int line = first_appended_line();
   const Scene grid = load_text(
       with_tables("[decomposition]\nmethod = \"grid\"\ndims = [2, 1, 3]\nrebalance_every = 0.05\n"
-                  "balance = \"contacts\"\n[output]\nrank_field = true\n"));
+                  "balance = \"contacts\"\n"));
   EXPECT_EQ(grid.decomposition.method, DecompositionMethod::Grid);
   EXPECT_EQ(grid.decomposition.dims, (std::array<int, 3>{2, 1, 3}));
   EXPECT_EQ(grid.decomposition.dims_line, line + 2);
   EXPECT_DOUBLE_EQ(grid.decomposition.rebalance_every, 0.05);
   EXPECT_EQ(grid.decomposition.balance, BalanceWork::Contacts);
-  EXPECT_TRUE(grid.output.rank_field);
 
   const Scene automatic = load_text(with_tables("[decomposition]\ndims = \"auto\"\n"));
   EXPECT_EQ(automatic.decomposition.dims, (std::array<int, 3>{0, 0, 0}));
@@ -840,8 +838,6 @@ TEST_F(SceneLoaderTest, DecompositionValuesAreChecked) {
                "decomposition.rebalance_every", "expected a number >= 0 [s], got -0.1");
   expect_error(load_error(with_tables("[decomposition]\ndim = [1, 1, 1]")), line,
                "decomposition.dim", "unknown key 'dim' in [decomposition]; did you mean 'dims'?");
-  expect_error(load_error(with_tables("[output]\nrank_field = 1")), line, "output.rank_field",
-               "expected true or false, got 1");
   expect_error(load_error(with_tables("[decompositon]\nmethod = \"grid\"")), first_appended_line(),
                "decompositon", "did you mean 'decomposition'?");
 }
