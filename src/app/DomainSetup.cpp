@@ -1,6 +1,7 @@
 #include "app/DomainSetup.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -30,6 +31,37 @@ std::pair<Vec3, Vec3> bed_bounds(const ParticleStore& particles, const PeriodicB
       axis(hi, k) = std::max(axis(hi, k), axis(xyz(p), k) + p.w);
     }
   return {lo, hi};
+}
+
+/// Solid fraction of a settled random packing, for the settled-bed estimate.
+constexpr Real kSettledPacking = 0.6;
+
+/// The bed as auto dims judge it. Particles that have yet to settle (their volume fills, at
+/// kSettledPacking over the bounding box's section across gravity, less height than the box
+/// has along gravity) will move along gravity, so cuts across gravity balanced now would not
+/// stay balanced: the bed counts as shallow, its height along gravity cut below its other two
+/// extents. A packed bed or column keeps its box.
+std::pair<Vec3, Vec3> settled_bed(const ParticleStore& particles, std::pair<Vec3, Vec3> bed,
+                                  Vec3 gravity) {
+  int g = -1;
+  for (int k = 0; k < 3; ++k)
+    if (axis(gravity, k) != 0 && (g < 0 || std::abs(axis(gravity, k)) > std::abs(axis(gravity, g))))
+      g = k;
+  if (g < 0 || particles.size() == 0) return bed;
+  const Vec3 extent = bed.second - bed.first;
+  const Real base = axis(extent, (g + 1) % 3) * axis(extent, (g + 2) % 3);
+  Real solid = 0;
+  for (const Real4& p : particles.position_radius)
+    solid += Real(4.0 / 3.0 * M_PI) * p.w * p.w * p.w;
+  const Real settled = solid / (kSettledPacking * base);
+  if (!(settled < axis(extent, g))) return bed;
+  const Real across = std::min(axis(extent, (g + 1) % 3), axis(extent, (g + 2) % 3));
+  const Real height = std::min(settled, Real(0.5) * across);
+  if (axis(gravity, g) < 0)
+    axis(bed.second, g) = axis(bed.first, g) + height;
+  else
+    axis(bed.first, g) = axis(bed.second, g) - height;
+  return bed;
 }
 
 /// Particles per coarse cell.
@@ -69,7 +101,8 @@ std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi
         mpi.comm(),
         Decomposition::from_owners(cells, metis_parts(scene, cells, work, mpi.size()), mpi.size()),
         ghost_width, gpu_aware);
-  const auto [bed_lo, bed_hi] = bed_bounds(particles, setup.box);
+  const auto [bed_lo, bed_hi] =
+      settled_bed(particles, bed_bounds(particles, setup.box), setup.gravity);
   const std::array<int, 3> dims = choose_grid_dims(mpi.size(), bed_lo, bed_hi, setup.gravity, cells,
                                                    settings.dims, scene.file, settings.dims_line);
   return std::make_unique<MpiDomain>(mpi.comm(),
