@@ -1,8 +1,11 @@
 #pragma once
 /// Element-wise array functors for parallel_for, shared by the engine's components.
 #include <cstddef>
+#include <vector>
 
 #include "core/Config.hpp"
+#include "kernels/DeviceArray.hpp"
+#include "kernels/ParallelFor.hpp"
 
 namespace gpudem {
 
@@ -19,5 +22,15 @@ struct Fill {
   T value;
   GPUDEM_HD void operator()(std::size_t k) const { out[k] = value; }
 };
+
+/// Host copy of the n values at `data` in Space memory (a part of a larger array).
+template <class Space, class T>
+std::vector<T> download_values(const T* data, std::size_t n) {
+  DeviceArray<T, Space> copy(n);
+  parallel_for(Space{}, n, CopyArray<T>{data, copy.data()});
+  std::vector<T> host;
+  copy.download(host);
+  return host;
+}
 
 }  // namespace gpudem

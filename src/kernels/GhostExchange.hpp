@@ -118,8 +118,7 @@ class GhostExchange {
   /// the number of ghosts received, to be written by `fill` once the caller has made room for
   /// them after its `owned` particles. Collective.
   std::size_t plan(const DomainLink& domain, const ParticleArrays& particles, std::size_t owned) {
-    std::vector<Real4> position;
-    download_raw(particles.position_radius, owned, position);
+    const std::vector<Real4> position = download_values<Space>(particles.position_radius, owned);
     std::vector<std::vector<std::uint32_t>> to_rank(domain.ranks());
     std::vector<int> ranks;
     for (std::size_t i = 0; i < owned; ++i) {
@@ -137,7 +136,9 @@ class GhostExchange {
     parallel_for(Space{}, index.size(),
                  ghost_kernels::PackRecords{particles, send_index_.data(), packed.data()});
     RankBuffers incoming;
-    domain.exchange(split(packed, sizeof(GhostRecord)), incoming);
+    RankBuffers outgoing;
+    split(packed, sizeof(GhostRecord), outgoing);
+    domain.exchange(outgoing, incoming);
     receive_count_.assign(domain.ranks(), 0);
     for (int q = 0; q < domain.ranks(); ++q)
       receive_count_[q] = incoming[q].size() / sizeof(GhostRecord);
@@ -155,38 +156,40 @@ class GhostExchange {
   /// slots. Collective.
   void update(const DomainLink& domain, const ParticleArrays& particles, std::size_t owned) {
     const int width = Fields::width;
-    DeviceArray<Real, Space> packed(send_index_.size() * width);
-    parallel_for(Space{}, send_index_.size(),
-                 ghost_kernels::PackFields<kSpin>{particles, send_index_.data(), packed.data()});
-    RankBuffers incoming(domain.ranks());
+    packed_fields_.resize(send_index_.size() * width);
+    parallel_for(
+        Space{}, send_index_.size(),
+        ghost_kernels::PackFields<kSpin>{particles, send_index_.data(), packed_fields_.data()});
+    split(packed_fields_, width * sizeof(Real), outgoing_);
+    incoming_.resize(domain.ranks());
     for (int q = 0; q < domain.ranks(); ++q)
-      incoming[q].resize(receive_count_[q] * width * sizeof(Real));
-    domain.exchange_known(split(packed, width * sizeof(Real)), incoming);
-    DeviceArray<Real, Space> fields;
-    join(incoming, fields);
+      incoming_[q].resize(receive_count_[q] * width * sizeof(Real));
+    domain.exchange_known(outgoing_, incoming_);
+    join(incoming_, fields_);
     parallel_for(Space{}, ghosts(),
-                 ghost_kernels::UnpackFields<kSpin>{fields.data(), particles, owned});
+                 ghost_kernels::UnpackFields<kSpin>{fields_.data(), particles, owned});
   }
 
   std::size_t ghosts() const { return received_.size(); }
   /// Ghost records sent per step (the halo volume of this rank).
   std::size_t sent() const { return send_index_.size(); }
-  std::size_t memory_bytes() const { return send_index_.bytes() + received_.bytes(); }
+  std::size_t memory_bytes() const {
+    return send_index_.bytes() + received_.bytes() + packed_fields_.bytes() + fields_.bytes();
+  }
 
  private:
   /// The packed rows as one byte buffer per rank, `row_bytes` per row, in the plan's order.
   template <class T>
-  RankBuffers split(const DeviceArray<T, Space>& packed, std::size_t row_bytes) const {
+  void split(const DeviceArray<T, Space>& packed, std::size_t row_bytes, RankBuffers& out) const {
     std::vector<T> host;
     packed.download(host);
     const char* bytes = reinterpret_cast<const char*>(host.data());
-    RankBuffers out(send_count_.size());
+    out.resize(send_count_.size());
     std::size_t offset = 0;
     for (std::size_t q = 0; q < send_count_.size(); ++q) {
       out[q].assign(bytes + offset, bytes + offset + send_count_[q] * row_bytes);
       offset += send_count_[q] * row_bytes;
     }
-    return out;
   }
 
   /// The buffers of all ranks, in rank order, as one array in Space memory.
@@ -203,18 +206,15 @@ class GhostExchange {
     out.upload(host);
   }
 
-  /// Host copy of the first n values at `data` in Space memory.
-  template <class T>
-  static void download_raw(const T* data, std::size_t n, std::vector<T>& host) {
-    DeviceArray<T, Space> copy(n);
-    parallel_for(Space{}, n, CopyArray<T>{data, copy.data()});
-    copy.download(host);
-  }
-
   DeviceArray<std::uint32_t, Space> send_index_;  ///< owned particles to send, rank by rank
   std::vector<std::size_t> send_count_;           ///< per rank
   std::vector<std::size_t> receive_count_;        ///< ghosts from each rank
   DeviceArray<GhostRecord, Space> received_;      ///< records of the last plan, rank by rank
+  // Per-step buffers, kept so that a step allocates nothing once they have grown.
+  DeviceArray<Real, Space> packed_fields_;
+  DeviceArray<Real, Space> fields_;
+  RankBuffers outgoing_;
+  RankBuffers incoming_;
 };
 
 }  // namespace gpudem

@@ -164,8 +164,10 @@ class StepEngineImpl final : public StepEngine {
   }
 
   void set_particles(const ParticleStore& all) override {
-    const std::vector<std::size_t> mine = owned_indices(all.position_radius);
-    upload_particles(select(all, mine));
+    if (domain_.ranks() == 1)
+      upload_particles(all);
+    else
+      upload_particles(select(all, owned_indices(all.position_radius)));
     count_particles(all.id);
     has_list_ = false;
     rebuild();
@@ -177,19 +179,13 @@ class StepEngineImpl final : public StepEngine {
     if (list_positions.size() != all.size() || all.force.size() != all.size() ||
         all.torque.size() != all.size())
       throw std::invalid_argument("restore_particles: arrays differ in length");
-    const std::vector<std::size_t> mine = owned_indices(list_positions);
-    const ParticleStore p = select(all, mine);
-    upload_particles(p);
     count_particles(all.id);
-    position_at_build_.upload(select(list_positions, mine));
-    DeviceArray<Vec3, Space> saved_force, saved_torque;
-    saved_force.upload(p.force);
-    saved_torque.upload(p.torque);
-    build_list_at_saved_positions(saved_force, saved_torque);
-    compute_forces();  // for the overlap ratios; the forces and history it leaves are replaced
-    force_.swap(saved_force);
-    torque_.swap(saved_torque);
-    zero_history();
+    if (domain_.ranks() == 1) {
+      restore_owned(all, list_positions);
+    } else {
+      const std::vector<std::size_t> mine = owned_indices(list_positions);
+      restore_owned(select(all, mine), select(list_positions, mine));
+    }
     removed_ = removed;
   }
 
@@ -236,7 +232,7 @@ class StepEngineImpl final : public StepEngine {
 
   void get_list_lengths(std::vector<std::uint32_t>& lengths) const override {
     const std::vector<std::uint32_t> offsets =
-        download_raw(neighbors_.offsets(), has_list_ ? owned_ + 1 : 0);
+        download_values<Space>(neighbors_.offsets(), has_list_ ? owned_ + 1 : 0);
     lengths.assign(owned_, 0);
     for (std::size_t i = 0; i + 1 < offsets.size(); ++i) lengths[i] = offsets[i + 1] - offsets[i];
   }
@@ -314,13 +310,12 @@ class StepEngineImpl final : public StepEngine {
                           angular_velocity_.data(), id_.data(), material_.data()};
   }
 
-  /// Indices of the particles at `where` that this rank owns (all of them on one rank).
+  /// Indices of the particles at `where` that this rank owns.
   std::vector<std::size_t> owned_indices(const std::vector<Real4>& where) const {
     std::vector<std::size_t> mine;
-    mine.reserve(domain_.ranks() == 1 ? where.size() : where.size() / domain_.ranks());
+    mine.reserve(where.size() / domain_.ranks());
     for (std::size_t i = 0; i < where.size(); ++i)
-      if (domain_.ranks() == 1 || domain_.owner_of(xyz(where[i])) == domain_.rank())
-        mine.push_back(i);
+      if (domain_.owner_of(xyz(where[i])) == domain_.rank()) mine.push_back(i);
     return mine;
   }
 
@@ -379,9 +374,24 @@ class StepEngineImpl final : public StepEngine {
     return sum;
   }
 
-  /// Uploads the particle arrays and sizes the per-particle work arrays; wall histories zero,
-  /// torques zero (a law without spin never writes them).
-  void upload_particles(const ParticleStore& p) {
+  /// restore_particles for this rank's particles `p` and their list positions.
+  void restore_owned(const ParticleStore& p, const std::vector<Real4>& list_positions) {
+    upload_particles(p);
+    position_at_build_.upload(list_positions);
+    DeviceArray<Vec3, Space> saved_force, saved_torque;
+    saved_force.upload(p.force);
+    saved_torque.upload(p.torque);
+    build_list_at_saved_positions(saved_force, saved_torque);
+    compute_forces();  // for the overlap ratios; the forces and history it leaves are replaced
+    force_.swap(saved_force);
+    torque_.swap(saved_torque);
+    zero_history();
+  }
+
+  /// Uploads the state of `p` (a ParticleStore or MigratingParticles) as the owned particles
+  /// and sizes the owned particles' work arrays.
+  template <class Host>
+  void upload_state(const Host& p) {
     position_radius_.upload(p.position_radius);
     velocity_inv_mass_.upload(p.velocity_inv_mass);
     angular_velocity_.upload(p.angular_velocity);
@@ -391,6 +401,12 @@ class StepEngineImpl final : public StepEngine {
     force_.resize(owned_);
     torque_.resize(owned_);
     overlap_ratio_.resize(owned_);
+  }
+
+  /// Uploads the particle arrays and sizes the per-particle work arrays; wall histories zero,
+  /// torques zero (a law without spin never writes them).
+  void upload_particles(const ParticleStore& p) {
+    upload_state(p);
     parallel_for(Space{}, owned_, Fill<Vec3>{torque_.data(), Vec3{}});
     if constexpr (kHistoryWidth > 0) {
       wall_history_.resize(owned_ * wall_count());
@@ -462,21 +478,12 @@ class StepEngineImpl final : public StepEngine {
     ContactSlots slots;
     id_.download(slots.id);
     slots.rows = owned_;
-    slots.offsets = download_raw(neighbors_.offsets(), has_list_ ? owned_ + 1 : 0);
-    slots.neighbors = download_raw(neighbors_.neighbors(), has_list_ ? neighbors_.pairs_kept() : 0);
+    slots.offsets = download_values<Space>(neighbors_.offsets(), has_list_ ? owned_ + 1 : 0);
+    slots.neighbors =
+        download_values<Space>(neighbors_.neighbors(), has_list_ ? neighbors_.pairs_kept() : 0);
     if (slots.offsets.empty()) slots.offsets.assign(owned_ + 1, 0);
     slots.wall_count = wall_count();
     return slots;
-  }
-
-  /// Host copy of n values at `data` in Space memory.
-  template <class T>
-  static std::vector<T> download_raw(const T* data, std::size_t n) {
-    DeviceArray<T, Space> copy(n);
-    parallel_for(Space{}, n, CopyArray<T>{data, copy.data()});
-    std::vector<T> host;
-    copy.download(host);
-    return host;
   }
 
   /// The particle arrays the law reads; spins only when it needs them.
@@ -644,15 +651,7 @@ class StepEngineImpl final : public StepEngine {
   void migrate_particles() {
     const std::uint32_t walls = kHistoryWidth > 0 ? wall_count() : 0;
     const MigratingParticles<State> moved = migrate(migrating_particles(walls), walls, domain_);
-    position_radius_.upload(moved.position_radius);
-    velocity_inv_mass_.upload(moved.velocity_inv_mass);
-    angular_velocity_.upload(moved.angular_velocity);
-    id_.upload(moved.id);
-    material_.upload(moved.material);
-    owned_ = moved.size();
-    force_.resize(owned_);
-    torque_.resize(owned_);
-    overlap_ratio_.resize(owned_);
+    upload_state(moved);
     iota(previous_index_, owned_);
     if constexpr (kHistoryWidth > 0) {
       wall_history_.upload(moved.wall_history);
@@ -758,7 +757,7 @@ class StepEngineImpl final : public StepEngine {
           LeaverKey{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
       sort_by_key(Space{}, sort_key_.data(), sort_index_.data(), n);
       reorder(sort_index_.data(), n);
-      leaver_ids = id_checksum(download_raw(id_.data() + (n - leavers), leavers));
+      leaver_ids = id_checksum(download_values<Space>(id_.data() + (n - leavers), leavers));
       resize_owned(n - leavers);
     }
     if (all_leavers > 0) expected_id_sum_ -= domain_.wrapping_sum(leaver_ids);
