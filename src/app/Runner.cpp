@@ -20,6 +20,7 @@
 #include "core/ParticleSources.hpp"
 #include "core/SceneLoader.hpp"
 #include "core/SceneSetup.hpp"
+#include "core/Stopwatch.hpp"
 #include "kernels/CudaMemory.hpp"
 
 namespace gpudem {
@@ -182,10 +183,11 @@ class TimeLoop {
                           : std::max<std::uint64_t>(1, total_steps_ / 200)),
         checkpoint_every_(scene.checkpoint.every > 0 ? steps_between(scene.checkpoint.every, dt_)
                                                      : 0),
-        snapshots_(mpi.comm(), scene.output.dir),
+        snapshots_(mpi.comm(), scene.output.dir, {scene.output.rank_field}),
         series_(scene.output.dir + "/timeseries.csv", timeseries_columns(scene), mpi.is_root(),
                 series_resume(start)),
         progress_(!quiet && mpi.is_root(), kProgressInterval, total_steps_, start.step),
+        quiet_(quiet),
         resumed_(start.resumed),
         settle_(settle) {
     if (resumed_) snapshots_.resume(start.snapshots);
@@ -235,6 +237,7 @@ class TimeLoop {
 
  private:
   int finish(std::uint64_t step) {
+    report_times();
     if (mpi_.is_root())
       std::printf(
           "done: %llu steps in %.2f s; %llu particles removed (left the domain); output "
@@ -245,9 +248,33 @@ class TimeLoop {
     return kExitOk;
   }
 
+  /// The time split of the run, slowest rank per part, and the mean halo bytes a rank sent
+  /// per ghost refresh (printed by rank 0 unless quiet). Collective.
+  void report_times() const {
+    const StepTimes t = engine_.step_times();
+    double slowest[5] = {t.forces, t.neighbors, t.ghosts, t.migration, output_seconds_};
+    MPI_Allreduce(MPI_IN_PLACE, slowest, 5, MPI_DOUBLE, MPI_MAX, mpi_.comm());
+    double halo[2] = {static_cast<double>(t.halo_bytes), static_cast<double>(t.refreshes)};
+    MPI_Allreduce(MPI_IN_PLACE, halo, 2, MPI_DOUBLE, MPI_SUM, mpi_.comm());
+    if (quiet_ || !mpi_.is_root()) return;
+    std::printf(
+        "time split (slowest rank): forces %.3g s, neighbour lists %.3g s, ghost exchange %.3g s, "
+        "migration %.3g s, output %.3g s; halo %.4g bytes per rank per step\n",
+        slowest[0], slowest[1], slowest[2], slowest[3], slowest[4],
+        halo[1] > 0 ? halo[0] / halo[1] : 0.0);
+  }
+
   /// Writes the step's time-series row when one is due (returning its diagnostics) and its
-  /// snapshot when asked.
+  /// snapshot when asked; the time it takes counts as output.
   std::optional<Diagnostics> record(std::uint64_t step, bool snapshot) {
+    Stopwatch watch;
+    const std::optional<Diagnostics> row = record_row(step, snapshot);
+    output_seconds_ += watch.lap();
+    return row;
+  }
+
+  /// record, unclocked.
+  std::optional<Diagnostics> record_row(std::uint64_t step, bool snapshot) {
     const double time = step * dt_;
     std::optional<Diagnostics> row;
     if (step % series_every_ == 0 || snapshot) {
@@ -274,7 +301,9 @@ class TimeLoop {
 
   /// Written after the step's snapshot so that the snapshot table includes it.
   void checkpoint(std::uint64_t step) {
+    Stopwatch watch;
     write_checkpoint(mpi_.comm(), scene_.output.dir, capture(step));
+    output_seconds_ += watch.lap();
   }
 
   int stop_unstable(std::uint64_t step, const HealthFailure& f) {
@@ -310,12 +339,14 @@ class TimeLoop {
   SnapshotWriter snapshots_;
   TimeSeriesWriter series_;
   Progress progress_;
+  bool quiet_;
   bool resumed_;
   const SettleCheck* settle_;  ///< null: run to end_time
   std::optional<std::uint64_t> settled_step_;
   ParticleStore host_;
   std::uint64_t reported_removed_ = 0;
-  double imbalance_ = 1;  ///< at the last time-series row
+  double imbalance_ = 1;       ///< at the last time-series row
+  double output_seconds_ = 0;  ///< time series, snapshots and checkpoints [s]
 };
 
 /// A restart continues with the checkpoint's time step and skin (DESIGN §8): an explicit

@@ -104,16 +104,20 @@ void write_snapshot_table(MPI_Comm comm, const H5Calls& h5, const ParallelFile& 
   std::vector<char> names(rows.size() * width, '\0');
   std::vector<double> times;
   std::vector<std::uint64_t> counts;
+  std::vector<std::uint8_t> rank_fields;
   for (std::size_t k = 0; k < rows.size(); ++k) {
     std::memcpy(names.data() + k * width, rows[k].h5_file.data(), rows[k].h5_file.size());
     times.push_back(rows[k].time);
     counts.push_back(rows[k].count);
+    rank_fields.push_back(rows[k].rank_field ? 1 : 0);
   }
   H5Handle text = h5.handle(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy(snapshot_file)");
   h5.check(H5Tset_size(text.id(), width), "H5Tset_size(snapshot_file)");
   file.write_dataset({"snapshot_file", names.data(), text.id(), text.id(), 1, 1, 0}, slice);
   file.write_dataset(real_rows("snapshot_time", times.data(), 1), slice);
   file.write_dataset(id_rows("snapshot_count", counts.data()), slice);
+  file.write_dataset(
+      {"snapshot_rank_field", rank_fields.data(), H5T_NATIVE_UINT8, H5T_STD_U8LE, 1, 1, 0}, slice);
 }
 
 void write_attributes(const ParallelFile& file, const Checkpoint& c) {
@@ -206,6 +210,17 @@ class Reader {
     const hsize_t rows = row_count(dataset.id(), name, width);
     std::vector<Real> out(rows * width);
     read_all(dataset.id(), name, native_type<Real>(), out.data(), rows);
+    return out;
+  }
+
+  /// Whether the file holds a link `name`.
+  bool has(const char* name) const { return H5Lexists(file_.id(), name, H5P_DEFAULT) > 0; }
+
+  /// A 1-D dataset of u8 values.
+  std::vector<std::uint8_t> bytes(const char* name) const {
+    const H5Handle dataset = open_typed(name, H5T_STD_U8LE);
+    std::vector<std::uint8_t> out(row_count(dataset.id(), name, 1));
+    read_all(dataset.id(), name, H5T_NATIVE_UINT8, out.data(), out.size());
     return out;
   }
 
@@ -340,15 +355,29 @@ void read_history(const Reader& r, ContactHistory& h) {
   check_same_length(r, walls);
 }
 
+/// Whether each of the table's `snapshots` holds the rank field (0 or 1); none does when the
+/// table has no snapshot_rank_field (written before it existed).
+std::vector<std::uint8_t> read_rank_field_flags(const Reader& r, std::size_t snapshots) {
+  if (!r.has("snapshot_rank_field")) return std::vector<std::uint8_t>(snapshots, 0);
+  std::vector<std::uint8_t> flags = r.bytes("snapshot_rank_field");
+  for (const std::uint8_t flag : flags)
+    if (flag > 1)
+      r.reject("dataset 'snapshot_rank_field' holds " + std::to_string(flag) + "; expected 0 or 1");
+  return flags;
+}
+
 void read_snapshot_table(const Reader& r, std::vector<XdmfSnapshot>& table) {
   const std::vector<std::string> files = r.strings("snapshot_file");
   const std::vector<double> times = r.rows<double, double>("snapshot_time", H5T_IEEE_F64LE);
   const std::vector<std::uint64_t> counts =
       r.rows<std::uint64_t, std::uint64_t>("snapshot_count", H5T_STD_U64LE);
+  const std::vector<std::uint8_t> rank_fields = read_rank_field_flags(r, files.size());
   check_same_length(r, {{"snapshot_file", files.size()},
                         {"snapshot_time", times.size()},
-                        {"snapshot_count", counts.size()}});
-  for (std::size_t k = 0; k < files.size(); ++k) table.push_back({files[k], times[k], counts[k]});
+                        {"snapshot_count", counts.size()},
+                        {"snapshot_rank_field", rank_fields.size()}});
+  for (std::size_t k = 0; k < files.size(); ++k)
+    table.push_back({files[k], times[k], counts[k], rank_fields[k] == 1});
 }
 
 void read_attributes(const Reader& r, Checkpoint& c) {

@@ -14,8 +14,11 @@
 /// wall_index (W u32), wall_history (W×width f64). The two value datasets exist only when the
 /// width is > 0 (a law without history has no values to store) and are 1-D when it is 1.
 /// Snapshot table, written by rank 0: snapshot_file (S fixed-length strings), snapshot_time
-/// (S f64), snapshot_count (S u64). Attributes: format_version, history_width (u32), time, dt,
-/// dt_fraction, skin (f64), step, removed (u64).
+/// (S f64), snapshot_count (S u64), snapshot_rank_field (S u8: 1 when that snapshot holds the
+/// dataset "rank", else 0). snapshot_rank_field is always written but optional when read:
+/// without it (a checkpoint written before it existed) no snapshot has the rank field.
+/// Attributes: format_version, history_width (u32), time, dt, dt_fraction, skin (f64), step,
+/// removed (u64).
 #include <mpi.h>
 
 #include <cstdint>
@@ -58,8 +61,9 @@ void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& c
 /// Reads a whole checkpoint on one rank (a run on several ranks will read its rows by slices).
 /// Throws InputError naming `path` and what is wrong: a missing file, a file that is not
 /// HDF5, another format version, a missing or mistyped dataset or attribute, a history
-/// dataset without history_width columns, datasets of one group with different lengths, or a
-/// radius, inverse mass or time step that is not finite and > 0.
+/// dataset without history_width columns, datasets of one group with different lengths, a
+/// radius, inverse mass or time step that is not finite and > 0, or a snapshot_rank_field
+/// value other than 0 and 1.
 Checkpoint read_checkpoint(const std::string& path);
 
 /// Throws InputError naming `path` when `checkpoint` refers to a material or a wall that

@@ -63,12 +63,21 @@ void write_connectivity(const ParallelFile& file, const Slice& slice) {
   file.write_dataset(field, slice);
 }
 
+/// The owning rank of every row of this rank's slice: its rank in `comm`.
+void write_rank_field(MPI_Comm comm, const ParallelFile& file, const Slice& slice) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const std::vector<std::uint32_t> ranks(slice.count, static_cast<std::uint32_t>(rank));
+  file.write_dataset({"rank", ranks.data(), H5T_NATIVE_UINT32, H5T_STD_U32LE, 1, 1, 0}, slice);
+}
+
 /// One snapshot file written by all ranks of `comm` through the MPI-IO driver.
 struct SnapshotFile {
   MPI_Comm comm;
   std::string path;
   double time;
   std::uint64_t step;
+  bool rank_field;
 };
 
 void write_snapshot_file(const SnapshotFile& target, const ParticleStore& particles,
@@ -76,6 +85,7 @@ void write_snapshot_file(const SnapshotFile& target, const ParticleStore& partic
   const H5Calls h5("snapshot", target.path);
   ParallelFile file(target.comm, h5, target.path);
   for (const FieldSource& field : field_sources(particles)) file.write_dataset(field, slice);
+  if (target.rank_field) write_rank_field(target.comm, file, slice);
   write_connectivity(file, slice);
   file.write_attribute("time", H5T_IEEE_F64LE, target.time);
   file.write_attribute("step", H5T_STD_U64LE, target.step);
@@ -104,29 +114,30 @@ std::string snapshot_file_name(const std::string& basename, std::size_t index) {
 
 }  // namespace
 
-SnapshotWriter::SnapshotWriter(MPI_Comm comm, std::string dir, std::string basename)
+SnapshotWriter::SnapshotWriter(MPI_Comm comm, std::string dir, SnapshotOptions options)
     : comm_(comm),
       dir_(std::move(dir)),
-      basename_(std::move(basename)),
-      xmf_path_((std::filesystem::path(dir_) / (basename_ + ".xmf")).string()) {}
+      options_(std::move(options)),
+      xmf_path_((std::filesystem::path(dir_) / (options_.basename + ".xmf")).string()) {}
 
 void SnapshotWriter::write(const ParticleStore& particles, double time, std::uint64_t step) {
   check_store_lengths(particles);
   const Slice slice = global_slice(comm_, particles.size());
-  const std::string name = snapshot_file_name(basename_, files_.size());
+  const std::string name = snapshot_file_name(options_.basename, files_.size());
   const std::string path = (std::filesystem::path(dir_) / name).string();
-  write_snapshot_file({comm_, path, time, step}, particles, slice);
+  write_snapshot_file({comm_, path, time, step, options_.rank_field}, particles, slice);
   files_.push_back(path);
   times_.push_back(time);
   counts_.push_back(slice.total);
+  rank_fields_.push_back(options_.rank_field);
   publish_xmf();
 }
 
 std::vector<XdmfSnapshot> SnapshotWriter::table() const {
   std::vector<XdmfSnapshot> snapshots;
   for (std::size_t k = 0; k < files_.size(); ++k)
-    snapshots.push_back(
-        {std::filesystem::path(files_[k]).filename().string(), times_[k], counts_[k]});
+    snapshots.push_back({std::filesystem::path(files_[k]).filename().string(), times_[k],
+                         counts_[k], rank_fields_[k]});
   return snapshots;
 }
 
@@ -134,10 +145,12 @@ void SnapshotWriter::resume(const std::vector<XdmfSnapshot>& table) {
   files_.clear();
   times_.clear();
   counts_.clear();
+  rank_fields_.clear();
   for (const XdmfSnapshot& snapshot : table) {
     files_.push_back((std::filesystem::path(dir_) / snapshot.h5_file).string());
     times_.push_back(snapshot.time);
     counts_.push_back(snapshot.count);
+    rank_fields_.push_back(snapshot.rank_field);
   }
   publish_xmf();
 }
@@ -146,7 +159,7 @@ void SnapshotWriter::publish_xmf() const {
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
   std::string error;
-  if (rank == 0) error = replace_file(xmf_path_, particle_xdmf(basename_, table()));
+  if (rank == 0) error = replace_file(xmf_path_, particle_xdmf(options_.basename, table()));
   int failed = error.empty() ? 0 : 1;
   MPI_Bcast(&failed, 1, MPI_INT, 0, comm_);
   if (failed)

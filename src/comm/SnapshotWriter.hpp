@@ -14,15 +14,22 @@
 
 namespace gpudem {
 
+/// What the snapshots of one writer hold beyond the fields every snapshot has, and their names.
+struct SnapshotOptions {
+  bool rank_field = false;             ///< add dataset "rank": the MPI rank owning each particle
+  std::string basename = "particles";  ///< files `<basename>_<index>.h5` and `<basename>.xmf`
+};
+
 class SnapshotWriter {
  public:
   /// `dir` must exist. Files are `<dir>/<basename>_<index, 6 digits>.h5` and
   /// `<dir>/<basename>.xmf`.
-  SnapshotWriter(MPI_Comm comm, std::string dir, std::string basename = "particles");
+  SnapshotWriter(MPI_Comm comm, std::string dir, SnapshotOptions options = {});
 
   /// Writes this rank's particles [0, particles.size()) as the next snapshot: datasets
   /// position (N×3), radius (N), velocity (N×3), angular_velocity (N×3), force (N×3),
-  /// material (N, uint32), id (N, uint64); attributes time and step. Collective.
+  /// material (N, uint32), id (N, uint64), and with the rank field rank (N, uint32: each
+  /// rank's rows hold its rank in `comm`); attributes time and step. Collective.
   void write(const ParticleStore& particles, double time, std::uint64_t step);
 
   const std::string& xmf_path() const { return xmf_path_; }
@@ -33,7 +40,8 @@ class SnapshotWriter {
 
   /// Continues the series of an earlier writer whose table() was `table`: numbering goes on
   /// after its last snapshot and the .xmf is rewritten to list exactly these snapshots (any
-  /// written after them are dropped from it, and overwritten as numbering reaches them).
+  /// written after them are dropped from it, and overwritten as numbering reaches them). Each
+  /// keeps the rank field it was written with; new snapshots follow this writer's options.
   /// Collective.
   void resume(const std::vector<XdmfSnapshot>& table);
 
@@ -44,11 +52,12 @@ class SnapshotWriter {
 
   MPI_Comm comm_;
   std::string dir_;
-  std::string basename_;
+  SnapshotOptions options_;
   std::string xmf_path_;
   std::vector<std::string> files_;
   std::vector<double> times_;
   std::vector<std::uint64_t> counts_;
+  std::vector<bool> rank_fields_;
 };
 
 }  // namespace gpudem

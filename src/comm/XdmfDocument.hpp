@@ -16,6 +16,7 @@ struct XdmfSnapshot {
   std::string h5_file;      ///< HDF5 file name relative to the .xmf
   double time = 0;          ///< simulated time [s]
   std::uint64_t count = 0;  ///< number of particles (all ranks)
+  bool rank_field = false;  ///< the file holds dataset "rank" (owning MPI rank per particle)
 };
 
 /// A per-particle dataset shown as an XDMF attribute.
@@ -36,6 +37,13 @@ inline const std::vector<XdmfField>& xdmf_particle_fields() {
       {"material", "Scalar", "UInt", 4, 1},          {"id", "Scalar", "UInt", 8, 1},
   };
   return fields;
+}
+
+/// The optional attribute of snapshots written with the rank field: the MPI rank that owned
+/// each particle when the snapshot was written.
+inline const XdmfField& xdmf_rank_field() {
+  static const XdmfField field = {"rank", "Scalar", "UInt", 4, 1};
+  return field;
 }
 
 namespace xdmf_detail {
@@ -71,6 +79,13 @@ inline std::string data_item(const XdmfSnapshot& snapshot, const char* dataset,
          "\">" + escape(snapshot.h5_file) + ":/" + dataset + "</DataItem>";
 }
 
+inline std::string attribute(const XdmfSnapshot& snapshot, const XdmfField& field) {
+  return std::string("        <Attribute Name=\"") + field.name + "\" AttributeType=\"" +
+         field.attribute_type + "\" Center=\"Node\">\n          " +
+         data_item(snapshot, field.name, field.number_type, field.precision, field.components) +
+         "\n        </Attribute>\n";
+}
+
 /// The file name without its extension: the name of that snapshot's grid.
 inline std::string stem(const std::string& file) { return file.substr(0, file.rfind('.')); }
 
@@ -85,12 +100,8 @@ inline std::string uniform_grid(const XdmfSnapshot& snapshot) {
           data_item(snapshot, "connectivity", "UInt", index_bytes, 1) + "\n        </Topology>\n";
   grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
           data_item(snapshot, "position", "Float", 8, 3) + "\n        </Geometry>\n";
-  for (const XdmfField& field : xdmf_particle_fields()) {
-    grid += std::string("        <Attribute Name=\"") + field.name + "\" AttributeType=\"" +
-            field.attribute_type + "\" Center=\"Node\">\n          " +
-            data_item(snapshot, field.name, field.number_type, field.precision, field.components) +
-            "\n        </Attribute>\n";
-  }
+  for (const XdmfField& field : xdmf_particle_fields()) grid += attribute(snapshot, field);
+  if (snapshot.rank_field) grid += attribute(snapshot, xdmf_rank_field());
   return grid + "      </Grid>\n";
 }
 

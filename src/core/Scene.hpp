@@ -117,6 +117,7 @@ struct OutputSettings {
   std::string dir = "out";      ///< output directory (relative to the working directory)
   double every = 0;             ///< [s] snapshot interval; 0 = first and last only
   double timeseries_every = 0;  ///< [s] time-series interval; 0 = about 200 rows per run
+  bool rank_field = false;      ///< snapshots hold each particle's owning MPI rank
 };
 
 struct CheckpointSettings {

@@ -171,8 +171,8 @@ class GhostExchange {
   }
 
   std::size_t ghosts() const { return received_.size(); }
-  /// Ghost records sent per step (the halo volume of this rank).
-  std::size_t sent() const { return send_index_.size(); }
+  /// Bytes one refresh sends (the halo volume of this rank per step).
+  std::size_t refresh_bytes() const { return send_index_.size() * Fields::width * sizeof(Real); }
   std::size_t memory_bytes() const {
     return send_index_.bytes() + received_.bytes() + packed_fields_.bytes() + fields_.bytes();
   }

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "core/ContactHistory.hpp"
-#include "core/ParticleStore.hpp"
-#include "core/Scene.hpp"
 #include "core/ContactModel.hpp"
 #include "core/ContactParams.hpp"
+#include "core/ParticleStore.hpp"
+#include "core/Scene.hpp"
 #include "kernels/DomainLink.hpp"
 #include "kernels/MeshWallSetup.hpp"
 #include "kernels/PeriodicBox.hpp"
@@ -26,13 +26,13 @@ struct EngineSetup {
   Vec3 gravity;
   Real dt = 0;
   IntegratorKind integrator = IntegratorKind::VelocityVerlet;
-  Real skin = 0;  ///< Verlet skin [m]
+  Real skin = 0;               ///< Verlet skin [m]
   ContactModel contact_model;  ///< must be one of valid_contact_models()
   std::uint32_t material_count = 0;
   std::vector<ContactPairParams> pair_params;  ///< material_count² entries, row-major
   std::vector<PlaneWall> walls;
   std::vector<MeshWallSetup> meshes;  ///< triangle-mesh walls (tools)
-  std::uint64_t start_step = 0;  ///< step the run starts at (a restart's): the meshes' clock
+  std::uint64_t start_step = 0;       ///< step the run starts at (a restart's): the meshes' clock
   /// This rank's part of the decomposed domain; null: a run on one rank. Must outlive the
   /// engine.
   DomainLink* domain = nullptr;
@@ -51,6 +51,18 @@ struct Diagnostics {
   std::vector<Vec3> wall_force;
   std::vector<Vec3> mesh_force;   ///< force the particles exert on each mesh [N]
   std::vector<Vec3> mesh_torque;  ///< their torque on each mesh about its centre [N m]
+};
+
+/// Wall time this rank's engine spent in each part of its steps since it was made [s] (host
+/// clock: on the CUDA backend a part ends when its last launch has returned), and the ghost
+/// bytes its per-step refreshes sent. Waits for other ranks count in the part that waits.
+struct StepTimes {
+  double forces = 0;             ///< integration, forces, the rebuild test and its reduction
+  double neighbors = 0;          ///< cell sorting, neighbour lists, mesh candidates, history remap
+  double ghosts = 0;             ///< ghost plans on rebuilds and ghost refreshes on other steps
+  double migration = 0;          ///< periodic wrapping, removal, migration between ranks
+  std::uint64_t refreshes = 0;   ///< steps that refreshed the ghosts
+  std::uint64_t halo_bytes = 0;  ///< bytes those refreshes sent
 };
 
 /// A particle the health check rejected: non-finite state or an overlap beyond the limit.
@@ -125,6 +137,7 @@ class StepEngine {
   /// Particles removed so far for leaving the non-periodic domain.
   virtual std::uint64_t removed_count() const = 0;
   virtual std::uint64_t rebuild_count() const = 0;
+  virtual StepTimes step_times() const = 0;
   /// Bytes held in the engine's memory space.
   virtual std::size_t memory_bytes() const = 0;
   virtual std::string backend_name() const = 0;

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <unordered_set>
 
+#include "core/Stopwatch.hpp"
 #include "kernels/ArrayKernels.hpp"
 #include "kernels/CellList.hpp"
 #include "kernels/ContactForces.hpp"
@@ -252,18 +253,27 @@ class StepEngineImpl final : public StepEngine {
   }
 
   void step() override {
+    Stopwatch watch;
     const Real dt = setup_.dt;
     const bool verlet = setup_.integrator == IntegratorKind::VelocityVerlet;
     kick(verlet ? Real(0.5) * dt : dt);
     parallel_for(Space{}, owned_, Drift{position_radius_.data(), velocity_inv_mass_.data(), dt});
     ++steps_;
     if (!meshes_.empty()) meshes_.set_time(steps_ * dt);
-    if (needs_rebuild())
-      rebuild();
-    else if (domain_.ranks() > 1)
+    const bool rebuild_now = needs_rebuild();
+    times_.forces += watch.lap();
+    if (rebuild_now) {
+      rebuild();  // charges its own parts
+    } else if (domain_.ranks() > 1) {
       ghosts_.update(domain_, arrays(), owned_);
+      times_.ghosts += watch.lap();
+      times_.halo_bytes += ghosts_.refresh_bytes();
+      ++times_.refreshes;
+    }
+    watch.lap();
     compute_forces();
     if (verlet) kick(Real(0.5) * dt);
+    times_.forces += watch.lap();
   }
 
   void rebuild_neighbors() override {
@@ -293,6 +303,7 @@ class StepEngineImpl final : public StepEngine {
 
   std::uint64_t removed_count() const override { return removed_; }
   std::uint64_t rebuild_count() const override { return rebuilds_; }
+  StepTimes step_times() const override { return times_; }
 
   std::size_t memory_bytes() const override {
     return position_radius_.bytes() + velocity_inv_mass_.bytes() + angular_velocity_.bytes() +
@@ -425,7 +436,7 @@ class StepEngineImpl final : public StepEngine {
     permute_array(cells_.order(), owned_, position_at_build_);
     permute_array(cells_.order(), owned_, force);
     permute_array(cells_.order(), owned_, torque);
-    build_halo_and_list();
+    build_list(receive_ghosts());
     meshes_.rebuild(position_radius_.data(), owned_, largest_radius(), setup_.skin,
                     previous_index_.data(), false);
     parallel_for(Space{}, owned_,
@@ -612,8 +623,10 @@ class StepEngineImpl final : public StepEngine {
   /// ranks that own their positions, sorts by cell, exchanges ghosts, rebuilds the neighbour
   /// list and carries the contact history over to it.
   void rebuild() {
+    Stopwatch watch;
     domain_.begin_rebuild();
     keep_previous_rows();
+    times_.neighbors += watch.lap();
     resize_shared(owned_);  // the ghosts are planned anew
     parallel_for(Space{}, owned_, WrapPositions{position_radius_.data(), setup_.box});
     remove_leavers();
@@ -621,14 +634,19 @@ class StepEngineImpl final : public StepEngine {
 #ifndef NDEBUG
     check_particles_conserved();
 #endif
+    times_.migration += watch.lap();
     sort_owned_by_cell();
-    build_halo_and_list();
+    times_.neighbors += watch.lap();
+    const std::size_t ghosts = receive_ghosts();
+    times_.ghosts += watch.lap();
+    build_list(ghosts);
     meshes_.rebuild(position_radius_.data(), owned_, largest_radius(), setup_.skin,
                     previous_index_.data(), has_list_);
     remap_pair_history();
     position_at_build_.resize(owned_);
     parallel_for(Space{}, owned_,
                  CopyArray<Real4>{position_radius_.data(), position_at_build_.data()});
+    times_.neighbors += watch.lap();
     ++rebuilds_;
   }
 
@@ -698,15 +716,19 @@ class StepEngineImpl final : public StepEngine {
     reorder(cells_.order(), owned_);
   }
 
-  /// Receives the ghosts (on several ranks) and builds the owned particles' neighbour rows,
-  /// each ordered by partner id so that no sum depends on particle order or rank count.
-  void build_halo_and_list() {
-    std::size_t ghosts = 0;
-    if (domain_.ranks() > 1) {
-      ghosts = ghosts_.plan(domain_, arrays(), owned_);
-      resize_shared(owned_ + ghosts);
-      ghosts_.fill(arrays(), owned_);
-    }
+  /// Plans the ghosts and puts them after the owned particles (on several ranks); returns
+  /// their number.
+  std::size_t receive_ghosts() {
+    if (domain_.ranks() == 1) return 0;
+    const std::size_t ghosts = ghosts_.plan(domain_, arrays(), owned_);
+    resize_shared(owned_ + ghosts);
+    ghosts_.fill(arrays(), owned_);
+    return ghosts;
+  }
+
+  /// Builds the owned particles' neighbour rows over owned particles and `ghosts` ghosts,
+  /// each row ordered by partner id so that no sum depends on particle order or rank count.
+  void build_list(std::size_t ghosts) {
     if (ghosts == 0) {  // the storage order is the cell order of the last binning
       iota(identity_, owned_);
       const NeighborRows rows{identity_.data(), owned_, identity_.data(), id_.data()};
@@ -856,6 +878,7 @@ class StepEngineImpl final : public StepEngine {
   bool has_list_ = false;
   std::uint64_t removed_ = 0;  ///< on all ranks
   std::uint64_t rebuilds_ = 0;
+  StepTimes times_;
 };
 
 }  // namespace gpudem

@@ -3,12 +3,15 @@
 // values per contact; the file is replaced atomically (a stale temporary is overwritten, a
 // failed write leaves the previous checkpoint intact); damaged files, and checkpoints that do
 // not fit the scene (materials, walls, another contact law's history width), are rejected with
-// InputError naming the file and the problem. Also the two resumable outputs a restart
-// continues: the snapshot series and the time series.
+// InputError naming the file and the problem; a snapshot table written before the rank-field
+// flags existed reads as snapshots without it. Also the two resumable outputs a restart
+// continues: the snapshot series (with the rank field switched on or off at the restart) and
+// the time series.
 #include <gtest/gtest.h>
 #include <mpi.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -68,7 +71,8 @@ Checkpoint random_part(int rank, std::uint32_t width = kSpringWidth) {
     if (i % 2 == 0)
       c.history.add_wall(id, static_cast<std::uint32_t>(i % 5), random_values().data());
   }
-  c.snapshots = {{"particles_000000.h5", 0.0, 123}, {"particles_000001.h5", 1.0 / 3.0, 120}};
+  c.snapshots = {{"particles_000000.h5", 0.0, 123, true},
+                 {"particles_000001.h5", 1.0 / 3.0, 120, false}};
   c.time = 0.1 + 1e-17;
   c.step = (std::uint64_t(1) << 35) + 5;
   c.removed = 3;
@@ -141,6 +145,7 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
     EXPECT_EQ(a.snapshots[k].h5_file, b.snapshots[k].h5_file);
     EXPECT_EQ(a.snapshots[k].time, b.snapshots[k].time);
     EXPECT_EQ(a.snapshots[k].count, b.snapshots[k].count);
+    EXPECT_EQ(a.snapshots[k].rank_field, b.snapshots[k].rank_field) << a.snapshots[k].h5_file;
   }
   EXPECT_EQ(a.time, b.time);
   EXPECT_EQ(a.step, b.step);
@@ -318,6 +323,41 @@ TEST_F(DamagedCheckpoint, DatasetOfTheWrongTypeIsRejected) {
   expect_rejected("dataset 'id' has the wrong value type");
 }
 
+/// Replaces dataset `name` by a 1-D u8 dataset holding `values`.
+void replace_u8_dataset(const std::string& path, const char* name,
+                        const std::vector<std::uint8_t>& values) {
+  test::remove_dataset(path, name);
+  test::H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  const hsize_t dims[1] = {values.size()};
+  test::H5Id<H5Sclose> space(H5Screate_simple(1, dims, nullptr));
+  test::H5Id<H5Dclose> dataset(
+      H5Dcreate2(file.id, name, H5T_STD_U8LE, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  ASSERT_GE(dataset.id, 0) << name;
+  ASSERT_GE(H5Dwrite(dataset.id, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+            0);
+}
+
+TEST_F(DamagedCheckpoint, RankFieldFlagsAreStoredAsOneByteEach) {
+  EXPECT_EQ(test::raw_bytes(path(), "snapshot_rank_field"),
+            (std::vector<unsigned char>{1, 0}));  // random_part's table: with, without
+}
+
+TEST_F(DamagedCheckpoint, TableWithoutRankFieldFlagsHasNoSnapshotWithTheRankField) {
+  test::remove_dataset(path(), "snapshot_rank_field");
+  Checkpoint expected = random_part(0);
+  for (XdmfSnapshot& snapshot : expected.snapshots) snapshot.rank_field = false;
+  expect_identical(read_checkpoint(path()), expected);
+}
+
+TEST_F(DamagedCheckpoint, RankFieldFlagsOtherThanZeroOrOneAreRejected) {
+  replace_u8_dataset(path(), "snapshot_rank_field", {0, 2});
+  expect_rejected("dataset 'snapshot_rank_field' holds 2; expected 0 or 1");
+  replace_u8_dataset(path(), "snapshot_rank_field", {1});
+  expect_rejected("dataset 'snapshot_rank_field' has 1 rows but 'snapshot_file' has 2");
+  test::replace_u32_dataset(path(), "snapshot_rank_field", {0, 1});
+  expect_rejected("dataset 'snapshot_rank_field' has the wrong value type");
+}
+
 TEST_F(DamagedCheckpoint, MaterialOrWallBeyondTheSceneIsRejected) {
   const Checkpoint c = read_checkpoint(path());  // materials 0..2, walls 0..4
   Scene scene;
@@ -399,6 +439,51 @@ TEST_F(CheckpointFile, SnapshotSeriesResumesAfterTheCheckpointsTable) {
     EXPECT_EQ(read_values<double>(resumed.files()[2], "position", H5T_NATIVE_DOUBLE).size(),
               6u * static_cast<std::size_t>(comm_size()));
   }
+}
+
+/// Whether each grid of the .xmf text, in order, lists attribute "rank" (grids are cut at
+/// their closing tag; the uniform grids hold no grid).
+std::vector<bool> grids_listing_rank(const std::string& xmf) {
+  std::vector<bool> listing;
+  const std::string opening = "GridType=\"Uniform\"";
+  for (std::size_t at = xmf.find(opening); at != std::string::npos;
+       at = xmf.find(opening, at + 1)) {
+    const std::string grid = xmf.substr(at, xmf.find("</Grid>", at) - at);
+    listing.push_back(grid.find("<Attribute Name=\"rank\"") != std::string::npos);
+  }
+  return listing;
+}
+
+/// Writes two snapshots with the rank field `before`, checkpoints the series, reads the
+/// checkpoint back and resumes the series from it with the rank field `after`.
+std::string xmf_after_restart(const std::string& dir, bool before, bool after) {
+  ParticleStore two;
+  two.add(1, {0, 0, 0}, 1e-3, 0, {}, 1);
+  two.add(2, {1, 0, 0}, 1e-3, 0, {}, 1);
+  Checkpoint checkpoint;
+  checkpoint.dt = 1e-4;
+  {
+    SnapshotWriter first(MPI_COMM_WORLD, dir, {before});
+    first.write(two, 0.0, 0);
+    first.write(two, 0.5, 50);
+    checkpoint.snapshots = first.table();
+  }
+  write_checkpoint(MPI_COMM_WORLD, dir, checkpoint);
+  MPI_Barrier(MPI_COMM_WORLD);
+  SnapshotWriter resumed(MPI_COMM_WORLD, dir, {after});
+  resumed.resume(read_checkpoint(checkpoint_path(dir)).snapshots);
+  resumed.write(two, 0.75, 75);
+  MPI_Barrier(MPI_COMM_WORLD);
+  return read_text(resumed.xmf_path());
+}
+
+TEST_F(CheckpointFile, SnapshotRankFieldSwitchedOnOrOffAtARestart) {
+  EXPECT_EQ(grids_listing_rank(xmf_after_restart(dir_, true, false)),
+            (std::vector<bool>{true, true, false}));
+  EXPECT_EQ(grids_listing_rank(xmf_after_restart(dir_, false, true)),
+            (std::vector<bool>{false, false, true}));
+  EXPECT_TRUE(test::has_dataset((fs::path(dir_) / "particles_000002.h5").string(), "rank"));
+  EXPECT_FALSE(test::has_dataset((fs::path(dir_) / "particles_000001.h5").string(), "rank"));
 }
 
 TEST_F(CheckpointFile, TimeSeriesResumesAfterTheCheckpointStep) {

@@ -296,6 +296,7 @@ TEST_F(SceneLoaderTest, MinimalSceneTakesDefaults) {
   EXPECT_EQ(s.output.dir, "out");
   EXPECT_DOUBLE_EQ(s.output.every, 0);
   EXPECT_DOUBLE_EQ(s.output.timeseries_every, 0);
+  EXPECT_FALSE(s.output.rank_field);
   EXPECT_DOUBLE_EQ(s.checkpoint.every, 0);
 }
 
@@ -840,6 +841,24 @@ TEST_F(SceneLoaderTest, DecompositionValuesAreChecked) {
                "decomposition.dim", "unknown key 'dim' in [decomposition]; did you mean 'dims'?");
   expect_error(load_error(with_tables("[decompositon]\nmethod = \"grid\"")), first_appended_line(),
                "decompositon", "did you mean 'decomposition'?");
+}
+
+TEST_F(SceneLoaderTest, OutputRankFieldRead) {
+  EXPECT_TRUE(load_text(with_tables("[output]\nrank_field = true\n")).output.rank_field);
+  EXPECT_FALSE(load_text(with_tables("[output]\nrank_field = false\n")).output.rank_field);
+  EXPECT_TRUE(load_text(kBaseScene, {"output.rank_field=true"}).output.rank_field);
+}
+
+TEST_F(SceneLoaderTest, OutputRankFieldMustBeABoolean) {
+  const int line = first_appended_line() + 1;
+  expect_error(load_error(with_tables("[output]\nrank_field = 1")), line, "output.rank_field",
+               "expected true or false, got 1");
+  expect_error(load_error(with_tables("[output]\nrank_field = \"yes\"")), line, "output.rank_field",
+               "expected true or false, got the string \"yes\"");
+  expect_error(load_error(with_tables("[output]\nrank_fields = true")), line, "output.rank_fields",
+               "unknown key 'rank_fields' in [output]; did you mean 'rank_field'?");
+  expect_error(load_error(kBaseScene, {"output.rank_field=\"on\""}), 0, "output.rank_field",
+               "expected true or false, got the string \"on\"");
 }
 
 }  // namespace

@@ -1,18 +1,23 @@
 // Particle snapshots read back with the HDF5 C API: every dataset equals the particle store bit
 // for bit at this run's rank count (each rank checks its own rows), the attributes hold time and
-// step, ranks without particles take part, and the .xmf lists every file by relative name.
+// step, ranks without particles take part, and the .xmf lists every file by relative name. With
+// the rank field, dataset "rank" holds each row's writing rank, and the .xmf lists it for exactly
+// the snapshots that hold it, also when a resumed series switches it on or off.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <mpi.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "comm/SnapshotWriter.hpp"
@@ -183,6 +188,123 @@ std::string read_text(const std::string& path) {
   return text.str();
 }
 
+/// Every rank's particle count, in rank order.
+std::vector<std::uint64_t> counts_of_all_ranks(std::uint64_t count) {
+  std::vector<std::uint64_t> counts(comm_size());
+  MPI_Allgather(&count, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
+  return counts;
+}
+
+bool file_has_dataset(const std::string& path, const char* name) {
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  EXPECT_GE(file.id, 0) << "cannot open " << path;
+  return file.id >= 0 && H5Lexists(file.id, name, H5P_DEFAULT) > 0;
+}
+
+/// Checks that dataset "rank" holds this rank's number in each of its rows, and (on rank 0,
+/// reading the whole dataset) that the file is every rank's count of rows of its number, in
+/// rank order.
+void expect_rank_field_holds_the_writing_ranks(const std::string& path, std::uint64_t count) {
+  MPI_Barrier(MPI_COMM_WORLD);
+  const std::vector<std::uint64_t> counts = counts_of_all_ranks(count);
+  const hsize_t n = std::accumulate(counts.begin(), counts.end(), std::uint64_t(0));
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  ASSERT_GE(file.id, 0) << "cannot open " << path;
+  expect_bit_identical(std::vector<std::uint32_t>(count, comm_rank()),
+                       read_rows<std::uint32_t>(file.id, "rank", H5T_STD_U32LE, H5T_NATIVE_UINT32,
+                                                {n}, expected_offset(count), count),
+                       "rank");
+  if (comm_rank() != 0) return;
+  std::vector<std::uint32_t> whole;
+  for (int r = 0; r < comm_size(); ++r)
+    whole.insert(whole.end(), counts[r], static_cast<std::uint32_t>(r));
+  expect_bit_identical(
+      whole, read_rows<std::uint32_t>(file.id, "rank", H5T_STD_U32LE, H5T_NATIVE_UINT32, {n}, 0, n),
+      "rank (whole file)");
+}
+
+/// The value of XML attribute `key` in the tag text `tag` ("" when absent).
+std::string xml_attribute(const std::string& tag, const std::string& key) {
+  const std::string opening = " " + key + "=\"";
+  const std::size_t start = tag.find(opening);
+  if (start == std::string::npos) return "";
+  const std::size_t first = start + opening.size();
+  return tag.substr(first, tag.find('"', first) - first);
+}
+
+/// An element of an .xmf: the text of its opening tag, and its content up to its closing tag
+/// (the document's elements of one name do not nest, except Grid, which is cut at its first
+/// "</Grid>": the uniform grids hold none).
+struct XmlElement {
+  std::string tag;
+  std::string content;
+};
+
+/// Every element named `name` in `text`, in document order (each has a closing tag).
+std::vector<XmlElement> xml_elements(const std::string& text, const std::string& name) {
+  std::vector<XmlElement> elements;
+  const std::string opening = "<" + name + " ", closing = "</" + name + ">";
+  for (std::size_t at = text.find(opening); at != std::string::npos;
+       at = text.find(opening, at + 1)) {
+    const std::size_t tag_end = text.find('>', at);
+    const std::size_t end = text.find(closing, tag_end);
+    elements.push_back(
+        {text.substr(at, tag_end + 1 - at), text.substr(tag_end + 1, end - tag_end - 1)});
+  }
+  return elements;
+}
+
+/// One uniform grid of an .xmf: the HDF5 file its geometry reads, and its attributes by name
+/// with the opening tag and text of each attribute's DataItem.
+struct ListedGrid {
+  std::string h5_file;
+  std::vector<std::pair<std::string, XmlElement>> attributes;
+};
+
+std::vector<ListedGrid> uniform_grids(const std::string& xmf) {
+  std::vector<ListedGrid> grids;
+  for (const XmlElement& grid : xml_elements(xmf, "Grid")) {
+    if (xml_attribute(grid.tag, "GridType") != "Uniform") continue;
+    ListedGrid listed;
+    const std::vector<XmlElement> geometry = xml_elements(grid.content, "DataItem");
+    const std::string source = geometry.empty() ? "" : geometry.front().content;
+    listed.h5_file = source.substr(0, source.find(':'));
+    for (const XmlElement& attribute : xml_elements(grid.content, "Attribute")) {
+      const std::vector<XmlElement> items = xml_elements(attribute.content, "DataItem");
+      listed.attributes.emplace_back(xml_attribute(attribute.tag, "Name"),
+                                     items.empty() ? XmlElement{} : items.front());
+    }
+    grids.push_back(listed);
+  }
+  return grids;
+}
+
+/// Checks that the .xmf lists one grid per snapshot, in order, with attribute "rank" (Scalar
+/// UInt of 4 bytes, one per particle, read from that file's dataset "rank") exactly for the
+/// snapshots whose `with_rank` entry is set, which must also be the files holding the dataset.
+void expect_rank_listed_for(const SnapshotWriter& writer, const std::vector<bool>& with_rank) {
+  MPI_Barrier(MPI_COMM_WORLD);
+  const std::vector<ListedGrid> grids = uniform_grids(read_text(writer.xmf_path()));
+  ASSERT_EQ(grids.size(), with_rank.size());
+  ASSERT_EQ(writer.files().size(), with_rank.size());
+  for (std::size_t k = 0; k < grids.size(); ++k) {
+    const std::string file = fs::path(writer.files()[k]).filename().string();
+    EXPECT_EQ(grids[k].h5_file, file);
+    EXPECT_EQ(file_has_dataset(writer.files()[k], "rank"), with_rank[k]) << file;
+    EXPECT_EQ(writer.table()[k].rank_field, with_rank[k]) << file;
+    const auto rank = std::find_if(grids[k].attributes.begin(), grids[k].attributes.end(),
+                                   [](const auto& a) { return a.first == "rank"; });
+    ASSERT_EQ(rank != grids[k].attributes.end(), with_rank[k]) << "grid of " << file;
+    ASSERT_EQ(grids[k].attributes.size(), with_rank[k] ? 7u : 6u) << "grid of " << file;
+    if (!with_rank[k]) continue;
+    const XmlElement& item = rank->second;
+    EXPECT_EQ(item.content, file + ":/rank");
+    EXPECT_EQ(xml_attribute(item.tag, "NumberType"), "UInt");
+    EXPECT_EQ(xml_attribute(item.tag, "Precision"), "4");
+    EXPECT_EQ(xml_attribute(item.tag, "Dimensions"), std::to_string(writer.table()[k].count));
+  }
+}
+
 /// A fresh directory, the same on every rank, removed after the test.
 class SnapshotWriterTest : public ::testing::Test {
  protected:
@@ -210,7 +332,7 @@ TEST_F(SnapshotWriterTest, EveryDatasetReadsBackBitIdenticalToTheStore) {
 }
 
 TEST_F(SnapshotWriterTest, SnapshotWithoutAnyParticleHasEmptyDatasets) {
-  SnapshotWriter writer(MPI_COMM_WORLD, dir_, "empty");
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, {false, "empty"});
   writer.write(ParticleStore{}, 1.5, 42);
   ASSERT_EQ(writer.files().size(), 1u);
   expect_snapshot_holds(writer.files()[0], ParticleStore{}, 1.5, 42);
@@ -218,7 +340,7 @@ TEST_F(SnapshotWriterTest, SnapshotWithoutAnyParticleHasEmptyDatasets) {
 }
 
 TEST_F(SnapshotWriterTest, XmfListsEverySnapshotByRelativeFileName) {
-  SnapshotWriter writer(MPI_COMM_WORLD, dir_, "bed");
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, {false, "bed"});
   EXPECT_EQ(writer.xmf_path(), (fs::path(dir_) / "bed.xmf").string());
   writer.write(random_store(particles_on_this_rank(), 300 + comm_rank()), 0.0, 0);
   writer.write(random_store(particles_on_this_rank(), 400 + comm_rank()), 0.01, 100);
@@ -232,6 +354,48 @@ TEST_F(SnapshotWriterTest, XmfListsEverySnapshotByRelativeFileName) {
   EXPECT_NE(xmf.find("<Time Value=\"0.01\"/>"), std::string::npos) << xmf;
   EXPECT_EQ(xmf.find(dir_), std::string::npos) << "file names must be relative";
   EXPECT_FALSE(fs::exists(writer.xmf_path() + ".tmp"));
+}
+
+TEST_F(SnapshotWriterTest, RankFieldHoldsTheWritingRankOfEveryRow) {
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, {true});
+  const ParticleStore particles = random_store(particles_on_this_rank(), 900 + comm_rank());
+  writer.write(particles, 0.25, 25);
+  writer.write(ParticleStore{}, 0.5, 50);
+  expect_snapshot_holds(writer.files()[0], particles, 0.25, 25);
+  expect_rank_field_holds_the_writing_ranks(writer.files()[0], particles.size());
+  expect_rank_field_holds_the_writing_ranks(writer.files()[1], 0);
+  expect_rank_listed_for(writer, {true, true});
+}
+
+TEST_F(SnapshotWriterTest, WithoutTheOptionThereIsNoRankField) {
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_);
+  writer.write(random_store(particles_on_this_rank(), 1000 + comm_rank()), 0.0, 0);
+  expect_rank_listed_for(writer, {false});
+  EXPECT_EQ(read_text(writer.xmf_path()).find("rank"), std::string::npos);
+}
+
+TEST_F(SnapshotWriterTest, ResumedSeriesKeepsEachSnapshotsRankField) {
+  const ParticleStore particles = random_store(particles_on_this_rank(), 1100 + comm_rank());
+  std::vector<XdmfSnapshot> table;
+  {
+    SnapshotWriter with_rank(MPI_COMM_WORLD, dir_, {true});
+    with_rank.write(particles, 0.0, 0);
+    with_rank.write(particles, 0.1, 10);
+    table = with_rank.table();
+  }
+  {
+    SnapshotWriter without_rank(MPI_COMM_WORLD, dir_);
+    without_rank.resume(table);
+    expect_rank_listed_for(without_rank, {true, true});
+    without_rank.write(particles, 0.2, 20);
+    expect_rank_listed_for(without_rank, {true, true, false});
+    table = without_rank.table();
+  }
+  SnapshotWriter with_rank_again(MPI_COMM_WORLD, dir_, {true});
+  with_rank_again.resume(table);
+  with_rank_again.write(particles, 0.3, 30);
+  expect_rank_listed_for(with_rank_again, {true, true, false, true});
+  expect_rank_field_holds_the_writing_ranks(with_rank_again.files()[3], particles.size());
 }
 
 TEST_F(SnapshotWriterTest, LeavesNoHdf5ObjectOpen) {
@@ -261,8 +425,10 @@ TEST_F(SnapshotWriterTest, FailureNamesTheFileAndTheHdf5Call) {
 }
 
 #ifdef GPUDEM_SNAPSHOT_FIXTURE_DIR
-// Output folder kept for tests/scripts/check_snapshot.py: two random snapshots and one without
-// any particle.
+// Output folder kept for tests/scripts/check_snapshot.py (every .xmf) and
+// tests/scripts/paraview_open.py (particles.xmf). particles.xmf: two random snapshots and one
+// without any particle; ranked.xmf: the same with the rank field; resumed.xmf: a series resumed
+// with the rank field switched on after a snapshot without it.
 TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
   const std::string dir = GPUDEM_SNAPSHOT_FIXTURE_DIR;
   if (comm_rank() == 0) {
@@ -270,13 +436,23 @@ TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
     fs::create_directories(dir);
   }
   MPI_Barrier(MPI_COMM_WORLD);
-  SnapshotWriter writer(MPI_COMM_WORLD, dir);
-  writer.write(random_store(particles_on_this_rank(), 700 + comm_rank()), 0.0, 0);
-  writer.write(random_store(particles_on_this_rank() + 11, 800 + comm_rank()), 0.005, 50);
-  writer.write(ParticleStore{}, 0.01, 100);
+  SnapshotWriter plain(MPI_COMM_WORLD, dir);
+  SnapshotWriter ranked(MPI_COMM_WORLD, dir, {true, "ranked"});
+  for (SnapshotWriter* writer : {&plain, &ranked}) {
+    writer->write(random_store(particles_on_this_rank(), 700 + comm_rank()), 0.0, 0);
+    writer->write(random_store(particles_on_this_rank() + 11, 800 + comm_rank()), 0.005, 50);
+    writer->write(ParticleStore{}, 0.01, 100);
+  }
+  SnapshotWriter before_restart(MPI_COMM_WORLD, dir, {false, "resumed"});
+  before_restart.write(random_store(particles_on_this_rank(), 1200 + comm_rank()), 0.0, 0);
+  SnapshotWriter after_restart(MPI_COMM_WORLD, dir, {true, "resumed"});
+  after_restart.resume(before_restart.table());
+  after_restart.write(random_store(particles_on_this_rank() + 3, 1300 + comm_rank()), 0.01, 100);
   MPI_Barrier(MPI_COMM_WORLD);
-  for (const std::string& file : writer.files()) EXPECT_TRUE(fs::exists(file)) << file;
-  EXPECT_TRUE(fs::exists(writer.xmf_path()));
+  for (const SnapshotWriter* writer : {&plain, &ranked, &after_restart}) {
+    for (const std::string& file : writer->files()) EXPECT_TRUE(fs::exists(file)) << file;
+    EXPECT_TRUE(fs::exists(writer->xmf_path()));
+  }
 }
 #endif
 
