@@ -1,7 +1,8 @@
 # Decomposed runs through mpirun at 1 to 4 ranks (--oversubscribe): the same physics as one
-# rank, restarts across rank counts, load balance and momentum conservation (scripts/decomposed_runs.py).
+# rank, restarts across rank counts, load balance, momentum conservation, a sliding contact
+# across a rank boundary and checkpoints of runs killed with SIGKILL (scripts/decomposed_runs.py).
 find_program(GPUDEM_MPIRUN NAMES mpirun mpiexec REQUIRED)
-foreach(case same-physics restart balance momentum)
+foreach(case same-physics restart balance momentum sliding-pair killed-checkpoint)
   add_test(NAME mpi_${case}
     COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/mpi/scripts/decomposed_runs.py
       --binary $<TARGET_FILE:gpudem-mpi> --mpirun ${GPUDEM_MPIRUN}

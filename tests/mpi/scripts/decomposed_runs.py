@@ -20,15 +20,34 @@ CASE is one of:
   momentum      tests/mpi/scenes/periodic_gas.toml (closed periodic box, no gravity) at N = 4:
                 total momentum conserved to 1e-12 of the total |momentum|, and the final state
                 equal to N = 1 bit for bit.
+  sliding-pair  tests/mpi/scenes/sliding_pair.toml (two grains in one sliding contact, drifting
+                across the cut of 2 slabs) at N = 1 and N = 2, a snapshot every step: position,
+                velocity, spin and force of both grains equal bit for bit at every snapshot.
+                Over the contact window the pair overlaps at every step, the left grain goes
+                from the left slab to more than skin/2 into the right one (so the neighbour
+                list, and with it the migration, is rebuilt mid-contact), the friction force is
+                above 10 % of the normal force and the two forces are opposite (the contact is
+                each grain's only force) to 1e-9 of the force.
+  killed-checkpoint
+                tests/mpi/scenes/periodic_gas.toml checkpointed every step, alternately on 2
+                and 3 ranks; each round is killed (SIGKILL to every process group of its
+                session) at a random moment after its first new checkpoint, and restarts from
+                the checkpoint. Read while the run goes and after each kill, the checkpoint
+                always opens, holds every particle once and its step grows from round to
+                round; a last restart on 2 ranks runs 3 more steps and exits 0.
 Exit status 0 when all holds, 1 with one line per failure otherwise.
 """
 import argparse
 import csv
 import os
 import pathlib
+import random
 import shutil
+import signal
 import subprocess
 import sys
+import time
+import tomllib
 
 try:
     import h5py
@@ -44,20 +63,29 @@ class Runner:
     def __init__(self, binary, mpirun, work):
         self.binary, self.mpirun, self.work = binary, mpirun, pathlib.Path(work)
         self.failures = []
+        self.banner = ""
 
-    def run(self, name, scene, ranks, *settings, restart=None):
-        """Runs `scene` on `ranks` ranks into work/name and returns that folder."""
-        out = self.work / name
+    def command(self, name, scene, ranks, settings, restart=None, quiet=True):
+        """The mpirun command line that runs `scene` on `ranks` ranks into work/name."""
         command = [self.mpirun, "--allow-run-as-root", "--oversubscribe", "-np", str(ranks),
-                   self.binary, str(scene), "--quiet", "--output-dir", str(out)]
+                   self.binary, str(scene), "--output-dir", str(self.work / name)]
+        if quiet:
+            command.append("--quiet")
         for s in settings:
             command += ["--set", s]
         if restart:
             command += ["--restart", str(restart)]
+        return command
+
+    def run(self, name, scene, ranks, *settings, restart=None, quiet=True):
+        """Runs `scene` on `ranks` ranks into work/name and returns that folder; the standard
+        output (the banner unless quiet) is kept in self.banner."""
+        command = self.command(name, scene, ranks, settings, restart, quiet)
         result = subprocess.run(command, capture_output=True, text=True)
         if result.returncode != 0:
             sys.exit(f"{name}: exit {result.returncode}\n{result.stdout}{result.stderr}")
-        return out
+        self.banner = result.stdout
+        return self.work / name
 
     def fail(self, line):
         self.failures.append(line)
@@ -79,18 +107,21 @@ def read_by_id(path):
         return ids[order], fields
 
 
-def compare_states(runner, label, reference, candidate):
-    ids_a, a = read_by_id(last_snapshot(reference))
-    ids_b, b = read_by_id(last_snapshot(candidate))
+def snapshot_differences(path_a, path_b):
+    """Lines naming what differs between two snapshots: their particle ids, or each field that
+    is not bitwise equal, with its largest difference."""
+    ids_a, a = read_by_id(path_a)
+    ids_b, b = read_by_id(path_b)
     if len(ids_a) != len(ids_b) or not np.array_equal(ids_a, ids_b):
-        runner.fail(f"{label}: particle ids differ ({len(ids_a)} against {len(ids_b)})")
-        return
-    for name in FIELDS:
-        if name not in a:
-            continue
-        if not np.array_equal(a[name], b[name]):
-            worst = np.max(np.abs(a[name] - b[name]))
-            runner.fail(f"{label}: {name} not bitwise equal (largest difference {worst:.3e})")
+        return [f"particle ids differ ({len(ids_a)} against {len(ids_b)})"]
+    unequal = [name for name in FIELDS if name in a and not np.array_equal(a[name], b[name])]
+    worst = {name: np.max(np.abs(a[name] - b[name])) for name in unequal}
+    return [f"{name} not bitwise equal (largest difference {worst[name]:.3e})" for name in unequal]
+
+
+def compare_states(runner, label, reference, candidate):
+    for line in snapshot_differences(last_snapshot(reference), last_snapshot(candidate)):
+        runner.fail(f"{label}: {line}")
 
 
 def series(out):
@@ -187,19 +218,241 @@ def momentum(runner):
     else:
         print(f"gas_n4: momentum change {drift:.3e} of total |p| {totals[0][1]:.3e}")
 
+# ---- sliding-pair ---------------------------------------------------------------------------
+
+# Steps of sliding_pair.toml during which the grains are in contact (it lasts from step 5 to 192;
+# the dashpot dominates the first steps and the last, where |F_t| / |F_n| leaves [0.1, 1]).
+SLIDING_WINDOW = range(10, 186)
+FRICTION_SHARE = 0.1  # least |F_t| / |F_n| in the window
+NEWTON_TOLERANCE = 1e-9  # largest |F_0 + F_1| / |F_1|: the contact is each grain's only force
+
+
+def snapshots_by_step(out):
+    """{step: snapshot path} of a run's folder."""
+    steps = {}
+    for path in sorted(pathlib.Path(out).glob("particles_*.h5")):
+        with h5py.File(path, "r") as f:
+            steps[int(f.attrs["step"])] = path
+    return steps
+
+
+def compare_every_snapshot(runner, label, reference, candidate):
+    a, b = snapshots_by_step(reference), snapshots_by_step(candidate)
+    if sorted(a) != sorted(b):
+        runner.fail(f"{label}: snapshot steps differ ({len(a)} against {len(b)} snapshots)")
+        return
+    differing = [(step, lines) for step in sorted(a)
+                 for lines in [snapshot_differences(a[step], b[step])] if lines]
+    if differing:
+        step, lines = differing[0]
+        runner.fail(f"{label}: {len(differing)} of {len(a)} snapshots differ, the first at step "
+                    f"{step}: {'; '.join(lines)}")
+    else:
+        print(f"{label}: all {len(a)} snapshots bitwise equal to one rank's")
+
+
+def pair_contact(path):
+    """Overlap, normal force F_n (on grain 1 along the centre line from grain 0), tangential force
+    |F_t|, |F_0 + F_1|, the grains' x and the smallest radius of a sliding-pair snapshot."""
+    _, s = read_by_id(path)
+    x, r, force = s["position"], s["radius"], s["force"]
+    distance = np.linalg.norm(x[1] - x[0])
+    normal = (x[1] - x[0]) / distance
+    f_n = float(np.dot(force[1], normal))
+    f_t = float(np.linalg.norm(force[1] - f_n * normal))
+    newton = float(np.linalg.norm(force[0] + force[1]))
+    return r[0] + r[1] - distance, f_n, f_t, newton, x[0][0], x[1][0], r.min()
+
+
+def check_sliding_window(runner, scene, out):
+    """Over SLIDING_WINDOW the pair overlaps, starts on both sides of the cut, grain 0 ends more
+    than skin/2 past it (a displacement that forces a neighbour-list rebuild, where it migrates),
+    friction carries more than FRICTION_SHARE of |F_n|, and the contact is the only force."""
+    with open(scene, "rb") as f:
+        domain = tomllib.load(f)["domain"]
+    cut = 0.5 * (domain["min"][0] + domain["max"][0])  # two coarse cells along x
+    steps = snapshots_by_step(out)
+    rows = [pair_contact(steps[step]) for step in SLIDING_WINDOW]
+    overlap = min(row[0] for row in rows)
+    share = min(row[2] / abs(row[1]) for row in rows)
+    newton = max(row[3] / np.hypot(row[1], row[2]) for row in rows)
+    start_0, start_1, end_0 = rows[0][4] - cut, rows[0][5] - cut, rows[-1][4] - cut
+    half_skin = 0.25 * rows[0][6]  # the "auto" skin is half the smallest radius
+    print(f"sliding pair, steps {SLIDING_WINDOW.start}-{SLIDING_WINDOW.stop - 1}: least overlap "
+          f"{overlap:.3e} m, least |F_t|/|F_n| {share:.3f}, largest |F_0 + F_1|/|F| "
+          f"{newton:.1e}; from the cut, grain 0 goes from {start_0 * 1e3:+.3f} to "
+          f"{end_0 * 1e3:+.3f} mm, grain 1 starts at {start_1 * 1e3:+.3f} mm "
+          f"(skin/2 = {half_skin * 1e3:.3f} mm)")
+    if not overlap > 0:
+        runner.fail(f"sliding pair: contact lost in the window (overlap {overlap:.3e} m)")
+    if not (start_0 < 0 < start_1 and end_0 > half_skin):
+        runner.fail(f"sliding pair: grain 0 does not cross the cut at x = {cut} m by more than "
+                    f"skin/2 from the other side of grain 1 ({start_0}, {start_1}, {end_0} m)")
+    if not share > FRICTION_SHARE:
+        runner.fail(f"sliding pair: |F_t|/|F_n| falls to {share:.3f}, not above {FRICTION_SHARE}")
+    if not newton < NEWTON_TOLERANCE:
+        runner.fail(f"sliding pair: |F_0 + F_1| = {newton:.1e} |F|: not the pair's force alone")
+
+
+def sliding_pair(runner):
+    scene = SCENES / "sliding_pair.toml"
+    reference = runner.run("pair_n1", scene, 1)
+    out = runner.run("pair_n2", scene, 2, "decomposition.dims=[2,1,1]", quiet=False)
+    if "grid 2 x 1 x 1 blocks over 2 x " not in runner.banner:
+        runner.fail("pair_n2: expected 2 slabs over 2 coarse cells along x; banner:\n" +
+                    runner.banner)
+    check_sliding_window(runner, scene, reference)
+    compare_every_snapshot(runner, "pair_n2", reference, out)
+
+
+# ---- killed-checkpoint ------------------------------------------------------------------------
+
+KILL_DT = 3e-5  # s, an explicit step (periodic_gas.toml's automatic one is 3.06e-5 s)
+KILL_ROUNDS = (2, 3, 2, 3, 2, 3, 2)  # ranks of each killed round
+KILL_DELAY = (0.0, 1.5)  # s after the round's first new checkpoint, uniform
+ROUND_LIMIT = 60.0  # s for a round to write its first checkpoint
+
+
+def read_checkpoint(path):
+    """(step, sorted ids) of a checkpoint; raises if the file is missing or damaged."""
+    with h5py.File(path, "r") as f:
+        step = int(f.attrs["step"])
+        ids = np.sort(f["id"][...])
+        if np.any(ids[1:] == ids[:-1]):
+            raise ValueError("a particle id appears twice")
+        for name in ("position_radius", "velocity_inv_mass", "angular_velocity", "force"):
+            if f[name].shape[0] != len(ids) or not np.all(np.isfinite(f[name][...])):
+                raise ValueError(f"dataset '{name}' does not match 'id'")
+    return step, ids
+
+
+def session_groups(session):
+    """Process groups of the live (not zombie) processes of a session."""
+    groups = set()
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            stat = pathlib.Path(f"/proc/{entry}/stat").read_text()
+        except OSError:
+            continue
+        state, _, group, sid = stat[stat.rindex(")") + 2:].split()[:4]
+        if int(sid) == session and state != "Z":
+            groups.add(int(group))
+    return groups
+
+
+def kill_session(process):
+    """SIGKILL to every process group of the session `process` leads, until none is left:
+    Open MPI gives each rank a process group of its own, so killing mpirun's leaves them
+    running."""
+    while groups := session_groups(process.pid):
+        for group in groups:
+            try:
+                os.killpg(group, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        process.poll()
+        time.sleep(0.01)
+    process.wait()
+
+
+class CheckpointWatch:
+    """Reads the checkpoint again and again while a round runs; every read must succeed."""
+
+    def __init__(self, runner, path, ids):
+        self.runner, self.path, self.ids = runner, path, ids
+        self.reads = 0
+
+    def step(self, label):
+        try:
+            step, ids = read_checkpoint(self.path)
+        except FileNotFoundError:
+            return 0
+        except Exception as error:
+            self.runner.fail(f"{label}: checkpoint unreadable while the run goes: {error}")
+            return None
+        self.reads += 1
+        if self.ids is not None and not np.array_equal(ids, self.ids):
+            self.runner.fail(f"{label}: checkpoint holds {len(ids)} ids, not the run's particles")
+            return None
+        return step
+
+    def until_step_above(self, label, process, previous):
+        """Reads until a checkpoint after `previous` appears; False if the run ends or stalls."""
+        stop = time.monotonic() + ROUND_LIMIT
+        while time.monotonic() < stop and process.poll() is None:
+            step = self.step(label)
+            if step is None:
+                return False
+            if step > previous:
+                return True
+            time.sleep(0.015)
+        return False
+
+    def until(self, label, moment):
+        while time.monotonic() < moment and self.step(label) is not None:
+            time.sleep(0.015)
+
+
+def killed_checkpoint(runner):
+    scene = SCENES / "periodic_gas.toml"
+    settings = [f"simulation.dt={KILL_DT!r}", f"checkpoint.every={KILL_DT!r}",
+                "simulation.end_time=10.0"]
+    checkpoint = runner.work / "run" / "checkpoint.h5"
+    rng = random.Random(7)
+    watch = CheckpointWatch(runner, checkpoint, None)
+    step, inside_a_write = 0, 0
+    for number, ranks in enumerate(KILL_ROUNDS):
+        label = f"round {number} (N = {ranks})"
+        command = runner.command("run", scene, ranks, settings, checkpoint if number else None)
+        with open(runner.work / f"round_{number}.log", "w") as log:
+            process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
+                                       start_new_session=True)
+        wrote = watch.until_step_above(label, process, step)
+        if wrote:
+            watch.until(label, time.monotonic() + rng.uniform(*KILL_DELAY))
+        exited = process.poll()
+        kill_session(process)
+        if not wrote:
+            runner.fail(f"{label}: no new checkpoint (exit {exited}; see round_{number}.log)")
+            return
+        inside_a_write += checkpoint.with_name("checkpoint.h5.tmp").exists()
+        try:
+            now, ids = read_checkpoint(checkpoint)
+        except Exception as error:
+            runner.fail(f"{label}: checkpoint unreadable after SIGKILL: {error}")
+            return
+        if watch.ids is None:
+            watch.ids = ids
+        if not now > step or not np.array_equal(ids, watch.ids):
+            runner.fail(f"{label}: checkpoint at step {now} after {step}, {len(ids)} ids")
+        print(f"{label}: killed at checkpoint step {now}")
+        step = now
+    print(f"{len(KILL_ROUNDS)} kills, {inside_a_write} inside a write; {watch.reads} reads "
+          "while running")
+    end = f"simulation.end_time={(step + 3) * KILL_DT!r}"
+    runner.run("run", scene, 2, *settings, end, restart=checkpoint)
+    final, _ = read_checkpoint(checkpoint)
+    if final != step + 3 or checkpoint.with_name("checkpoint.h5.tmp").exists():
+        runner.fail(f"last restart: checkpoint at step {final}, not {step + 3}, or a .tmp left")
+
+
 
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", required=True)
     parser.add_argument("--work", required=True)
-    parser.add_argument("case", choices=["same-physics", "restart", "balance", "momentum"])
+    parser.add_argument("case", choices=["same-physics", "restart", "balance", "momentum",
+                                         "sliding-pair", "killed-checkpoint"])
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     runner = Runner(args.binary, args.mpirun, args.work)
     cases = {"same-physics": same_physics, "restart": restart, "balance": balance,
-             "momentum": momentum}
+             "momentum": momentum, "sliding-pair": sliding_pair,
+             "killed-checkpoint": killed_checkpoint}
     cases[args.case](runner)
     for line in runner.failures:
         print(line)
