@@ -88,10 +88,6 @@ std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi
                                        const ParticleStore& particles, const EngineSetup& setup,
                                        bool gpu_aware) {
   if (mpi.size() == 1) return nullptr;
-  if (!scene.meshes.empty())
-    throw InputError(scene.file, scene.meshes.front().line, "mesh",
-                     "triangle-mesh walls run on one rank in this version; start the run with "
-                     "mpirun -np 1");
   const Real ghost_width = 2 * largest_radius(particles) + setup.skin;
   const CoarseGrid cells = CoarseGrid::over(setup.box, ghost_width);
   const std::vector<double> work = particles_per_cell(cells, particles);

@@ -109,6 +109,17 @@ std::vector<double> timeseries_row(double time, std::uint64_t step, const Diagno
   return row;
 }
 
+/// The snapshots of the time loop: the particles, with the rank field when asked, and every
+/// mesh of the scene with the counts of its setup.
+SnapshotOptions snapshot_options(const Scene& scene, const EngineSetup& setup) {
+  SnapshotOptions options;
+  options.rank_field = scene.output.rank_field;
+  for (std::size_t m = 0; m < setup.meshes.size(); ++m)
+    options.meshes.push_back({scene.meshes[m].name, setup.meshes[m].mesh.vertices.size(),
+                              setup.meshes[m].mesh.triangles.size()});
+  return options;
+}
+
 /// Engine memory summed over all ranks [bytes]. Collective.
 double engine_memory(const MpiContext& mpi, const StepEngine& engine) {
   double local = static_cast<double>(engine.memory_bytes()), total = local;
@@ -183,7 +194,7 @@ class TimeLoop {
                           : std::max<std::uint64_t>(1, total_steps_ / 200)),
         checkpoint_every_(scene.checkpoint.every > 0 ? steps_between(scene.checkpoint.every, dt_)
                                                      : 0),
-        snapshots_(mpi.comm(), scene.output.dir, {scene.output.rank_field}),
+        snapshots_(mpi.comm(), scene.output.dir, snapshot_options(scene, setup)),
         series_(scene.output.dir + "/timeseries.csv", timeseries_columns(scene), mpi.is_root(),
                 series_resume(start)),
         progress_(!quiet && mpi.is_root(), kProgressInterval, total_steps_, start.step),
@@ -224,6 +235,7 @@ class TimeLoop {
     Checkpoint c;
     engine_.get_particles(c.particles);
     engine_.get_list_positions(c.list_position_radius);
+    c.list_build_step = engine_.list_build_step();
     engine_.get_contact_history(c.history);
     c.snapshots = snapshots_.table();
     c.time = step * dt_;
@@ -296,7 +308,7 @@ class TimeLoop {
   void write_snapshot(double time, std::uint64_t step) {
     engine_.check_particles_conserved();
     engine_.get_particles(host_);
-    snapshots_.write(host_, time, step);
+    snapshots_.write(host_, engine_.mesh_surfaces(), time, step);
   }
 
   /// Written after the step's snapshot so that the snapshot table includes it.
@@ -389,7 +401,8 @@ void start_engine(StepEngine& engine, const ParticleStore& particles, const Chec
     return;
   }
   try {
-    engine.restore_particles(particles, checkpoint->list_position_radius, checkpoint->removed);
+    engine.restore_particles(particles, checkpoint->list_position_radius, checkpoint->removed,
+                             checkpoint->list_build_step);
     engine.set_contact_history(checkpoint->history);
   } catch (const std::invalid_argument& e) {
     throw InputError(path, 0, "", e.what());

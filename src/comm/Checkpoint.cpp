@@ -48,7 +48,9 @@ void check_lengths(const Checkpoint& c) {
   if (h.pair_partner.size() != h.pair_owner.size() ||
       h.pair_values.size() != h.pair_owner.size() * h.width ||
       h.wall_index.size() != h.wall_owner.size() ||
-      h.wall_values.size() != h.wall_owner.size() * h.width)
+      h.wall_values.size() != h.wall_owner.size() * h.width ||
+      h.mesh_triangle.size() != h.mesh_owner.size() ||
+      h.mesh_values.size() != h.mesh_owner.size() * h.width)
     throw std::logic_error("checkpoint: contact history arrays differ in length");
 }
 
@@ -88,6 +90,11 @@ void write_history(MPI_Comm comm, const ParallelFile& file, const ContactHistory
   file.write_dataset(index_rows("wall_index", h.wall_index.data()), walls);
   if (h.width > 0)
     file.write_dataset(real_rows("wall_history", h.wall_values.data(), h.width), walls);
+  const Slice meshes = global_slice(comm, h.mesh_owner.size());
+  file.write_dataset(id_rows("mesh_owner", h.mesh_owner.data()), meshes);
+  file.write_dataset(index_rows("mesh_triangle", h.mesh_triangle.data()), meshes);
+  if (h.width > 0)
+    file.write_dataset(real_rows("mesh_history", h.mesh_values.data(), h.width), meshes);
 }
 
 /// The snapshot table, rank 0's rows only; file names as null-terminated fixed-length strings.
@@ -125,6 +132,7 @@ void write_attributes(const ParallelFile& file, const Checkpoint& c) {
   file.write_attribute("history_width", H5T_STD_U32LE, c.history.width);
   file.write_attribute("time", H5T_IEEE_F64LE, c.time);
   file.write_attribute("step", H5T_STD_U64LE, c.step);
+  file.write_attribute("list_build_step", H5T_STD_U64LE, c.list_build_step);
   file.write_attribute("removed", H5T_STD_U64LE, c.removed);
   file.write_attribute("dt", H5T_IEEE_F64LE, c.dt);
   file.write_attribute("dt_fraction", H5T_IEEE_F64LE, c.dt_fraction);
@@ -215,6 +223,8 @@ class Reader {
 
   /// Whether the file holds a link `name`.
   bool has(const char* name) const { return H5Lexists(file_.id(), name, H5P_DEFAULT) > 0; }
+  /// Whether the file's root holds an attribute `name`.
+  bool has_attribute(const char* name) const { return H5Aexists(file_.id(), name) > 0; }
 
   /// A 1-D dataset of u8 values.
   std::vector<std::uint8_t> bytes(const char* name) const {
@@ -353,6 +363,13 @@ void read_history(const Reader& r, ContactHistory& h) {
   LengthGroup walls{{"wall_owner", h.wall_owner.size()}, {"wall_index", h.wall_index.size()}};
   h.wall_values = read_history_values(r, "wall_history", h.width, walls);
   check_same_length(r, walls);
+  if (!r.has("mesh_owner")) return;  // written before mesh records existed: none
+  h.mesh_owner = r.rows<ParticleId, ParticleId>("mesh_owner", H5T_STD_U64LE);
+  h.mesh_triangle = r.rows<std::uint32_t, std::uint32_t>("mesh_triangle", H5T_STD_U32LE);
+  LengthGroup meshes{{"mesh_owner", h.mesh_owner.size()},
+                     {"mesh_triangle", h.mesh_triangle.size()}};
+  h.mesh_values = read_history_values(r, "mesh_history", h.width, meshes);
+  check_same_length(r, meshes);
 }
 
 /// Whether each of the table's `snapshots` holds the rank field (0 or 1); none does when the
@@ -387,6 +404,12 @@ void read_attributes(const Reader& r, Checkpoint& c) {
              "; this program reads version " + std::to_string(kCheckpointFormatVersion));
   c.time = r.attribute<double>("time", H5T_IEEE_F64LE);
   c.step = r.attribute<std::uint64_t>("step", H5T_STD_U64LE);
+  c.list_build_step = r.has_attribute("list_build_step")
+                          ? r.attribute<std::uint64_t>("list_build_step", H5T_STD_U64LE)
+                          : c.step;
+  if (c.list_build_step > c.step)
+    r.reject("attribute 'list_build_step' (" + std::to_string(c.list_build_step) +
+             ") is after attribute 'step' (" + std::to_string(c.step) + ")");
   c.removed = r.attribute<std::uint64_t>("removed", H5T_STD_U64LE);
   c.dt = r.attribute<double>("dt", H5T_IEEE_F64LE);
   c.dt_fraction = r.attribute<double>("dt_fraction", H5T_IEEE_F64LE);
@@ -450,6 +473,10 @@ void check_checkpoint_fits_scene(const Checkpoint& c, const std::string& path, c
                        "contact history names wall index " + std::to_string(wall) +
                            " but the scene defines " + std::to_string(scene.walls.size()) +
                            " wall(s)");
+  if (!c.history.mesh_owner.empty() && scene.meshes.empty())
+    throw InputError(path, 0, "",
+                     "contact history holds " + std::to_string(c.history.mesh_owner.size()) +
+                         " particle-mesh contact(s) but the scene defines no mesh");
   const std::uint32_t width = contact_history_width(scene.contact.model);
   if (c.history.width != width)
     throw InputError(path, 0, "",

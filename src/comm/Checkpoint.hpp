@@ -11,14 +11,18 @@
 /// list_position_radius (N×4 f64: positions at the last neighbour-list build). Contact
 /// history, also by rank slices, `history_width` values per contact (the contact law's history
 /// size): pair_owner, pair_partner (P u64), pair_history (P×width f64), wall_owner (W u64),
-/// wall_index (W u32), wall_history (W×width f64). The two value datasets exist only when the
-/// width is > 0 (a law without history has no values to store) and are 1-D when it is 1.
+/// wall_index (W u32), wall_history (W×width f64), mesh_owner (M u64), mesh_triangle (M u32),
+/// mesh_history (M×width f64). The value datasets exist only when the width is > 0 (a law
+/// without history has no values to store) and are 1-D when it is 1. The mesh datasets are
+/// optional when read: without them (a checkpoint written before they existed) there are no
+/// mesh records.
 /// Snapshot table, written by rank 0: snapshot_file (S fixed-length strings), snapshot_time
 /// (S f64), snapshot_count (S u64), snapshot_rank_field (S u8: 1 when that snapshot holds the
 /// dataset "rank", else 0). snapshot_rank_field is always written but optional when read:
 /// without it (a checkpoint written before it existed) no snapshot has the rank field.
 /// Attributes: format_version, history_width (u32), time, dt, dt_fraction, skin (f64), step,
-/// removed (u64).
+/// removed, list_build_step (u64; the step of the last neighbour-list build, optional when
+/// read: the step when missing).
 #include <mpi.h>
 
 #include <cstdint>
@@ -42,10 +46,11 @@ struct Checkpoint {
   std::vector<XdmfSnapshot> snapshots;  ///< snapshots written so far (SnapshotWriter::table)
   double time = 0;                      ///< [s]
   std::uint64_t step = 0;
-  std::uint64_t removed = 0;  ///< particles removed so far for leaving the domain
-  double dt = 0;              ///< [s] time step of the run
-  double dt_fraction = 0;     ///< fraction of the critical step when dt was "auto", else 0
-  double skin = 0;            ///< [m] Verlet skin of the run
+  std::uint64_t list_build_step = 0;  ///< step of the last neighbour-list build
+  std::uint64_t removed = 0;          ///< particles removed so far for leaving the domain
+  double dt = 0;                      ///< [s] time step of the run
+  double dt_fraction = 0;             ///< fraction of the critical step when dt was "auto", else 0
+  double skin = 0;                    ///< [m] Verlet skin of the run
 };
 
 /// `<dir>/checkpoint.h5`.

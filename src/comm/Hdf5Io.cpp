@@ -14,6 +14,14 @@ H5Handle file_access(const H5Calls& h5, MPI_Comm comm) {
   return access;
 }
 
+/// Link creation that makes the missing groups of a path, so "mesh/tool/force" can be created
+/// in a file without group "mesh".
+H5Handle link_creation(const H5Calls& h5) {
+  H5Handle links = h5.handle(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "H5Pcreate(links)");
+  h5.check(H5Pset_create_intermediate_group(links.id(), 1), "H5Pset_create_intermediate_group");
+  return links;
+}
+
 H5Handle dataset_creation(const H5Calls& h5) {
   H5Handle creation = h5.handle(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate(create)");
   h5.check(H5Pset_fill_time(creation.id(), H5D_FILL_TIME_NEVER), "H5Pset_fill_time");
@@ -63,6 +71,7 @@ Slice global_slice(MPI_Comm comm, std::uint64_t count) {
 ParallelFile::ParallelFile(MPI_Comm comm, const H5Calls& h5, const std::string& path)
     : h5_(h5),
       access_(file_access(h5, comm)),
+      links_(link_creation(h5)),
       creation_(dataset_creation(h5)),
       transfer_(collective_transfer(h5)),
       file_(h5.handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access_.id()), H5Fclose,
@@ -75,7 +84,7 @@ void ParallelFile::write_dataset(const FieldSource& field, const Slice& slice) c
       h5_.handle(H5Screate_simple(field.components > 1 ? 2 : 1, file_dims, nullptr), H5Sclose,
                  "H5Screate_simple" + what);
   H5Handle dataset = h5_.handle(H5Dcreate2(file_.id(), field.name, field.file_type, file_space.id(),
-                                           H5P_DEFAULT, creation_.id(), H5P_DEFAULT),
+                                           links_.id(), creation_.id(), H5P_DEFAULT),
                                 H5Dclose, "H5Dcreate2" + what);
   // An empty dataset has no storage address, and HDF5 1.10 fails a collective write to it
   // even with nothing selected; every rank knows the total, so all skip together.

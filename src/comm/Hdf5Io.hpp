@@ -100,7 +100,8 @@ class ParallelFile {
   ParallelFile(MPI_Comm comm, const H5Calls& h5, const std::string& path);
 
   /// Creates dataset `field` (1-D for one component, else rows × components) of slice.total
-  /// rows and writes this rank's rows collectively.
+  /// rows, with any groups its name passes through ("a/b/name"), and writes this rank's rows
+  /// collectively.
   void write_dataset(const FieldSource& field, const Slice& slice) const;
 
   template <class T>
@@ -119,6 +120,7 @@ class ParallelFile {
  private:
   const H5Calls& h5_;
   H5Handle access_;
+  H5Handle links_;
   H5Handle creation_;
   H5Handle transfer_;
   H5Handle file_;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -71,6 +72,70 @@ void write_rank_field(MPI_Comm comm, const ParallelFile& file, const Slice& slic
   file.write_dataset({"rank", ranks.data(), H5T_NATIVE_UINT32, H5T_STD_U32LE, 1, 1, 0}, slice);
 }
 
+/// What keeps `name` from naming a mesh's group and its .xmf next to `<basename>.xmf`, or null.
+const char* mesh_name_problem(const std::string& name, const std::string& basename) {
+  if (name.empty()) return "is empty";
+  if (name.find('/') != std::string::npos) return "contains '/'";
+  if (name == "." || name == "..") return "is not a file name";
+  if (name == basename) return "is the particles' basename";
+  return nullptr;
+}
+
+/// Throws std::invalid_argument unless every mesh name is allowed (mesh_name_problem) and used
+/// once.
+void check_mesh_names(const SnapshotOptions& options) {
+  std::set<std::string> seen;
+  for (const XdmfMesh& mesh : options.meshes) {
+    const char* problem = mesh_name_problem(mesh.name, options.basename);
+    if (!problem && !seen.insert(mesh.name).second) problem = "is used twice";
+    if (problem) throw std::invalid_argument("snapshot mesh name '" + mesh.name + "' " + problem);
+  }
+}
+
+/// Throws std::invalid_argument unless `surfaces` are the meshes of `meshes`: as many, each
+/// with the vertex and triangle counts listed and vertex ids within its vertices.
+void check_mesh_surfaces(const std::vector<XdmfMesh>& meshes,
+                         const std::vector<MeshSurface>& surfaces) {
+  if (surfaces.size() != meshes.size())
+    throw std::invalid_argument("snapshot: " + std::to_string(surfaces.size()) +
+                                " mesh surfaces for " + std::to_string(meshes.size()) + " meshes");
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const MeshSurface& s = surfaces[m];
+    bool fits = s.vertices.size() == meshes[m].vertex_count &&
+                s.triangles.size() == meshes[m].triangle_count &&
+                s.triangle_force.size() == meshes[m].triangle_count;
+    for (const auto& triangle : s.triangles)
+      for (const std::uint32_t v : triangle) fits = fits && v < s.vertices.size();
+    if (!fits)
+      throw std::invalid_argument(
+          "snapshot: the surface of mesh '" + meshes[m].name +
+          "' does not have the vertex and triangle counts it was listed with or has a vertex "
+          "id beyond its vertices");
+  }
+}
+
+/// Group `/mesh/<name>/` of a snapshot: rank 0 writes every row of `mesh`, the other ranks
+/// take part with none.
+void write_mesh(MPI_Comm comm, const ParallelFile& file, const std::string& name,
+                const MeshSurface& mesh) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const auto rows = [rank](std::size_t n) { return Slice{0, rank == 0 ? n : 0, n}; };
+  const std::string group = "mesh/" + name + "/";
+  const std::string vertices = group + "vertices", triangles = group + "triangles",
+                    force = group + "force", pressure = group + "pressure";
+  const hid_t real = native_type<Real>();
+  const hid_t f64 = H5T_IEEE_F64LE;
+  const std::size_t v = mesh.vertices.size(), t = mesh.triangles.size();
+  file.write_dataset({vertices.c_str(), mesh.vertices.data(), real, f64, 3, 3, 0}, rows(v));
+  file.write_dataset(
+      {triangles.c_str(), mesh.triangles.data(), H5T_NATIVE_UINT32, H5T_STD_U32LE, 3, 3, 0},
+      rows(t));
+  file.write_dataset({force.c_str(), mesh.triangle_force.data(), real, f64, 3, 3, 0}, rows(t));
+  const std::vector<double> values = triangle_pressures(mesh);
+  file.write_dataset({pressure.c_str(), values.data(), H5T_NATIVE_DOUBLE, f64, 1, 1, 0}, rows(t));
+}
+
 /// One snapshot file written by all ranks of `comm` through the MPI-IO driver.
 struct SnapshotFile {
   MPI_Comm comm;
@@ -81,12 +146,15 @@ struct SnapshotFile {
 };
 
 void write_snapshot_file(const SnapshotFile& target, const ParticleStore& particles,
-                         const Slice& slice) {
+                         const Slice& slice, const std::vector<XdmfMesh>& meshes,
+                         const std::vector<MeshSurface>& surfaces) {
   const H5Calls h5("snapshot", target.path);
   ParallelFile file(target.comm, h5, target.path);
   for (const FieldSource& field : field_sources(particles)) file.write_dataset(field, slice);
   if (target.rank_field) write_rank_field(target.comm, file, slice);
   write_connectivity(file, slice);
+  for (std::size_t m = 0; m < meshes.size(); ++m)
+    write_mesh(target.comm, file, meshes[m].name, surfaces[m]);
   file.write_attribute("time", H5T_IEEE_F64LE, target.time);
   file.write_attribute("step", H5T_STD_U64LE, target.step);
   file.close();
@@ -118,14 +186,23 @@ SnapshotWriter::SnapshotWriter(MPI_Comm comm, std::string dir, SnapshotOptions o
     : comm_(comm),
       dir_(std::move(dir)),
       options_(std::move(options)),
-      xmf_path_((std::filesystem::path(dir_) / (options_.basename + ".xmf")).string()) {}
+      xmf_path_((std::filesystem::path(dir_) / (options_.basename + ".xmf")).string()) {
+  check_mesh_names(options_);
+}
 
 void SnapshotWriter::write(const ParticleStore& particles, double time, std::uint64_t step) {
+  write(particles, {}, time, step);
+}
+
+void SnapshotWriter::write(const ParticleStore& particles, const std::vector<MeshSurface>& meshes,
+                           double time, std::uint64_t step) {
   check_store_lengths(particles);
+  check_mesh_surfaces(options_.meshes, meshes);
   const Slice slice = global_slice(comm_, particles.size());
   const std::string name = snapshot_file_name(options_.basename, files_.size());
   const std::string path = (std::filesystem::path(dir_) / name).string();
-  write_snapshot_file({comm_, path, time, step, options_.rank_field}, particles, slice);
+  write_snapshot_file({comm_, path, time, step, options_.rank_field}, particles, slice,
+                      options_.meshes, meshes);
   files_.push_back(path);
   times_.push_back(time);
   counts_.push_back(slice.total);
@@ -159,11 +236,21 @@ void SnapshotWriter::publish_xmf() const {
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
   std::string error;
-  if (rank == 0) error = replace_file(xmf_path_, particle_xdmf(options_.basename, table()));
+  if (rank == 0) {
+    const std::vector<XdmfSnapshot> snapshots = table();
+    error = replace_file(xmf_path_, particle_xdmf(options_.basename, snapshots));
+    for (const XdmfMesh& mesh : options_.meshes)
+      if (error.empty()) error = replace_file(mesh_xmf_path(mesh), mesh_xdmf(mesh, snapshots));
+  }
   int failed = error.empty() ? 0 : 1;
   MPI_Bcast(&failed, 1, MPI_INT, 0, comm_);
   if (failed)
-    throw std::runtime_error(rank == 0 ? error : "rank 0 could not write '" + xmf_path_ + "'");
+    throw std::runtime_error(
+        rank == 0 ? error : "rank 0 could not write the .xmf documents in '" + dir_ + "'");
+}
+
+std::string SnapshotWriter::mesh_xmf_path(const XdmfMesh& mesh) const {
+  return (std::filesystem::path(dir_) / (mesh.name + ".xmf")).string();
 }
 
 }  // namespace gpudem

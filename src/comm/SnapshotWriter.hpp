@@ -2,7 +2,8 @@
 /// Particle snapshots: one HDF5 file per snapshot written collectively through the MPI-IO
 /// driver (each rank writes its slice at an MPI_Exscan offset), plus one XDMF temporal
 /// collection (`<basename>.xmf`) rewritten after every snapshot so ParaView can open the run
-/// at any time. A restarted run resumes the series where its checkpoint left it.
+/// at any time. Mesh walls go into the same files, each with its own XDMF collection
+/// (`<mesh name>.xmf`). A restarted run resumes the series where its checkpoint left it.
 #include <mpi.h>
 
 #include <cstdint>
@@ -11,6 +12,7 @@
 
 #include "comm/XdmfDocument.hpp"
 #include "core/ParticleStore.hpp"
+#include "kernels/StepEngine.hpp"
 
 namespace gpudem {
 
@@ -18,18 +20,29 @@ namespace gpudem {
 struct SnapshotOptions {
   bool rank_field = false;             ///< add dataset "rank": the MPI rank owning each particle
   std::string basename = "particles";  ///< files `<basename>_<index>.h5` and `<basename>.xmf`
+  /// The mesh walls every snapshot holds, in the order write() gets them: names unique,
+  /// non-empty, without '/', neither "." nor ".." and not `basename`.
+  std::vector<XdmfMesh> meshes = {};
 };
 
 class SnapshotWriter {
  public:
-  /// `dir` must exist. Files are `<dir>/<basename>_<index, 6 digits>.h5` and
-  /// `<dir>/<basename>.xmf`.
+  /// `dir` must exist. Files are `<dir>/<basename>_<index, 6 digits>.h5`,
+  /// `<dir>/<basename>.xmf` and `<dir>/<mesh name>.xmf` per mesh. Throws
+  /// std::invalid_argument for a mesh name SnapshotOptions does not allow.
   SnapshotWriter(MPI_Comm comm, std::string dir, SnapshotOptions options = {});
 
   /// Writes this rank's particles [0, particles.size()) as the next snapshot: datasets
   /// position (N×3), radius (N), velocity (N×3), angular_velocity (N×3), force (N×3),
   /// material (N, uint32), id (N, uint64), and with the rank field rank (N, uint32: each
-  /// rank's rows hold its rank in `comm`); attributes time and step. Collective.
+  /// rank's rows hold its rank in `comm`); attributes time and step. For each mesh m of the
+  /// options, group `/mesh/<name>/` holds meshes[m] as rank 0 has it: vertices (V×3),
+  /// triangles (T×3, uint32), force (T×3) and pressure (T): (F · n̂) / A with n̂ the unit
+  /// normal of the triangle's corner order and A its area [Pa]. Throws
+  /// std::invalid_argument when `meshes` does not match the options' counts. Collective.
+  void write(const ParticleStore& particles, const std::vector<MeshSurface>& meshes, double time,
+             std::uint64_t step);
+  /// write() of a writer without meshes.
   void write(const ParticleStore& particles, double time, std::uint64_t step);
 
   const std::string& xmf_path() const { return xmf_path_; }
@@ -46,9 +59,10 @@ class SnapshotWriter {
   void resume(const std::vector<XdmfSnapshot>& table);
 
  private:
-  /// Rank 0 rewrites the .xmf (temporary file, then rename) listing every snapshot so far;
-  /// every rank throws if that failed. Collective.
+  /// Rank 0 rewrites the .xmf of the particles and of each mesh (temporary file, then rename)
+  /// listing every snapshot so far; every rank throws if that failed. Collective.
   void publish_xmf() const;
+  std::string mesh_xmf_path(const XdmfMesh& mesh) const;
 
   MPI_Comm comm_;
   std::string dir_;

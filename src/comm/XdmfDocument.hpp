@@ -1,8 +1,10 @@
 #pragma once
-/// XDMF 3 description of particle snapshots: one temporal collection holding, per snapshot, a
+/// XDMF 3 description of snapshots: one temporal collection holding, per snapshot, a
 /// Polyvertex grid whose heavy data are the datasets SnapshotWriter puts at the root of that
-/// snapshot's HDF5 file. Files are named relative to the .xmf, so an output folder can be moved
-/// as a whole. Keys are the ones both ParaView readers accept (Xdmf3 and the legacy Xdmf2).
+/// snapshot's HDF5 file, and for each mesh wall a collection of Triangle grids read from group
+/// `/mesh/<name>/` of the same files. Files are named relative to the .xmf, so an output folder
+/// can be moved as a whole. Keys are the ones both ParaView readers accept (Xdmf3 and the
+/// legacy Xdmf2).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,6 +19,13 @@ struct XdmfSnapshot {
   double time = 0;          ///< simulated time [s]
   std::uint64_t count = 0;  ///< number of particles (all ranks)
   bool rank_field = false;  ///< the file holds dataset "rank" (owning MPI rank per particle)
+};
+
+/// A mesh wall as its XDMF document lists it; its counts do not change during a run.
+struct XdmfMesh {
+  std::string name;                  ///< the mesh's name: group `/mesh/<name>/`, `<name>.xmf`
+  std::uint64_t vertex_count = 0;    ///< rows of dataset `vertices`
+  std::uint64_t triangle_count = 0;  ///< rows of datasets `triangles`, `force`, `pressure`
 };
 
 /// A per-particle dataset shown as an XDMF attribute.
@@ -72,18 +81,31 @@ inline std::string dimensions(std::uint64_t count, int components) {
   return std::to_string(count) + (components > 1 ? " " + std::to_string(components) : "");
 }
 
+/// A DataItem reading `rows` × `components` values of `dataset` (a path inside h5_file).
+inline std::string hdf_item(const std::string& h5_file, const std::string& dataset,
+                            const char* number_type, int precision, std::uint64_t rows,
+                            int components) {
+  return std::string("<DataItem Format=\"HDF\" NumberType=\"") + number_type + "\" Precision=\"" +
+         std::to_string(precision) + "\" Dimensions=\"" + dimensions(rows, components) + "\">" +
+         escape(h5_file) + ":/" + escape(dataset) + "</DataItem>";
+}
+
 inline std::string data_item(const XdmfSnapshot& snapshot, const char* dataset,
                              const char* number_type, int precision, int components) {
-  return std::string("<DataItem Format=\"HDF\" NumberType=\"") + number_type + "\" Precision=\"" +
-         std::to_string(precision) + "\" Dimensions=\"" + dimensions(snapshot.count, components) +
-         "\">" + escape(snapshot.h5_file) + ":/" + dataset + "</DataItem>";
+  return hdf_item(snapshot.h5_file, dataset, number_type, precision, snapshot.count, components);
+}
+
+/// An Attribute element centred on `center` ("Node" or "Cell") around the DataItem `item`.
+inline std::string attribute_element(const std::string& name, const char* attribute_type,
+                                     const char* center, const std::string& item) {
+  return "        <Attribute Name=\"" + escape(name) + "\" AttributeType=\"" + attribute_type +
+         "\" Center=\"" + center + "\">\n          " + item + "\n        </Attribute>\n";
 }
 
 inline std::string attribute(const XdmfSnapshot& snapshot, const XdmfField& field) {
-  return std::string("        <Attribute Name=\"") + field.name + "\" AttributeType=\"" +
-         field.attribute_type + "\" Center=\"Node\">\n          " +
-         data_item(snapshot, field.name, field.number_type, field.precision, field.components) +
-         "\n        </Attribute>\n";
+  return attribute_element(
+      field.name, field.attribute_type, "Node",
+      data_item(snapshot, field.name, field.number_type, field.precision, field.components));
 }
 
 /// The file name without its extension: the name of that snapshot's grid.
@@ -105,18 +127,53 @@ inline std::string uniform_grid(const XdmfSnapshot& snapshot) {
   return grid + "      </Grid>\n";
 }
 
+/// The Triangle grid of `mesh` in one snapshot file: geometry `vertices`, topology `triangles`
+/// and the per-triangle (Cell) attributes `force` and `pressure` of group `/mesh/<name>/`.
+inline std::string mesh_grid(const XdmfSnapshot& snapshot, const XdmfMesh& mesh) {
+  const std::string group = "mesh/" + mesh.name + "/";
+  const std::string& file = snapshot.h5_file;
+  const std::uint64_t t = mesh.triangle_count;
+  std::string grid = "      <Grid Name=\"" + escape(stem(file)) + "\" GridType=\"Uniform\">\n";
+  grid += "        <Time Value=\"" + exact_decimal(snapshot.time) + "\"/>\n";
+  grid += "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"" + std::to_string(t) +
+          "\">\n          " + hdf_item(file, group + "triangles", "UInt", 4, t, 3) +
+          "\n        </Topology>\n";
+  grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
+          hdf_item(file, group + "vertices", "Float", 8, mesh.vertex_count, 3) +
+          "\n        </Geometry>\n";
+  grid += attribute_element("force", "Vector", "Cell",
+                            hdf_item(file, group + "force", "Float", 8, t, 3));
+  grid += attribute_element("pressure", "Scalar", "Cell",
+                            hdf_item(file, group + "pressure", "Float", 8, t, 1));
+  return grid + "      </Grid>\n";
+}
+
+/// A whole .xmf text: a temporal collection named `name` around `grids`.
+inline std::string temporal_collection(const std::string& name, const std::string& grids) {
+  std::string text = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n";
+  text += "<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n  <Domain>\n";
+  text += "    <Grid Name=\"" + escape(name) +
+          "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  return text + grids + "    </Grid>\n  </Domain>\n</Xdmf>\n";
+}
+
 }  // namespace xdmf_detail
 
 /// The whole .xmf text: a temporal collection named `name` with one uniform grid per snapshot,
 /// in the order given, each named after its file.
 inline std::string particle_xdmf(const std::string& name,
                                  const std::vector<XdmfSnapshot>& snapshots) {
-  std::string text = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n";
-  text += "<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n  <Domain>\n";
-  text += "    <Grid Name=\"" + xdmf_detail::escape(name) +
-          "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (const XdmfSnapshot& snapshot : snapshots) text += xdmf_detail::uniform_grid(snapshot);
-  return text + "    </Grid>\n  </Domain>\n</Xdmf>\n";
+  std::string grids;
+  for (const XdmfSnapshot& snapshot : snapshots) grids += xdmf_detail::uniform_grid(snapshot);
+  return xdmf_detail::temporal_collection(name, grids);
+}
+
+/// The .xmf text of one mesh wall: a temporal collection named after the mesh with one
+/// Triangle grid per snapshot, in the order given, each named after its file.
+inline std::string mesh_xdmf(const XdmfMesh& mesh, const std::vector<XdmfSnapshot>& snapshots) {
+  std::string grids;
+  for (const XdmfSnapshot& snapshot : snapshots) grids += xdmf_detail::mesh_grid(snapshot, mesh);
+  return xdmf_detail::temporal_collection(mesh.name, grids);
 }
 
 }  // namespace gpudem

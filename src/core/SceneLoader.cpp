@@ -315,8 +315,8 @@ void read_motion(const TableReader& mesh, MeshSettings& m) {
   const std::vector<double> times = motion.numbers("times", any_value("s"));
   for (std::size_t k = 1; k < times.size(); ++k)
     if (!(times[k] > times[k - 1]))
-      motion.fail("times", "keyframe times must increase strictly (index " + std::to_string(k) +
-                               ")");
+      motion.fail("times",
+                  "keyframe times must increase strictly (index " + std::to_string(k) + ")");
   const std::vector<Vec3> v = motion.vec3s("velocities", "m/s", times.size());
   const std::vector<Vec3> w = motion.has("angular_velocities")
                                   ? motion.vec3s("angular_velocities", "rad/s", times.size())
@@ -325,8 +325,8 @@ void read_motion(const TableReader& mesh, MeshSettings& m) {
 }
 
 MeshSettings read_mesh(const TableReader& table, std::size_t index, const Scene& scene) {
-  table.allow_only({"name", "file", "material", "scale", "offset", "rotation_axis",
-                    "rotation_angle", "motion"});
+  table.allow_only(
+      {"name", "file", "material", "scale", "offset", "rotation_axis", "rotation_angle", "motion"});
   MeshSettings m;
   m.name = table.string("name", "mesh" + std::to_string(index));
   m.file = path_beside_scene(table, "file", scene);
@@ -335,20 +335,31 @@ MeshSettings read_mesh(const TableReader& table, std::size_t index, const Scene&
   m.placement.scale = table.number("scale", positive(""), 1.0);
   m.placement.offset = table.vec3("offset", "m", Vec3{});
   m.placement.rotation_axis = table.vec3("rotation_axis", "", Vec3{0, 0, 1});
-  if (!(norm(m.placement.rotation_axis) > 0))
-    table.fail_found("rotation_axis", "a non-zero axis");
+  if (!(norm(m.placement.rotation_axis) > 0)) table.fail_found("rotation_axis", "a non-zero axis");
   m.placement.rotation_angle = table.number("rotation_angle", any_value("rad"), 0.0);
   read_motion(table, m);
   return m;
 }
 
+/// Why `name` cannot name a mesh's output (group /mesh/<name>/ and file <name>.xmf next to
+/// particles.xmf), or null. (The reader refuses an empty name.)
+const char* mesh_name_problem(const std::string& name) {
+  if (name.find('/') != std::string::npos) return "contains '/'";
+  if (name == "." || name == "..") return "is not a file name";
+  if (name == "particles") return "is the particles' output name";
+  return nullptr;
+}
+
 /// The [[mesh]] tables; names label force columns, so they differ from each other and from
-/// the walls' names.
+/// the walls' names, and name the mesh's output files.
 std::vector<MeshSettings> read_meshes(const TableReader& root, const Scene& scene) {
   std::vector<MeshSettings> meshes;
   const std::vector<TableReader> tables = root.array_of_tables("mesh");
   for (std::size_t i = 0; i < tables.size(); ++i) {
     MeshSettings mesh = read_mesh(tables[i], i, scene);
+    if (const char* problem = mesh_name_problem(mesh.name))
+      tables[i].fail("name", "name '" + mesh.name + "' " + problem +
+                                 "; it names the mesh's output file <name>.xmf");
     bool taken = false;
     for (const WallSettings& w : scene.walls) taken = taken || w.name == mesh.name;
     for (const MeshSettings& m : meshes) taken = taken || m.name == mesh.name;

@@ -23,6 +23,14 @@ struct Fill {
   GPUDEM_HD void operator()(std::size_t k) const { out[k] = value; }
 };
 
+/// Resizes `out` (in Space memory) to n values and copies the n values at `in` (also in Space
+/// memory, not in `out`) into it.
+template <class Space, class T>
+void copy_values(const T* in, std::size_t n, DeviceArray<T, Space>& out) {
+  out.resize(n);
+  parallel_for(Space{}, n, CopyArray<T>{in, out.data()});
+}
+
 /// Host copy of the n values at `data` in Space memory (a part of a larger array).
 template <class Space, class T>
 std::vector<T> download_values(const T* data, std::size_t n) {

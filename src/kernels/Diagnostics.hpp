@@ -46,10 +46,10 @@ template <class Law>
 struct ContactTerms {
   ParticleView particles;
   ContactScene<Law> scene;
-  Real* contacts;      ///< per particle
-  Real* energy;        ///< per particle [J]
-  Vec3* body_force;    ///< per (particle, body): i·body_count + body [N]
-  Vec3* mesh_torque;   ///< per (particle, mesh): i·mesh_count + m [N m]
+  Real* contacts;     ///< per particle
+  Real* energy;       ///< per particle [J]
+  Vec3* body_force;   ///< per (particle, body): i·body_count + body [N]
+  Vec3* mesh_torque;  ///< per (particle, mesh): i·mesh_count + m [N m]
   struct Tally : IgnoreSeparated {
     Real contacts = 0;
     Real energy = 0;
@@ -99,6 +99,30 @@ struct LoadComponent {
   int component;
   GPUDEM_HD Real operator()(std::size_t i) const {
     return axis(per_particle[i * columns + column], component);
+  }
+};
+
+/// The load of particle i's mesh contacts per mesh candidate-list entry: entry_load[e] is the
+/// force the particle exerts on the triangle of its entry e, −F with F the law's force on the
+/// particle as in ContactTerms [N], and zero for an entry not in contact. The stored history is
+/// read, not advanced (dt = 0).
+template <class Law>
+struct MeshEntryLoads {
+  ParticleView particles;
+  ContactScene<Law> scene;
+  Vec3* entry_load;  ///< per mesh candidate-list entry
+  struct Record : IgnoreSeparated {
+    Vec3* entry_load;
+    GPUDEM_HD void operator()(ContactSample<Law>& c) {
+      if (c.mesh >= 0)
+        entry_load[c.slot] = -Law::evaluate(*c.params, c.point, c.state.value, 0).force;
+    }
+    GPUDEM_HD void separated_from_mesh(std::uint32_t e) { entry_load[e] = Vec3{}; }
+  };
+  GPUDEM_HD void operator()(std::size_t i) const {
+    Record r;
+    r.entry_load = entry_load;
+    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, r);
   }
 };
 

@@ -1,14 +1,18 @@
 #pragma once
 /// Per-particle lists of the mesh triangles that may touch it before the next rebuild, in CSR
 /// form: the triangles of particle i are triangles()[offsets()[i] .. offsets()[i + 1]), each
-/// once, in grid-cell order. Triangle t is listed for particle i when the distance from i's centre to t is
-/// below r_i + skin: valid while the particle and the mesh each move less than skin / 2.
+/// once, in increasing triangle index, so a particle's list (and every sum over it) does not
+/// depend on the grid, the particle order or the rank. Triangle t is listed for particle i
+/// when the distance from i's centre to t is below r_i + skin: valid while the particle and
+/// the mesh each move less than skin / 2.
 ///
 /// Search (DESIGN §3, plan then execute): triangles are binned by their bounding boxes in a
 /// uniform grid over the mesh, cells at least as large as the largest reach; a particle then
 /// scans the at most 2 × 2 × 2 cells its reach box overlaps, and takes a triangle only from the
-/// lowest cell shared by the triangle's box and its own, so no triangle is seen twice. Distances
-/// are plain (meshes do not wrap across periodic faces).
+/// lowest cell shared by the triangle's box and its own, so no triangle is seen twice. On
+/// several ranks a rank bins only the triangles whose boxes meet its bin region (its block
+/// grown by the ghost width, which exceeds any reach). Distances are plain (meshes do not wrap
+/// across periodic faces).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -18,6 +22,7 @@
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
 #include "kernels/ArrayKernels.hpp"
+#include "kernels/BinRegion.hpp"
 #include "kernels/CellList.hpp"
 #include "kernels/DeviceArray.hpp"
 #include "kernels/ParallelFor.hpp"
@@ -32,8 +37,8 @@ struct TriangleCorners {
 
 /// The uniform grid over the meshes' bounding box and the binned triangles (sorted by cell).
 struct TriangleBins {
-  Vec3 lo;           ///< lower corner of the grid [m]
-  Real cell = 1;     ///< cell edge [m]
+  Vec3 lo;        ///< lower corner of the grid [m]
+  Real cell = 1;  ///< cell edge [m]
   int dims[3] = {1, 1, 1};
   const Vec3* vertices;
   const TriangleCorners* corners;
@@ -56,9 +61,9 @@ struct TriangleBins {
   }
   GPUDEM_HD Real distance2(std::uint32_t t, Vec3 p) const {
     const TriangleCorners c = corners[t];
-    return norm2(closest_triangle_feature(p, vertices[c.v[0]], vertices[c.v[1]], vertices[c.v[2]])
-                     .point -
-                 p);
+    return norm2(
+        closest_triangle_feature(p, vertices[c.v[0]], vertices[c.v[1]], vertices[c.v[2]]).point -
+        p);
   }
 
   /// Calls visit(t) for each triangle within `reach` of p, once each.
@@ -85,8 +90,7 @@ struct TriangleBins {
 
  private:
   /// True when (x, y, z) is the lowest cell in both t's box and the query's [first, ...].
-  GPUDEM_HD bool first_shared_cell(std::uint32_t t, const int first[3], int x, int y,
-                                   int z) const {
+  GPUDEM_HD bool first_shared_cell(std::uint32_t t, const int first[3], int x, int y, int z) const {
     const int at[3] = {x, y, z};
     for (int k = 0; k < 3; ++k) {
       int lo_cell, hi_cell;
@@ -99,11 +103,31 @@ struct TriangleBins {
 
 namespace mesh_candidate_kernels {
 
-/// Number of cells triangle t's bounding box covers.
+/// True when triangle t's bounding box meets `region` on every axis the region does not span
+/// whole.
+GPUDEM_HD inline bool meets_region(const TriangleBins& bins, std::uint32_t t,
+                                   const BinRegion& region) {
+  for (int k = 0; k < 3; ++k) {
+    if (region.periodic[k]) continue;
+    const TriangleCorners c = bins.corners[t];
+    const Real a = axis(bins.vertices[c.v[0]], k), b = axis(bins.vertices[c.v[1]], k),
+               d = axis(bins.vertices[c.v[2]], k);
+    const Real lo = axis(region.lo, k), hi = lo + axis(region.length, k);
+    if (fmax(a, fmax(b, d)) < lo || fmin(a, fmin(b, d)) > hi) return false;
+  }
+  return true;
+}
+
+/// Number of cells triangle t's bounding box covers; 0 for a triangle outside `region`.
 struct CountCells {
   TriangleBins bins;
+  BinRegion region;
   std::uint32_t* count;
   GPUDEM_HD void operator()(std::size_t t) const {
+    if (!meets_region(bins, static_cast<std::uint32_t>(t), region)) {
+      count[t] = 0;
+      return;
+    }
     std::uint32_t cells = 1;
     for (int k = 0; k < 3; ++k) {
       int first, last;
@@ -114,13 +138,21 @@ struct CountCells {
   }
 };
 
-/// (cell, triangle) pairs of triangle t from slot offset[t] on.
+/// 1 for a triangle that covers some cell, else 0 (from CountCells).
+struct IsBinned {
+  const std::uint32_t* count;
+  GPUDEM_HD Real operator()(std::size_t t) const { return count[t] > 0 ? Real(1) : Real(0); }
+};
+
+/// (cell, triangle) pairs of triangle t from slot offset[t] on (none outside `region`).
 struct WriteCells {
   TriangleBins bins;
+  BinRegion region;
   const std::uint32_t* offset;
   std::uint64_t* key;
   std::uint32_t* triangle;
   GPUDEM_HD void operator()(std::size_t t) const {
+    if (!meets_region(bins, static_cast<std::uint32_t>(t), region)) return;
     int first[3], last[3];
     for (int k = 0; k < 3; ++k)
       bins.triangle_cells(static_cast<std::uint32_t>(t), k, first[k], last[k]);
@@ -152,7 +184,19 @@ struct WriteVisitor {
   GPUDEM_HD void operator()(std::uint32_t t) { *out++ = t; }
 };
 
-/// Triangles within r_i + skin of particle i: counted, or written from offsets[i] on.
+/// Sorts the `count` values from `first` on in increasing order (insertion sort: a particle's
+/// list holds a few triangles).
+GPUDEM_HD inline void sort_short(std::uint32_t* first, std::uint32_t count) {
+  for (std::uint32_t a = 1; a < count; ++a) {
+    const std::uint32_t value = first[a];
+    std::uint32_t b = a;
+    for (; b > 0 && first[b - 1] > value; --b) first[b] = first[b - 1];
+    first[b] = value;
+  }
+}
+
+/// Triangles within r_i + skin of particle i: counted, or written from offsets[i] on in
+/// increasing index.
 template <bool kWrite>
 struct ParticleTriangles {
   TriangleBins bins;
@@ -165,6 +209,7 @@ struct ParticleTriangles {
     if constexpr (kWrite) {
       WriteVisitor write{triangles + offsets[i]};
       bins.for_each_near(xyz(p), p.w + skin, write);
+      sort_short(triangles + offsets[i], offsets[i + 1] - offsets[i]);
     } else {
       CountVisitor count;
       bins.for_each_near(xyz(p), p.w + skin, count);
@@ -173,25 +218,26 @@ struct ParticleTriangles {
   }
 };
 
-
 }  // namespace mesh_candidate_kernels
 
 template <class Space>
 class MeshCandidateList {
  public:
-  /// Bins `triangle_count` triangles (corners into `vertices`, both in Space memory) and lists,
-  /// for each of the n particles, the triangles within r_i + skin. `max_radius` is the largest
-  /// particle radius: cells are at least 2 (max_radius + skin) wide, and no wider than needed to
-  /// keep the grid under `max_cells` cells.
+  /// Bins the `triangle_count` triangles (corners into `vertices`, both in Space memory) that
+  /// meet `region` and lists, for each of the n particles (inside the region, each at least
+  /// r_i + skin from its faces), the triangles within r_i + skin. `max_radius` is the largest
+  /// particle radius: cells are at least 2 (max_radius + skin) wide, and no wider than needed
+  /// to keep the grid under `max_cells` cells.
   void build(const Vec3* vertices, std::size_t vertex_count, const TriangleCorners* corners,
-             std::size_t triangle_count, const Real4* position_radius, std::size_t n,
-             Real max_radius, Real skin, std::size_t max_cells = std::size_t(1) << 22) {
+             std::size_t triangle_count, const BinRegion& region, const Real4* position_radius,
+             std::size_t n, Real max_radius, Real skin,
+             std::size_t max_cells = std::size_t(1) << 22) {
     n_ = n;
     offsets_.resize(n + 1);
     plan_grid(vertices, vertex_count, max_radius + skin, max_cells);
     bins_.vertices = vertices;
     bins_.corners = corners;
-    bin_triangles(triangle_count);
+    bin_triangles(triangle_count, region);
     using namespace mesh_candidate_kernels;
     parallel_for(Space{}, n,
                  ParticleTriangles<false>{bins_, position_radius, skin, offsets_.data(), nullptr});
@@ -201,9 +247,9 @@ class MeshCandidateList {
     parallel_for(Space{}, 1,
                  Fill<std::uint32_t>{offsets_.data() + n, static_cast<std::uint32_t>(total)});
     triangles_.resize(total);
-    parallel_for(Space{}, n,
-                 ParticleTriangles<true>{bins_, position_radius, skin, offsets_.data(),
-                                         triangles_.data()});
+    parallel_for(
+        Space{}, n,
+        ParticleTriangles<true>{bins_, position_radius, skin, offsets_.data(), triangles_.data()});
     pairs_ = total;
   }
 
@@ -211,6 +257,8 @@ class MeshCandidateList {
   const std::uint32_t* offsets() const { return offsets_.data(); }
   const std::uint32_t* triangles() const { return triangles_.data(); }
   std::uint64_t pairs() const { return pairs_; }
+  /// Triangles binned at the last build: those that meet the region.
+  std::uint64_t binned_triangles() const { return binned_count_; }
   std::size_t memory_bytes() const {
     return offsets_.bytes() + triangles_.bytes() + cell_begin_.bytes() + binned_.bytes() +
            keys_.bytes();
@@ -244,16 +292,17 @@ class MeshCandidateList {
     bins_.cell = cell;
   }
 
-  void bin_triangles(std::size_t triangle_count) {
+  void bin_triangles(std::size_t triangle_count, const BinRegion& region) {
     using namespace mesh_candidate_kernels;
     DeviceArray<std::uint32_t, Space> count(triangle_count + 1);
-    parallel_for(Space{}, triangle_count, CountCells{bins_, count.data()});
-    const std::uint64_t pairs =
-        exclusive_scan(Space{}, count.data(), count.data(), triangle_count);
+    parallel_for(Space{}, triangle_count, CountCells{bins_, region, count.data()});
+    binned_count_ = static_cast<std::uint64_t>(
+        std::llround(reduce_sum(Space{}, triangle_count, IsBinned{count.data()})));
+    const std::uint64_t pairs = exclusive_scan(Space{}, count.data(), count.data(), triangle_count);
     keys_.resize(pairs);
     binned_.resize(pairs);
     parallel_for(Space{}, triangle_count,
-                 WriteCells{bins_, count.data(), keys_.data(), binned_.data()});
+                 WriteCells{bins_, region, count.data(), keys_.data(), binned_.data()});
     sort_by_key(Space{}, keys_.data(), binned_.data(), pairs);
     const std::size_t cells =
         static_cast<std::size_t>(bins_.dims[0]) * bins_.dims[1] * bins_.dims[2];
@@ -268,6 +317,7 @@ class MeshCandidateList {
   TriangleBins bins_;
   std::size_t n_ = 0;
   std::uint64_t pairs_ = 0;
+  std::uint64_t binned_count_ = 0;
   DeviceArray<std::uint32_t, Space> offsets_;
   DeviceArray<std::uint32_t, Space> triangles_;
   DeviceArray<std::uint32_t, Space> cell_begin_;

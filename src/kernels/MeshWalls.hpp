@@ -2,8 +2,10 @@
 /// The triangle-mesh walls (tools) of a step engine in one memory space: vertices moved
 /// rigidly by their prescribed motion every step, the per-particle triangle candidate lists
 /// rebuilt with the neighbour list, and the contact history of each (particle, listed
-/// triangle) entry, carried over a rebuild by (particle, triangle). Include the backend's
-/// ParallelFor header first.
+/// triangle) entry, carried over a rebuild (and a migration to another rank) by (particle,
+/// triangle index). Every rank holds every vertex (a rigid tool moves through all blocks; its
+/// vertices cost 72 bytes each), but bins only the triangles that meet its region. Include
+/// the backend's ParallelFor header first.
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -32,9 +34,9 @@ struct MeshView {
   const TriangleCorners* corners = nullptr;
   const TriangleIds* ids = nullptr;  ///< vertex and edge ids unique over all meshes
   const std::uint32_t* triangle_mesh = nullptr;
-  const MaterialId* material = nullptr;  ///< per mesh
+  const MaterialId* material = nullptr;        ///< per mesh
   const MeshKinematics* kinematics = nullptr;  ///< per mesh
-  const std::uint32_t* offsets = nullptr;  ///< per-particle candidate lists (CSR)
+  const std::uint32_t* offsets = nullptr;      ///< per-particle candidate lists (CSR)
   const std::uint32_t* triangles = nullptr;
 };
 
@@ -83,7 +85,6 @@ struct RemapEntries {
     }
   }
 };
-
 
 }  // namespace mesh_wall_kernels
 
@@ -145,10 +146,9 @@ class MeshWalls {
       if (motion.stands_still()) continue;  // its vertices keep their initial positions
       const std::size_t n = first_vertex_[m + 1] - first_vertex_[m];
       parallel_for(Space{}, n,
-                   mesh_wall_kernels::PlaceVertices{initial_.data(), vertices_.data(),
-                                                    first_vertex_[m],
-                                                    rotation_by_vector(motion.rotation_vector(0, t)),
-                                                    motion.centre(0), centre});
+                   mesh_wall_kernels::PlaceVertices{
+                       initial_.data(), vertices_.data(), first_vertex_[m],
+                       rotation_by_vector(motion.rotation_vector(0, t)), motion.centre(0), centre});
     }
     kinematics_.upload(kinematics);
   }
@@ -156,31 +156,58 @@ class MeshWalls {
   /// True once some vertex has moved more than skin/2 since the last build.
   bool moved_beyond(Real half_skin) const {
     if (empty()) return false;
-    const Real moved2 = reduce_max(Space{}, vertices_.size(), Real(0),
-                                   mesh_wall_kernels::VertexDisplacement{vertices_.data(),
-                                                                         at_build_.data()});
+    const Real moved2 =
+        reduce_max(Space{}, vertices_.size(), Real(0),
+                   mesh_wall_kernels::VertexDisplacement{vertices_.data(), at_build_.data()});
     return moved2 > half_skin * half_skin;
   }
 
-  /// New candidate lists for the n particles (in their new order), with the history carried
-  /// over from the old lists: previous_index[k] is particle k's index in the old lists
-  /// (`had_lists` false: no old lists, history starts at zero).
+  /// Keeps the current lists' history as rows keyed by triangle index, for the next rebuild
+  /// (call before the particles are reordered or migrated; their rows follow previous_index).
+  void keep_rows() {
+    if constexpr (Law::history_size > 0) {
+      if (empty()) return;
+      copy_values(candidates_.offsets(), candidates_.size() + 1, previous_offsets_);
+      copy_values(candidates_.triangles(), candidates_.pairs(), previous_triangles_);
+      previous_history_.swap(history_);
+    }
+  }
+
+  /// Host copies of the kept rows (particle i's: entries [offsets[i], offsets[i + 1])).
+  void get_kept_rows(std::vector<std::uint32_t>& offsets, std::vector<std::uint32_t>& triangles,
+                     std::vector<State>& history) const {
+    previous_offsets_.download(offsets);
+    previous_triangles_.download(triangles);
+    previous_history_.download(history);
+  }
+
+  /// Replaces the kept rows (by particles that arrived from other ranks, say).
+  void set_kept_rows(const std::vector<std::uint32_t>& offsets,
+                     const std::vector<std::uint32_t>& triangles,
+                     const std::vector<State>& history) {
+    previous_offsets_.upload(offsets);
+    previous_triangles_.upload(triangles);
+    previous_history_.upload(history);
+  }
+
+  /// New candidate lists for the n particles (in their new order, all inside `region` on
+  /// this rank), with the history carried over from the kept rows: previous_index[k] is
+  /// particle k's row there (`had_lists` false: no rows kept, history starts at zero).
+  /// `max_radius` is the largest radius on all ranks.
   void rebuild(const Real4* position_radius, std::size_t n, Real max_radius, Real skin,
-               const std::uint32_t* previous_index, bool had_lists) {
+               const BinRegion& region, const std::uint32_t* previous_index, bool had_lists) {
     if (empty()) return;
-    std::swap(candidates_, previous_candidates_);
-    candidates_.build(vertices_.data(), vertices_.size(), corners_.data(), ids_.size(),
+    candidates_.build(vertices_.data(), vertices_.size(), corners_.data(), ids_.size(), region,
                       position_radius, n, max_radius, skin);
-    parallel_for(Space{}, vertices_.size(),
-                 CopyArray<Vec3>{vertices_.data(), at_build_.data()});
+    parallel_for(Space{}, vertices_.size(), CopyArray<Vec3>{vertices_.data(), at_build_.data()});
     if constexpr (Law::history_size > 0) {
       DeviceArray<State, Space> fresh(candidates_.pairs());
       if (had_lists) {
         parallel_for(Space{}, n,
                      mesh_wall_kernels::RemapEntries<State>{
                          candidates_.offsets(), candidates_.triangles(), previous_index,
-                         previous_candidates_.offsets(), previous_candidates_.triangles(),
-                         history_.data(), fresh.data()});
+                         previous_offsets_.data(), previous_triangles_.data(),
+                         previous_history_.data(), fresh.data()});
       } else {
         parallel_for(Space{}, fresh.size(), Fill<State>{fresh.data(), State{}});
       }
@@ -188,18 +215,53 @@ class MeshWalls {
     }
   }
 
+  /// Host copies of the candidate lists (CSR over the owned particles) and their history.
+  void get_rows(std::vector<std::uint32_t>& offsets, std::vector<std::uint32_t>& triangles,
+                std::vector<State>& history) const {
+    offsets = download_values<Space>(candidates_.offsets(), empty() ? 0 : candidates_.size() + 1);
+    triangles = download_values<Space>(candidates_.triangles(), empty() ? 0 : candidates_.pairs());
+    history_.download(history);
+  }
+
+  /// Replaces the history of the candidate-list entries (one State per entry).
+  void set_history(const std::vector<State>& history) { history_.upload(history); }
+
+  /// Triangles in all meshes.
+  std::uint32_t triangle_count() const { return static_cast<std::uint32_t>(ids_.size()); }
+
+  /// Host copy of mesh m's vertices at the current pose, numbered as in its setup.
+  std::vector<Vec3> current_vertices(std::uint32_t m) const {
+    return download_values<Space>(vertices_.data() + first_vertex_[m],
+                                  first_vertex_[m + 1] - first_vertex_[m]);
+  }
+  /// Mesh m's triangles as set up (vertex ids of mesh m); the triangles of all meshes, in
+  /// this order mesh by mesh, are the global triangle indices of the candidate lists.
+  const std::vector<std::array<std::uint32_t, 3>>& setup_triangles(std::uint32_t m) const {
+    return setups_[m].mesh.triangles;
+  }
+  /// Host copy of the global triangle index of each candidate-list entry.
+  std::vector<std::uint32_t> entry_triangles() const {
+    return download_values<Space>(candidates_.triangles(), empty() ? 0 : candidates_.pairs());
+  }
+
   MeshView view() const {
     if (empty()) return MeshView{};
-    return MeshView{count(),          vertices_.data(),      corners_.data(),
-                    ids_.data(),      triangle_mesh_.data(), material_.data(),
-                    kinematics_.data(), candidates_.offsets(), candidates_.triangles()};
+    return MeshView{count(),
+                    vertices_.data(),
+                    corners_.data(),
+                    ids_.data(),
+                    triangle_mesh_.data(),
+                    material_.data(),
+                    kinematics_.data(),
+                    candidates_.offsets(),
+                    candidates_.triangles()};
   }
   State* history() { return history_.data(); }
   const State* history() const { return history_.data(); }
   std::size_t memory_bytes() const {
     return initial_.bytes() + vertices_.bytes() + at_build_.bytes() + corners_.bytes() +
-           ids_.bytes() + triangle_mesh_.bytes() + history_.bytes() +
-           candidates_.memory_bytes() + previous_candidates_.memory_bytes();
+           ids_.bytes() + triangle_mesh_.bytes() + history_.bytes() + candidates_.memory_bytes() +
+           previous_offsets_.bytes() + previous_triangles_.bytes() + previous_history_.bytes();
   }
 
  private:
@@ -214,8 +276,11 @@ class MeshWalls {
   DeviceArray<MaterialId, Space> material_;
   DeviceArray<MeshKinematics, Space> kinematics_;
   MeshCandidateList<Space> candidates_;
-  MeshCandidateList<Space> previous_candidates_;
-  DeviceArray<State, Space> history_;
+  DeviceArray<State, Space> history_;  ///< per candidate-list entry
+  // The rows kept for the next rebuild: per particle, (triangle, history) entries.
+  DeviceArray<std::uint32_t, Space> previous_offsets_;
+  DeviceArray<std::uint32_t, Space> previous_triangles_;
+  DeviceArray<State, Space> previous_history_;
 };
 
 }  // namespace gpudem

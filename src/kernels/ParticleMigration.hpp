@@ -1,8 +1,9 @@
 #pragma once
 /// Migration (DESIGN §4): on a rebuild step, owned particles whose position another rank owns
-/// travel there with all their state and their contact history: the wall records and the
-/// records of their own side of each particle contact, keyed by the partner's global id so
-/// that they find their contacts again in the new rank's neighbour list. Host code over host
+/// travel there with all their state and their contact history: the wall records, the
+/// records of their own side of each particle contact, keyed by the partner's global id, and
+/// their mesh records, keyed by triangle index, so that they find their contacts again in the
+/// new rank's lists. Host code over host
 /// copies; the engine stages its arrays through it.
 #include <cstddef>
 #include <cstdint>
@@ -16,7 +17,8 @@
 namespace gpudem {
 
 /// A rank's owned particles as host copies, with their pair history as rows keyed by partner
-/// id: particle i's records are row_partner / row_history [row_offsets[i], row_offsets[i + 1]).
+/// id: particle i's records are row_partner / row_history [row_offsets[i], row_offsets[i + 1]),
+/// and its mesh history as rows keyed by triangle index in mesh_offsets the same way.
 template <class State>
 struct MigratingParticles {
   std::vector<Real4> position_radius;
@@ -28,6 +30,9 @@ struct MigratingParticles {
   std::vector<std::uint32_t> row_offsets{0};
   std::vector<ParticleId> row_partner;
   std::vector<State> row_history;
+  std::vector<std::uint32_t> mesh_offsets{0};
+  std::vector<std::uint32_t> mesh_triangle;
+  std::vector<State> mesh_history;
 
   std::size_t size() const { return id.size(); }
 
@@ -45,6 +50,11 @@ struct MigratingParticles {
       row_history.push_back(from.row_history[e]);
     }
     row_offsets.push_back(static_cast<std::uint32_t>(row_partner.size()));
+    for (std::uint32_t e = from.mesh_offsets[i]; e < from.mesh_offsets[i + 1]; ++e) {
+      mesh_triangle.push_back(from.mesh_triangle[e]);
+      mesh_history.push_back(from.mesh_history[e]);
+    }
+    mesh_offsets.push_back(static_cast<std::uint32_t>(mesh_triangle.size()));
   }
 };
 
@@ -64,7 +74,8 @@ T take(const std::vector<char>& in, std::size_t& at) {
   return value;
 }
 
-/// Particle i of `p` as bytes: its state, its wall records, then its row count and rows.
+/// Particle i of `p` as bytes: its state, its wall records, then its row count and rows, then
+/// its mesh row count and mesh rows.
 template <class State>
 void pack(const MigratingParticles<State>& p, std::size_t i, std::uint32_t walls,
           std::vector<char>& out) {
@@ -78,6 +89,11 @@ void pack(const MigratingParticles<State>& p, std::size_t i, std::uint32_t walls
   for (std::uint32_t e = p.row_offsets[i]; e < p.row_offsets[i + 1]; ++e) {
     put(out, p.row_partner[e]);
     put(out, p.row_history[e]);
+  }
+  put(out, p.mesh_offsets[i + 1] - p.mesh_offsets[i]);
+  for (std::uint32_t e = p.mesh_offsets[i]; e < p.mesh_offsets[i + 1]; ++e) {
+    put(out, p.mesh_triangle[e]);
+    put(out, p.mesh_history[e]);
   }
 }
 
@@ -98,6 +114,12 @@ void unpack(const std::vector<char>& in, std::uint32_t walls, MigratingParticles
       p.row_history.push_back(take<State>(in, at));
     }
     p.row_offsets.push_back(static_cast<std::uint32_t>(p.row_partner.size()));
+    const auto mesh_rows = take<std::uint32_t>(in, at);
+    for (std::uint32_t e = 0; e < mesh_rows; ++e) {
+      p.mesh_triangle.push_back(take<std::uint32_t>(in, at));
+      p.mesh_history.push_back(take<State>(in, at));
+    }
+    p.mesh_offsets.push_back(static_cast<std::uint32_t>(p.mesh_triangle.size()));
   }
 }
 

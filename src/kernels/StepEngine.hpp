@@ -3,6 +3,7 @@
 /// Host code talks to it through this interface only; the implementation is one template
 /// (StepEngineImpl.hpp) instantiated for the host backend (StepEngineHost.cpp) and the CUDA
 /// backend (StepEngineCuda.cu). This header includes no CUDA headers.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -53,6 +54,30 @@ struct Diagnostics {
   std::vector<Vec3> mesh_torque;  ///< their torque on each mesh about its centre [N m]
 };
 
+/// One mesh wall at the current time: its surface and the force the particles exert on each
+/// of its triangles [N], summed over all ranks.
+struct MeshSurface {
+  std::vector<Vec3> vertices;                           ///< at the current pose [m]
+  std::vector<std::array<std::uint32_t, 3>> triangles;  ///< vertex ids of this mesh
+  std::vector<Vec3> triangle_force;                     ///< per triangle [N]
+};
+
+/// Pressure on each triangle (a, b, c) of `mesh`: p = −(F · n̂) / A [Pa], with F its
+/// triangle_force, n̂ the unit normal by the right-hand rule of the corner order (outward on a
+/// closed STL) and A the area, so particles pressing on the side n̂ faces give p > 0;
+/// n = (b − a) × (c − a) = 2A n̂ gives p = −2 F · n / |n|².
+inline std::vector<double> triangle_pressures(const MeshSurface& mesh) {
+  std::vector<double> pressure;
+  pressure.reserve(mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const Vec3& a = mesh.vertices[mesh.triangles[t][0]];
+    const Vec3 n =
+        cross(mesh.vertices[mesh.triangles[t][1]] - a, mesh.vertices[mesh.triangles[t][2]] - a);
+    pressure.push_back(-2 * dot(mesh.triangle_force[t], n) / norm2(n));
+  }
+  return pressure;
+}
+
 /// Wall time this rank's engine spent in each part of its steps since it was made [s] (host
 /// clock: on the CUDA backend a part ends when its last launch has returned), and the ghost
 /// bytes its per-step refreshes sent. Waits for other ranks count in the part that waits.
@@ -98,17 +123,20 @@ class StepEngine {
 
   /// Positions and radii at the last neighbour-list build, in the order of get_particles.
   virtual void get_list_positions(std::vector<Real4>& position_radius) const = 0;
+  /// The step of the last neighbour-list build (the meshes' pose it was built with).
+  virtual std::uint64_t list_build_step() const = 0;
   /// Replaces the particles to continue a saved run bit-for-bit, on any number of ranks:
   /// `particles` and `list_positions` as get_particles and get_list_positions gave them on all
   /// ranks of the saved run; each rank takes those whose list position it owns. Unlike
   /// set_particles it keeps the forces and torques of `particles` (evaluated from half-step
   /// velocities that the saved state no longer holds) and builds the neighbour list at the
   /// positions of the saved engine's last build, so that the list and the next rebuild follow
-  /// the saved run (every sum runs in partner-id order, whatever the particle order). Springs
-  /// are zero until set_contact_history; removed_count() continues from `removed`.
+  /// the saved run (every sum runs in partner-id order, whatever the particle order), with the
+  /// meshes at their pose of step `list_build_step`. Springs are zero until
+  /// set_contact_history; removed_count() continues from `removed`.
   virtual void restore_particles(const ParticleStore& particles,
-                                 const std::vector<Real4>& list_positions,
-                                 std::uint64_t removed) = 0;
+                                 const std::vector<Real4>& list_positions, std::uint64_t removed,
+                                 std::uint64_t list_build_step) = 0;
   /// Particles on all ranks.
   virtual std::size_t particle_count() const = 0;
   /// Particles this rank owns.
@@ -133,6 +161,9 @@ class StepEngine {
   virtual bool find_unhealthy(double max_overlap_ratio, HealthFailure& failure) const = 0;
 
   virtual Diagnostics diagnostics() const = 0;
+  /// Each mesh (in the order of EngineSetup::meshes) with the load on each of its triangles;
+  /// the triangle forces of a mesh add up to its Diagnostics::mesh_force. Collective.
+  virtual std::vector<MeshSurface> mesh_surfaces() const = 0;
 
   /// Particles removed so far for leaving the non-periodic domain.
   virtual std::uint64_t removed_count() const = 0;

@@ -176,11 +176,12 @@ class StepEngineImpl final : public StepEngine {
   }
 
   void restore_particles(const ParticleStore& all, const std::vector<Real4>& list_positions,
-                         std::uint64_t removed) override {
+                         std::uint64_t removed, std::uint64_t list_build_step) override {
     if (list_positions.size() != all.size() || all.force.size() != all.size() ||
         all.torque.size() != all.size())
       throw std::invalid_argument("restore_particles: arrays differ in length");
     count_particles(all.id);
+    list_build_step_ = list_build_step;
     if (domain_.ranks() == 1) {
       restore_owned(all, list_positions);
     } else {
@@ -206,27 +207,28 @@ class StepEngineImpl final : public StepEngine {
   }
 
   void get_contact_history(ContactHistory& history) const override {
-    history = collect_history(contact_slots(), kHistoryWidth, flat_values(pair_history_),
-                              flat_values(wall_history_));
+    HistoryValues values;
+    values.pair = flat_values(pair_history_);
+    values.wall = flat_values(wall_history_);
+    values.mesh = flat_values(mesh_history());
+    history = collect_history(contact_slots(), kHistoryWidth, values);
   }
 
   void set_contact_history(const ContactHistory& history) override {
-    std::vector<Real> pair_values, wall_values;
     const ContactSlots slots = contact_slots();
-    if (domain_.ranks() > 1)
-      scatter_history(slots, kHistoryWidth, records_of_owned(history, slots), pair_values,
-                      wall_values);
-    else
-      scatter_history(slots, kHistoryWidth, history, pair_values, wall_values);
+    const HistoryValues values = scatter_history(
+        slots, kHistoryWidth, domain_.ranks() > 1 ? records_of_owned(history, slots) : history);
     if constexpr (kHistoryWidth > 0) {
-      upload_states(pair_values, pair_history_);
-      upload_states(wall_values, wall_history_);
+      upload_states(values.pair, pair_history_);
+      upload_states(values.wall, wall_history_);
+      if (!meshes_.empty()) meshes_.set_history(states_of(values.mesh));
     }
   }
 
   void get_list_positions(std::vector<Real4>& position_radius) const override {
     position_at_build_.download(position_radius);
   }
+  std::uint64_t list_build_step() const override { return list_build_step_; }
 
   std::size_t particle_count() const override { return global_count_; }
   std::size_t owned_count() const override { return owned_; }
@@ -301,6 +303,21 @@ class StepEngineImpl final : public StepEngine {
     return d;
   }
 
+  std::vector<MeshSurface> mesh_surfaces() const override {
+    if (meshes_.empty()) return {};
+    std::vector<MeshSurface> surfaces(meshes_.count());
+    for (std::uint32_t m = 0; m < meshes_.count(); ++m) {
+      surfaces[m].vertices = meshes_.current_vertices(m);
+      surfaces[m].triangles = meshes_.setup_triangles(m);
+    }
+    const std::vector<double> load = triangle_loads();
+    std::size_t t = 0;
+    for (MeshSurface& surface : surfaces)
+      for (std::size_t k = 0; k < surface.triangles.size(); ++k, ++t)
+        surface.triangle_force.push_back(Vec3{load[3 * t], load[3 * t + 1], load[3 * t + 2]});
+    return surfaces;
+  }
+
   std::uint64_t removed_count() const override { return removed_; }
   std::uint64_t rebuild_count() const override { return rebuilds_; }
   StepTimes step_times() const override { return times_; }
@@ -363,6 +380,9 @@ class StepEngineImpl final : public StepEngine {
     for (std::size_t k = 0; k < history.wall_owner.size(); ++k)
       if (owned.count(history.wall_owner[k]))
         mine.add_wall(history.wall_owner[k], history.wall_index[k], &history.wall_values[k * w]);
+    for (std::size_t k = 0; k < history.mesh_owner.size(); ++k)
+      if (owned.count(history.mesh_owner[k]))
+        mine.add_mesh(history.mesh_owner[k], history.mesh_triangle[k], &history.mesh_values[k * w]);
     return mine;
   }
 
@@ -437,8 +457,9 @@ class StepEngineImpl final : public StepEngine {
     permute_array(cells_.order(), owned_, force);
     permute_array(cells_.order(), owned_, torque);
     build_list(receive_ghosts());
-    meshes_.rebuild(position_radius_.data(), owned_, largest_radius(), setup_.skin,
-                    previous_index_.data(), false);
+    if (!meshes_.empty()) meshes_.set_time(list_build_step_ * setup_.dt);
+    rebuild_mesh_candidates(false);
+    if (!meshes_.empty()) meshes_.set_time(steps_ * setup_.dt);
     parallel_for(Space{}, owned_,
                  SwapValues<Real4>{position_radius_.data(), position_at_build_.data()});
     if (domain_.ranks() > 1) ghosts_.update(domain_, arrays(), owned_);
@@ -466,21 +487,39 @@ class StepEngineImpl final : public StepEngine {
   }
 
   /// Host copy of a history array as kHistoryWidth values per contact.
-  std::vector<Real> flat_values(const DeviceArray<State, Space>& states) const {
+  static std::vector<Real> flat_values(const DeviceArray<State, Space>& states) {
     std::vector<State> host;
     states.download(host);
+    return flat_values(host);
+  }
+
+  /// Host copies of the mesh candidates' history (none without meshes or history).
+  std::vector<State> mesh_history() const {
+    std::vector<std::uint32_t> offsets, triangles;
+    std::vector<State> history;
+    if (!meshes_.empty()) meshes_.get_rows(offsets, triangles, history);
+    return history;
+  }
+
+  /// Host copy of a history array as kHistoryWidth values per contact.
+  static std::vector<Real> flat_values(const std::vector<State>& host) {
     std::vector<Real> values;
     values.reserve(host.size() * kHistoryWidth);
     for (const State& s : host) values.insert(values.end(), s.value, s.value + kHistoryWidth);
     return values;
   }
 
-  static void upload_states(const std::vector<Real>& values, DeviceArray<State, Space>& states) {
+  /// kHistoryWidth values per contact as states.
+  static std::vector<State> states_of(const std::vector<Real>& values) {
     std::vector<State> host(values.size() / kHistoryWidth);
     for (std::size_t k = 0; k < host.size(); ++k)
       for (std::uint32_t v = 0; v < kHistoryWidth; ++v)
         host[k].value[v] = values[k * kHistoryWidth + v];
-    states.upload(host);
+    return host;
+  }
+
+  static void upload_states(const std::vector<Real>& values, DeviceArray<State, Space>& states) {
+    states.upload(states_of(values));
   }
 
   /// Host copies of the ids (owned, then ghosts) and the owned particles' neighbour list,
@@ -494,6 +533,11 @@ class StepEngineImpl final : public StepEngine {
         download_values<Space>(neighbors_.neighbors(), has_list_ ? neighbors_.pairs_kept() : 0);
     if (slots.offsets.empty()) slots.offsets.assign(owned_ + 1, 0);
     slots.wall_count = wall_count();
+    if (meshes_.empty()) return slots;
+    std::vector<State> unused;
+    meshes_.get_rows(slots.mesh_offsets, slots.mesh_triangles, unused);
+    if (slots.mesh_offsets.empty()) slots.mesh_offsets.assign(owned_ + 1, 0);
+    slots.triangle_count = meshes_.triangle_count();
     return slots;
   }
 
@@ -584,6 +628,26 @@ class StepEngineImpl final : public StepEngine {
     return d;
   }
 
+  /// The force the particles of all ranks exert on each triangle of all meshes, as x, y, z
+  /// per global triangle index [N]: the loads of this rank's mesh contacts (MeshEntryLoads)
+  /// added up per triangle on the host, then summed over the ranks. Collective.
+  std::vector<double> triangle_loads() const {
+    std::size_t triangles = 0;
+    for (std::uint32_t m = 0; m < meshes_.count(); ++m)
+      triangles += meshes_.setup_triangles(m).size();
+    const std::vector<std::uint32_t> triangle_of_entry = meshes_.entry_triangles();
+    DeviceArray<Vec3, Space> entry_load(triangle_of_entry.size());
+    parallel_for(Space{}, owned_,
+                 MeshEntryLoads<Law>{particle_view(), contact_scene(), entry_load.data()});
+    std::vector<Vec3> entry_host;
+    entry_load.download(entry_host);
+    std::vector<double> load(3 * triangles, 0.0);
+    for (std::size_t e = 0; e < entry_host.size(); ++e)
+      for (int k = 0; k < 3; ++k) load[3 * triangle_of_entry[e] + k] += axis(entry_host[e], k);
+    domain_.sum(load);
+    return load;
+  }
+
   /// Sums (and for the overlap, maximises) a rank's diagnostics over all ranks.
   void sum_over_ranks(Diagnostics& d, double contact_share) const {
     std::vector<double> v = {contact_share, d.kinetic_translational, d.kinetic_rotational,
@@ -640,9 +704,9 @@ class StepEngineImpl final : public StepEngine {
     const std::size_t ghosts = receive_ghosts();
     times_.ghosts += watch.lap();
     build_list(ghosts);
-    meshes_.rebuild(position_radius_.data(), owned_, largest_radius(), setup_.skin,
-                    previous_index_.data(), has_list_);
+    rebuild_mesh_candidates(has_list_);
     remap_pair_history();
+    list_build_step_ = steps_;
     position_at_build_.resize(owned_);
     parallel_for(Space{}, owned_,
                  CopyArray<Real4>{position_radius_.data(), position_at_build_.data()});
@@ -650,11 +714,13 @@ class StepEngineImpl final : public StepEngine {
     ++rebuilds_;
   }
 
-  /// Keeps each owned particle's list row as (partner id, history) records for the remap.
+  /// Keeps each owned particle's list row as (partner id, history) records for the remap, and
+  /// its mesh candidates as (triangle, history) records.
   void keep_previous_rows() {
     iota(previous_index_, owned_);
     if constexpr (kHistoryWidth > 0) {
       if (!has_list_) return;
+      meshes_.keep_rows();
       previous_offsets_.resize(owned_ + 1);
       parallel_for(Space{}, owned_ + 1,
                    CopyArray<std::uint32_t>{neighbors_.offsets(), previous_offsets_.data()});
@@ -676,6 +742,7 @@ class StepEngineImpl final : public StepEngine {
       previous_offsets_.upload(moved.row_offsets);
       previous_partner_.upload(moved.row_partner);
       previous_history_.upload(moved.row_history);
+      meshes_.set_kept_rows(moved.mesh_offsets, moved.mesh_triangle, moved.mesh_history);
     }
   }
 
@@ -688,27 +755,41 @@ class StepEngineImpl final : public StepEngine {
     id_.download(p.id);
     material_.download(p.material);
     p.row_offsets.assign(owned_ + 1, 0);
+    p.mesh_offsets.assign(owned_ + 1, 0);
     if constexpr (kHistoryWidth > 0) {
       if (walls > 0) wall_history_.download(p.wall_history);
-      if (has_list_) {
-        std::vector<std::uint32_t> index, offsets;
-        previous_index_.download(index);
-        previous_offsets_.download(offsets);
-        std::vector<ParticleId> partner;
-        std::vector<State> history;
-        previous_partner_.download(partner);
-        previous_history_.download(history);
-        p.row_partner.clear();
-        for (std::size_t i = 0; i < owned_; ++i) {
-          for (std::uint32_t f = offsets[index[i]]; f < offsets[index[i] + 1]; ++f) {
-            p.row_partner.push_back(partner[f]);
-            p.row_history.push_back(history[f]);
-          }
-          p.row_offsets[i + 1] = static_cast<std::uint32_t>(p.row_partner.size());
-        }
-      }
+      if (!has_list_) return p;
+      std::vector<std::uint32_t> index, offsets;
+      previous_index_.download(index);
+      previous_offsets_.download(offsets);
+      std::vector<ParticleId> partner;
+      std::vector<State> history;
+      previous_partner_.download(partner);
+      previous_history_.download(history);
+      gather_rows(index, offsets, partner, history, p.row_offsets, p.row_partner, p.row_history);
+      if (meshes_.empty()) return p;
+      std::vector<std::uint32_t> triangle;
+      meshes_.get_kept_rows(offsets, triangle, history);
+      gather_rows(index, offsets, triangle, history, p.mesh_offsets, p.mesh_triangle,
+                  p.mesh_history);
     }
     return p;
+  }
+
+  /// Appends the rows of each owned particle i (rows [offsets[index[i]], offsets[index[i] + 1])
+  /// of `keys` and `values`) in particle order, with their CSR offsets (owned_ + 1 of them).
+  template <class Key>
+  void gather_rows(const std::vector<std::uint32_t>& index,
+                   const std::vector<std::uint32_t>& offsets, const std::vector<Key>& keys,
+                   const std::vector<State>& values, std::vector<std::uint32_t>& out_offsets,
+                   std::vector<Key>& out_keys, std::vector<State>& out_values) const {
+    for (std::size_t i = 0; i < owned_; ++i) {
+      for (std::uint32_t f = offsets[index[i]]; f < offsets[index[i] + 1]; ++f) {
+        out_keys.push_back(keys[f]);
+        out_values.push_back(values[f]);
+      }
+      out_offsets[i + 1] = static_cast<std::uint32_t>(out_keys.size());
+    }
   }
 
   void sort_owned_by_cell() {
@@ -743,6 +824,13 @@ class StepEngineImpl final : public StepEngine {
     parallel_for(Space{}, total, SlotOfOwned{cells_.order(), owned_, slot_of_owned_.data()});
     const NeighborRows rows{slot_of_owned_.data(), owned_, cells_.order(), id_.data()};
     neighbors_.build(cells_, sorted_position_.data(), total, setup_.box, setup_.skin, &rows);
+  }
+
+  /// The owned particles' mesh candidates, with the kept rows' history when `carry`.
+  void rebuild_mesh_candidates(bool carry) {
+    if (meshes_.empty()) return;
+    meshes_.rebuild(position_radius_.data(), owned_, domain_.max(largest_radius()), setup_.skin,
+                    domain_.region(), previous_index_.data(), carry);
   }
 
   void remap_pair_history() {
@@ -875,6 +963,7 @@ class StepEngineImpl final : public StepEngine {
   std::uint64_t global_count_ = 0;     ///< particles on all ranks
   std::uint64_t expected_id_sum_ = 0;  ///< id_checksum of the particles on all ranks
   std::uint64_t steps_ = 0;            ///< the run's step count (the meshes' clock)
+  std::uint64_t list_build_step_ = 0;  ///< steps_ at the last neighbour-list build
   bool has_list_ = false;
   std::uint64_t removed_ = 0;  ///< on all ranks
   std::uint64_t rebuilds_ = 0;

@@ -2,7 +2,7 @@
 # rank, restarts across rank counts, load balance, momentum conservation, a sliding contact
 # across a rank boundary and checkpoints of runs killed with SIGKILL (scripts/decomposed_runs.py).
 find_program(GPUDEM_MPIRUN NAMES mpirun mpiexec REQUIRED)
-foreach(case same-physics restart balance momentum sliding-pair killed-checkpoint)
+foreach(case same-physics restart balance momentum sliding-pair killed-checkpoint tool)
   add_test(NAME mpi_${case}
     COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/mpi/scripts/decomposed_runs.py
       --binary $<TARGET_FILE:gpudem-mpi> --mpirun ${GPUDEM_MPIRUN}

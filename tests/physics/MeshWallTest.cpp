@@ -1,9 +1,15 @@
 // Triangle-mesh walls in the engine: a mesh plane acts exactly like the analytic plane wall
 // (also where a sphere rolls across the edge two triangles share), and a moving mesh plate
 // hits a sphere as rigid-body impact theory says, with the momentum the mesh force carries.
+// The per-triangle loads of the snapshot output: a sphere pressed into one triangle of a mesh
+// plane loads that triangle alone with the Hooke force k δ, at the pressure k δ / A, and on a
+// moving plane under many spheres each triangle carries what its spheres push on it, adding up
+// to the mesh force of the diagnostics.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "core/SceneSetup.hpp"
 #include "support/Backends.hpp"
@@ -81,7 +87,8 @@ TEST_P(MeshWall, TiltedMeshPlaneMatchesAnalyticPlane) {
     const auto expected = trajectory(plane_setup, p, 40, 5000);  // 0.4 s
     const auto got = trajectory(mesh_setup, p, 40, 5000);
     double worst = 0;
-    for (std::size_t k = 0; k < got.size(); ++k) worst = std::max(worst, norm(got[k] - expected[k]));
+    for (std::size_t k = 0; k < got.size(); ++k)
+      worst = std::max(worst, norm(got[k] - expected[k]));
     const double travelled = norm(expected.back() - start);
     RecordProperty("largest_position_difference_m_mu_r_" + std::to_string(int(mu_r * 10)),
                    significant(worst));
@@ -125,6 +132,116 @@ TEST_P(MeshWall, MovingPlatePushesSphere) {
     EXPECT_NEAR(impulse, m * v, 0.01 * m * v);
     EXPECT_GT(p.position_radius[0].x, V * 0.12 + r);  // ahead of the plate
   }
+}
+
+/// Hooke contact of stiffness k without damping (e = 1) or friction, and the given gravity.
+Scene elastic_scene(double k, Vec3 gravity) {
+  Scene s = basic_scene({-1, -1, -1}, {1, 1, 1}, k, 1.0, 0.0);
+  s.simulation.gravity = gravity;
+  s.simulation.dt_auto = false;
+  s.simulation.dt = 1e-5;
+  return s;
+}
+
+/// |a − b| / |b|.
+double relative_difference(Vec3 a, Vec3 b) { return norm(a - b) / norm(b); }
+
+/// The plane z = 0 as a square of side 1 (half width 0.5), two triangles of area 0.5 each:
+/// triangle 0 covers y < x, triangle 1 covers y > x; both have normal +z.
+constexpr double kHalf = 0.5;
+constexpr double kTriangleArea = 2 * kHalf * kHalf;
+
+MeshWallSetup floor_plate() {
+  MeshWallSetup plate;
+  plate.mesh = square({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, kHalf);
+  return plate;
+}
+
+/// A sphere at rest pressed δ into one triangle of the plane: that triangle carries the whole
+/// load (0, 0, −k δ), the other none, they add up to the mesh force of the diagnostics, the
+/// surface is the plate's, and the pressure on the loaded triangle (normal +z, towards the
+/// sphere) is k δ / A.
+TEST_P(MeshWall, PressedSphereLoadsOnlyItsTriangleWithThePressureOfTheHookeForce) {
+  const double k = 1e4, r = 0.01, delta = 1e-4;
+  const Vec3 over_triangle[2] = {{0.2, -0.2, r - delta}, {-0.25, 0.15, r - delta}};
+  for (int loaded = 0; loaded < 2; ++loaded) {
+    SCOPED_TRACE("sphere over triangle " + std::to_string(loaded));
+    const Scene s = elastic_scene(k, {0, 0, -9.81});
+    const ParticleStore p = one_sphere(s, over_triangle[loaded], {}, r);
+    EngineSetup setup = make_engine_setup(s, p);
+    setup.meshes.push_back(floor_plate());
+    auto engine = make_engine(setup);
+    engine->set_particles(p);
+    const Vec3 mesh_force = engine->diagnostics().mesh_force[0];
+    const std::vector<MeshSurface> surfaces = engine->mesh_surfaces();
+    ASSERT_EQ(surfaces.size(), 1u);
+    const MeshSurface& plate = surfaces[0];
+    ASSERT_EQ(plate.vertices.size(), 4u);
+    for (std::size_t v = 0; v < 4; ++v)  // a plate standing still keeps its vertices exactly
+      EXPECT_EQ(norm(plate.vertices[v] - setup.meshes[0].mesh.vertices[v]), 0.0) << v;
+    EXPECT_EQ(plate.triangles, setup.meshes[0].mesh.triangles);
+    ASSERT_EQ(plate.triangle_force.size(), 2u);
+    const Vec3 hooke{0, 0, -k * delta};  // the particle pushes the plate down
+    EXPECT_LT(relative_difference(mesh_force, hooke), 1e-12);
+    const Vec3 sum = plate.triangle_force[0] + plate.triangle_force[1];
+    RecordProperty("triangle_sum_vs_mesh_force_" + std::to_string(loaded),
+                   significant(relative_difference(sum, mesh_force)));
+    EXPECT_LT(relative_difference(sum, mesh_force), 1e-12);
+    EXPECT_LT(relative_difference(plate.triangle_force[loaded], mesh_force), 1e-12);
+    EXPECT_EQ(norm(plate.triangle_force[1 - loaded]), 0.0);
+    const std::vector<double> pressure = triangle_pressures(plate);
+    const double expected = k * delta / kTriangleArea;  // −F · ẑ / A
+    RecordProperty("pressure_Pa_" + std::to_string(loaded), significant(pressure[loaded]));
+    EXPECT_NEAR(pressure[loaded], expected, 1e-12 * std::abs(expected));
+    EXPECT_EQ(pressure[1 - loaded], 0.0);
+  }
+}
+
+/// Spheres resting on both triangles of a plane that moves at V (overlaps near the static
+/// m g / k, so they stay in contact while the plate lifts them): after some steps the vertices
+/// are the plate's moved by V t, and each triangle carries the sum over the spheres above it of
+/// m g − F (without damping or friction, the only other force on a sphere is the plate's,
+/// −load); the triangles add up to the mesh force of the diagnostics.
+TEST_P(MeshWall, EachTriangleCarriesTheLoadOfTheSpheresOnIt) {
+  const double k = 1e4, r = 0.01;
+  const Vec3 g{0, 0, -9.81}, V{0.02, -0.01, 0.005};
+  const Scene s = elastic_scene(k, g);
+  ParticleStore p;
+  const double m = sphere_mass(s.materials[0].density, r);
+  const Vec3 places[] = {{0.2, -0.2, 0}, {0.3, 0.0, 0},  {0.0, -0.35, 0},
+                         {-0.2, 0.2, 0}, {-0.3, 0.1, 0}, {0.05, 0.3, 0}};
+  for (std::size_t i = 0; i < std::size(places); ++i)
+    p.add(i, places[i] + Vec3{0, 0, r - (1 + 0.05 * i) * m * norm(g) / k}, r, 0, {}, 1 / m);
+  EngineSetup setup = make_engine_setup(s, p);
+  MeshWallSetup plate = floor_plate();
+  plate.motion = PrescribedMotion({0, 0, 0}, {{0, V, {}}, {1, V, {}}});
+  setup.meshes.push_back(plate);
+  auto engine = make_engine(setup);
+  engine->set_particles(p);
+  const int steps = 300;
+  for (int n = 0; n < steps; ++n) engine->step();
+  engine->get_particles(p);
+  const MeshSurface surface = engine->mesh_surfaces()[0];
+  const Vec3 moved = steps * s.simulation.dt * V;
+  for (std::size_t v = 0; v < surface.vertices.size(); ++v)
+    EXPECT_LT(norm(surface.vertices[v] - (plate.mesh.vertices[v] + moved)), 1e-15) << v;
+  Vec3 expected[2];
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3 x = xyz(p.position_radius[i]);
+    ASSERT_GT(std::abs(x.x - x.y), 2 * r) << "sphere " << i << " reached the diagonal";
+    expected[x.y > x.x ? 1 : 0] += m * g - p.force[i];
+  }
+  double worst = 0;
+  for (int t = 0; t < 2; ++t) {
+    ASSERT_GT(norm(expected[t]), m * norm(g)) << "too few spheres press on triangle " << t;
+    worst = std::max(worst, relative_difference(surface.triangle_force[t], expected[t]));
+  }
+  RecordProperty("triangle_force_vs_sphere_loads", significant(worst));
+  EXPECT_LT(worst, 1e-12);
+  const Vec3 mesh_force = engine->diagnostics().mesh_force[0];
+  const Vec3 sum = surface.triangle_force[0] + surface.triangle_force[1];
+  RecordProperty("triangle_sum_vs_mesh_force", significant(relative_difference(sum, mesh_force)));
+  EXPECT_LT(relative_difference(sum, mesh_force), 1e-12);
 }
 
 GPUDEM_INSTANTIATE_BACKENDS(MeshWall);

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Checks the particle XDMF documents of an output folder against their HDF5 snapshots.
+"""Checks the XDMF documents of an output folder (particles and mesh walls) against their HDF5
+snapshots.
 
     check_snapshot.py DIR              check every .xmf in DIR
     check_snapshot.py --self-test DIR  check that broken copies of DIR's documents are caught
@@ -7,8 +8,11 @@
 A document must be valid XML holding Xdmf/Domain/Grid, a temporal collection of uniform grids
 with increasing times. In each grid, every DataItem (Format "HDF", text "file.h5:/dataset") must
 name a file relative to the document that exists and a dataset in it whose shape equals
-Dimensions and whose dtype matches NumberType and Precision; Topology NumberOfElements must equal
-the length of every dataset of the grid; Time Value must equal the file's "time" attribute.
+Dimensions and whose dtype matches NumberType and Precision; Time Value must equal the file's
+"time" attribute. A Polyvertex grid (particles) has one row per element in every dataset and
+attributes centred on nodes. A Triangle grid (a mesh wall) has Topology data of
+NumberOfElements × 3 vertex indices below the number of Geometry rows, and attributes centred
+on cells with one row per triangle.
 Exit status 0 when all holds, 1 with one line per problem otherwise, 2 on bad usage.
 """
 import argparse
@@ -77,6 +81,67 @@ def time_attribute(item, base_dir):
         return float(h5.attrs["time"]) if "time" in h5.attrs else None
 
 
+def read_dataset(item, base_dir):
+    """The values a DataItem points to (its file and dataset exist: check_data_item passed)."""
+    file_name, _, dataset_path = (item.text or "").strip().partition(":")
+    with h5py.File(base_dir / file_name, "r") as h5:
+        return h5[dataset_path][()]
+
+
+def check_triangle_indices(topology, geometry, base_dir, where):
+    """Problems of a Triangle topology's vertex indices: each must name a Geometry row."""
+    vertices = read_dataset(geometry.find("DataItem"), base_dir).shape[0]
+    indices = read_dataset(topology.find("DataItem"), base_dir)
+    if indices.size and indices.max() >= vertices:
+        return [f"{where}/Topology: vertex index {indices.max()} beyond the {vertices} vertices"]
+    return []
+
+
+# Per topology: where attributes are centred and whether the geometry has a row per element.
+CENTERS = {"polyvertex": "Node", "triangle": "Cell"}
+
+
+def grid_items(grid, topology, geometry, cells, where, problems):
+    """(name, element holding a DataItem, values per row, one row per element) to check."""
+    items = [(f"{where}/Geometry", geometry, 3, not cells)] if geometry is not None else []
+    if cells:
+        items.append((f"{where}/Topology", topology, 3, True))
+    center = "Cell" if cells else "Node"
+    for attribute in grid.findall("Attribute"):
+        kind = attribute.get("AttributeType", attribute.get("Type", "Scalar"))
+        name = f"{where}/Attribute[{attribute.get('Name')}]"
+        if attribute.get("Center") != center:
+            problems.append(f"{name}: Center is '{attribute.get('Center')}', expected {center}")
+        items.append((name, attribute, VALUES_PER_NODE.get(kind), True))
+    return items
+
+
+def check_items(items, elements, time, base_dir):
+    """Problems of the DataItems of a grid's items (grid_items); True when all were readable."""
+    problems, readable = [], True
+    for name, parent, values_per_row, row_per_element in items:
+        item = parent.find("DataItem")
+        if item is None:
+            problems.append(f"{name}: no DataItem")
+            readable = False
+            continue
+        item_problems, dims = check_data_item(item, base_dir, name)
+        problems += item_problems
+        readable = readable and not item_problems
+        if dims is None:
+            continue
+        if row_per_element and dims[0] != elements:
+            problems.append(f"{name}: {dims[0]} values, Topology NumberOfElements is {elements}")
+        per_row = math.prod(dims[1:])
+        if values_per_row is not None and per_row != values_per_row:
+            problems.append(f"{name}: {per_row} values per row, expected {values_per_row}")
+        stored_time = time_attribute(item, base_dir)
+        if stored_time is not None and stored_time != time:
+            problems.append(f"{name}: Time Value {time!r} differs from the file's time "
+                            f"attribute {stored_time!r}")
+    return problems, readable
+
+
 def check_grid(grid, base_dir, where):
     """Problems of one uniform grid, and its time (None when unreadable)."""
     problems = []
@@ -89,8 +154,10 @@ def check_grid(grid, base_dir, where):
     if topology is None:
         return [f"{where}: no Topology"], time
     topology_type = topology.get("TopologyType", topology.get("Type", ""))
-    if topology_type.lower() != "polyvertex":
-        problems.append(f"{where}: TopologyType '{topology_type}', expected Polyvertex")
+    if topology_type.lower() not in CENTERS:
+        problems.append(f"{where}: TopologyType '{topology_type}', expected Polyvertex or "
+                        "Triangle")
+    cells = topology_type.lower() == "triangle"
     try:
         elements = int(topology.get("NumberOfElements", topology.get("Dimensions")))
     except (TypeError, ValueError):
@@ -98,31 +165,11 @@ def check_grid(grid, base_dir, where):
     geometry = grid.find("Geometry")
     if geometry is None or geometry.get("GeometryType", geometry.get("Type")) != "XYZ":
         problems.append(f"{where}: no Geometry of GeometryType XYZ")
-    items = [(f"{where}/Geometry", geometry, 3)] if geometry is not None else []
-    for attribute in grid.findall("Attribute"):
-        kind = attribute.get("AttributeType", attribute.get("Type", "Scalar"))
-        name = f"{where}/Attribute[{attribute.get('Name')}]"
-        if attribute.get("Center") != "Node":
-            problems.append(f"{name}: Center is '{attribute.get('Center')}', expected Node")
-        items.append((name, attribute, VALUES_PER_NODE.get(kind)))
-    for name, parent, values_per_node in items:
-        item = parent.find("DataItem")
-        if item is None:
-            problems.append(f"{name}: no DataItem")
-            continue
-        item_problems, dims = check_data_item(item, base_dir, name)
-        problems += item_problems
-        if dims is None:
-            continue
-        if dims[0] != elements:
-            problems.append(f"{name}: {dims[0]} values, Topology NumberOfElements is {elements}")
-        per_node = math.prod(dims[1:])
-        if values_per_node is not None and per_node != values_per_node:
-            problems.append(f"{name}: {per_node} values per node, expected {values_per_node}")
-        stored_time = time_attribute(item, base_dir)
-        if stored_time is not None and stored_time != time:
-            problems.append(f"{name}: Time Value {time!r} differs from the file's time "
-                            f"attribute {stored_time!r}")
+    items = grid_items(grid, topology, geometry, cells, where, problems)
+    item_problems, readable = check_items(items, elements, time, base_dir)
+    problems += item_problems
+    if cells and readable and geometry is not None:
+        problems += check_triangle_indices(topology, geometry, base_dir, where)
     return problems, time
 
 
@@ -187,23 +234,47 @@ def edit_text(path, old, new):
 
 GRID = "Domain/Grid/Grid"
 ID_ITEM = f"{GRID}/Attribute[@Name='id']/DataItem"
-# Each breaks a document in one way check_document must report.
-TREE_BREAKS = {
+# Each breaks a document in one way check_document must report: any document, then particle
+# documents (Polyvertex), then mesh documents (Triangle).
+COMMON_BREAKS = {
     "dimensions differ from the dataset":
         lambda root: bump_dimension(first_of(root, f"{GRID}/Geometry/DataItem")),
     "precision differs from the dataset": set_attribute(f"{GRID}/Geometry/DataItem",
                                                         "Precision", "4"),
-    "signedness differs from the dataset": set_attribute(ID_ITEM, "NumberType", "Int"),
-    "dataset missing": edit_text(f"{GRID}/Attribute[@Name='radius']/DataItem", ":/radius",
-                                 ":/no_such_dataset"),
     "file missing": edit_text(f"{GRID}/Geometry/DataItem", ".h5:", "_gone.h5:"),
     "NumberOfElements differs": lambda root: first_of(root, f"{GRID}/Topology").set(
         "NumberOfElements", str(int(first_of(root, f"{GRID}/Topology")
                                     .get("NumberOfElements")) + 1)),
     "time differs from the file": set_attribute(f"{GRID}/Time", "Value", "-1.0"),
+}
+PARTICLE_BREAKS = {
+    "signedness differs from the dataset": set_attribute(ID_ITEM, "NumberType", "Int"),
+    "dataset missing": edit_text(f"{GRID}/Attribute[@Name='radius']/DataItem", ":/radius",
+                                 ":/no_such_dataset"),
     "vector given as scalar": set_attribute(f"{GRID}/Attribute[@Name='velocity']",
                                             "AttributeType", "Scalar"),
 }
+MESH_BREAKS = {
+    "signedness differs from the dataset": set_attribute(f"{GRID}/Topology/DataItem",
+                                                         "NumberType", "Int"),
+    "dataset missing": edit_text(f"{GRID}/Attribute[@Name='pressure']/DataItem", "/pressure",
+                                 "/no_such_dataset"),
+    "vector given as scalar": set_attribute(f"{GRID}/Attribute[@Name='force']",
+                                            "AttributeType", "Scalar"),
+    "cell values centred on nodes": set_attribute(f"{GRID}/Attribute[@Name='pressure']",
+                                                  "Center", "Node"),
+    "vertex index beyond the geometry": lambda root: (
+        edit_text(f"{GRID}/Geometry/DataItem", "/vertices", "/force")(root),
+        set_attribute(f"{GRID}/Geometry/DataItem", "Dimensions",
+                      first_of(root, f"{GRID}/Topology").get("NumberOfElements") + " 3")(root)),
+}
+
+
+def breaks_for(xmf):
+    """The ways to break this document: those of its kind of grid (Polyvertex or Triangle)."""
+    topology = ET.parse(xmf).getroot().find(f"{GRID}/Topology")
+    triangles = topology is not None and topology.get("TopologyType", "").lower() == "triangle"
+    return {**COMMON_BREAKS, **(MESH_BREAKS if triangles else PARTICLE_BREAKS)}
 
 
 def self_test(folder):
@@ -215,7 +286,7 @@ def self_test(folder):
     missed = []
     with tempfile.TemporaryDirectory() as scratch:
         for xmf in sorted(pathlib.Path(folder).glob("*.xmf")):
-            breaks = dict(TREE_BREAKS)
+            breaks = breaks_for(xmf)
             breaks["not XML"] = None
             for label, apply in breaks.items():
                 copy = pathlib.Path(scratch) / label.replace(" ", "_")

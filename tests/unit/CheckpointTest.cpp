@@ -70,11 +70,14 @@ Checkpoint random_part(int rank, std::uint32_t width = kSpringWidth) {
     c.history.add_pair(id, id + 1, random_values().data());
     if (i % 2 == 0)
       c.history.add_wall(id, static_cast<std::uint32_t>(i % 5), random_values().data());
+    if (i % 3 == 0)
+      c.history.add_mesh(id, static_cast<std::uint32_t>(i * 11 % 17), random_values().data());
   }
   c.snapshots = {{"particles_000000.h5", 0.0, 123, true},
                  {"particles_000001.h5", 1.0 / 3.0, 120, false}};
   c.time = 0.1 + 1e-17;
   c.step = (std::uint64_t(1) << 35) + 5;
+  c.list_build_step = c.step - 3;
   c.removed = 3;
   c.dt = 2.0 / 3.0 * 1e-5;
   c.dt_fraction = 0.1;
@@ -106,6 +109,9 @@ Checkpoint expected_whole(int ranks, std::uint32_t width = kSpringWidth) {
     append(whole.history.wall_owner, part.history.wall_owner);
     append(whole.history.wall_index, part.history.wall_index);
     append(whole.history.wall_values, part.history.wall_values);
+    append(whole.history.mesh_owner, part.history.mesh_owner);
+    append(whole.history.mesh_triangle, part.history.mesh_triangle);
+    append(whole.history.mesh_values, part.history.mesh_values);
   }
   return whole;
 }
@@ -140,6 +146,9 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
   EXPECT_TRUE(same_bytes("wall_owner", a.history.wall_owner, b.history.wall_owner));
   EXPECT_TRUE(same_bytes("wall_index", a.history.wall_index, b.history.wall_index));
   EXPECT_TRUE(same_bytes("wall_values", a.history.wall_values, b.history.wall_values));
+  EXPECT_TRUE(same_bytes("mesh_owner", a.history.mesh_owner, b.history.mesh_owner));
+  EXPECT_TRUE(same_bytes("mesh_triangle", a.history.mesh_triangle, b.history.mesh_triangle));
+  EXPECT_TRUE(same_bytes("mesh_values", a.history.mesh_values, b.history.mesh_values));
   ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
   for (std::size_t k = 0; k < a.snapshots.size(); ++k) {
     EXPECT_EQ(a.snapshots[k].h5_file, b.snapshots[k].h5_file);
@@ -149,6 +158,7 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
   }
   EXPECT_EQ(a.time, b.time);
   EXPECT_EQ(a.step, b.step);
+  EXPECT_EQ(a.list_build_step, b.list_build_step);
   EXPECT_EQ(a.removed, b.removed);
   EXPECT_EQ(a.dt, b.dt);
   EXPECT_EQ(a.dt_fraction, b.dt_fraction);
@@ -342,6 +352,25 @@ TEST_F(DamagedCheckpoint, RankFieldFlagsAreStoredAsOneByteEach) {
             (std::vector<unsigned char>{1, 0}));  // random_part's table: with, without
 }
 
+/// A checkpoint written before mesh springs and the list-build step were stored: no mesh
+/// records, and the list built at the checkpoint's step.
+TEST_F(DamagedCheckpoint, CheckpointWithoutMeshRecordsOrBuildStepReadsAsNoneAndTheStep) {
+  for (const char* name : {"mesh_owner", "mesh_triangle", "mesh_history"})
+    test::remove_dataset(path(), name);
+  test::remove_attribute(path(), "list_build_step");
+  Checkpoint expected = random_part(0);
+  expected.history.mesh_owner.clear();
+  expected.history.mesh_triangle.clear();
+  expected.history.mesh_values.clear();
+  expected.list_build_step = expected.step;
+  expect_identical(read_checkpoint(path()), expected);
+}
+
+TEST_F(DamagedCheckpoint, MeshRecordsOfDifferentLengthsAreRejected) {
+  test::replace_u32_dataset(path(), "mesh_triangle", {1, 2});
+  expect_rejected("dataset 'mesh_triangle' has 2 rows but 'mesh_owner' has");
+}
+
 TEST_F(DamagedCheckpoint, TableWithoutRankFieldFlagsHasNoSnapshotWithTheRankField) {
   test::remove_dataset(path(), "snapshot_rank_field");
   Checkpoint expected = random_part(0);
@@ -358,11 +387,19 @@ TEST_F(DamagedCheckpoint, RankFieldFlagsOtherThanZeroOrOneAreRejected) {
   expect_rejected("dataset 'snapshot_rank_field' has the wrong value type");
 }
 
-TEST_F(DamagedCheckpoint, MaterialOrWallBeyondTheSceneIsRejected) {
-  const Checkpoint c = read_checkpoint(path());  // materials 0..2, walls 0..4
+TEST_F(DamagedCheckpoint, MaterialWallOrMeshBeyondTheSceneIsRejected) {
+  const Checkpoint c = read_checkpoint(path());  // materials 0..2, walls 0..4, mesh records
   Scene scene;
   scene.materials.resize(3);
   scene.walls.resize(5);
+  try {
+    check_checkpoint_fits_scene(c, path(), scene);
+    ADD_FAILURE() << "particle-mesh springs were accepted by a scene without meshes";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("but the scene defines no mesh"), std::string::npos)
+        << e.what();
+  }
+  scene.meshes.resize(1);
   EXPECT_NO_THROW(check_checkpoint_fits_scene(c, path(), scene));
   scene.materials.resize(2);
   try {
@@ -382,6 +419,7 @@ TEST_F(DamagedCheckpoint, HistoryOfAnotherContactLawIsRejected) {
   Scene scene;
   scene.materials.resize(3);
   scene.walls.resize(5);
+  scene.meshes.resize(1);
   for (const TangentialLaw tangential : {TangentialLaw::LinearHistory, TangentialLaw::Mindlin}) {
     scene.contact.model.tangential = tangential;
     EXPECT_NO_THROW(check_checkpoint_fits_scene(c, path(), scene));

@@ -1,5 +1,5 @@
 // Per-particle triangle candidates from the binned mesh grid against a brute-force search over
-// every triangle: the same set for every particle, each triangle once.
+// every triangle: the same set for every particle, each triangle once, in increasing index.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -51,13 +51,21 @@ std::vector<Real4> random_spheres(std::size_t n, Vec3 lo, Vec3 hi, unsigned seed
   return p;
 }
 
-/// Compares the list with the brute-force set of triangles within r + skin of each particle;
-/// returns the number of particle-triangle pairs.
+/// A region that spans everything (a run on one rank).
+BinRegion everywhere() {
+  BinRegion r;
+  for (bool& whole : r.periodic) whole = true;
+  return r;
+}
+
+/// Compares the list with the brute-force set of triangles within r + skin of each particle,
+/// in increasing index; returns the number of particle-triangle pairs.
 std::size_t expect_same_as_brute_force(const Mesh& mesh, const std::vector<Real4>& spheres,
-                                       Real skin, std::size_t max_cells) {
+                                       Real skin, std::size_t max_cells,
+                                       const BinRegion& region = everywhere()) {
   MeshCandidateList<HostSpace> list;
   list.build(mesh.vertices.data(), mesh.vertices.size(), mesh.corners.data(), mesh.corners.size(),
-             spheres.data(), spheres.size(), 0.010, skin, max_cells);
+             region, spheres.data(), spheres.size(), 0.010, skin, max_cells);
   EXPECT_EQ(list.size(), spheres.size());
   std::size_t pairs = 0;
   for (std::size_t i = 0; i < spheres.size(); ++i) {
@@ -71,9 +79,8 @@ std::size_t expect_same_as_brute_force(const Mesh& mesh, const std::vector<Real4
                          .point;
       if (norm2(q - p) < reach * reach) expected.push_back(t);
     }
-    std::vector<std::uint32_t> got(list.triangles() + list.offsets()[i],
-                                   list.triangles() + list.offsets()[i + 1]);
-    std::sort(got.begin(), got.end());
+    const std::vector<std::uint32_t> got(list.triangles() + list.offsets()[i],
+                                         list.triangles() + list.offsets()[i + 1]);
     EXPECT_EQ(got, expected) << "particle " << i;
     if (got != expected) break;
     pairs += got.size();
@@ -83,8 +90,8 @@ std::size_t expect_same_as_brute_force(const Mesh& mesh, const std::vector<Real4
 }
 
 TEST(MeshCandidateList, SweepToolMatchesBruteForce) {
-  const Mesh sweep = from(load_mesh(std::string(GPUDEM_SOURCE_DIR) + "/inputs/tillage/sweep.stl",
-                                    MeshPlacement{}));
+  const Mesh sweep = from(
+      load_mesh(std::string(GPUDEM_SOURCE_DIR) + "/inputs/tillage/sweep.stl", MeshPlacement{}));
   const auto spheres = random_spheres(20000, {-0.3, -0.2, -0.05}, {0.05, 0.2, 0.65}, 1);
   const std::size_t pairs = expect_same_as_brute_force(sweep, spheres, 0.002, 1u << 22);
   EXPECT_GT(pairs, 500u);  // the test sees contacts, not an empty neighbourhood
@@ -105,8 +112,34 @@ TEST(MeshCandidateList, ParticlesFarFromTheMeshHaveNoCandidates) {
   const std::vector<Real4> far{{5, 5, 5, 0.01}, {-3, 0.5, 0.5, 0.01}, {0.5, 0.5, 0.5, 0.01}};
   MeshCandidateList<HostSpace> list;
   list.build(sheet.vertices.data(), sheet.vertices.size(), sheet.corners.data(),
-             sheet.corners.size(), far.data(), far.size(), 0.01, 0.001);
+             sheet.corners.size(), everywhere(), far.data(), far.size(), 0.01, 0.001);
   EXPECT_EQ(list.pairs(), 0u);
+}
+
+/// A rank whose region holds the part x < 0.3 of the sheet bins only the triangles that meet
+/// it, and its particles (inside the region, at least a reach from its face) still find every
+/// triangle within reach.
+TEST(MeshCandidateList, ARegionBinsOnlyItsTrianglesAndMissesNoneItsParticlesReach) {
+  const Mesh sheet = wavy_sheet(40);  // 3200 triangles over the unit square
+  BinRegion region = everywhere();
+  region.periodic[0] = false;
+  region.lo.x = -0.1;
+  region.length.x = 0.4;
+  const Real skin = 0.001, reach = 0.010 + skin;
+  const auto spheres = random_spheres(3000, {-0.02, -0.02, -0.07}, {0.3 - reach, 1.02, 0.07}, 3);
+  EXPECT_GT(expect_same_as_brute_force(sheet, spheres, skin, 1u << 22, region), 300u);
+
+  MeshCandidateList<HostSpace> list;
+  list.build(sheet.vertices.data(), sheet.vertices.size(), sheet.corners.data(),
+             sheet.corners.size(), region, spheres.data(), spheres.size(), 0.010, skin);
+  std::uint64_t meeting = 0;  // triangles whose x range meets [−0.1, 0.3]
+  for (const TriangleCorners& c : sheet.corners) {
+    const Real lo =
+        std::min({sheet.vertices[c.v[0]].x, sheet.vertices[c.v[1]].x, sheet.vertices[c.v[2]].x});
+    meeting += lo <= 0.3 ? 1 : 0;
+  }
+  EXPECT_EQ(list.binned_triangles(), meeting);
+  EXPECT_LT(meeting, sheet.corners.size() / 2);
 }
 
 }  // namespace

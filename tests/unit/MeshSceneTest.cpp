@@ -92,8 +92,7 @@ class MeshScene : public ::testing::Test {
     return test::run_binary((dir_ / "scene.toml").string() + " --output-dir " +
                             (dir_ / "out").string() + options);
   }
-  void expect_refused(const test::RunResult& r, const std::string& where,
-                      const std::string& what) {
+  void expect_refused(const test::RunResult& r, const std::string& where, const std::string& what) {
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find(where), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(what), std::string::npos) << r.output;
@@ -109,8 +108,7 @@ TEST_F(MeshScene, PlatePushesGrainsAndReportsItsForce) {
   std::ifstream csv(dir_ / "out" / "timeseries.csv");
   std::string header, line;
   std::getline(csv, header);
-  EXPECT_NE(header.find("plate_fx,plate_fy,plate_fz,plate_tx,plate_ty,plate_tz"),
-            std::string::npos)
+  EXPECT_NE(header.find("plate_fx,plate_fy,plate_fz,plate_tx,plate_ty,plate_tz"), std::string::npos)
       << header;
   std::size_t column = 0;
   for (std::size_t at = 0; at < header.find("plate_fx"); ++at) column += header[at] == ',';
@@ -139,8 +137,8 @@ TEST_F(MeshScene, MissingMeshFileIsRefused) {
   std::string scene = kScene;
   scene.replace(scene.find("MESH"), 4, "nowhere.stl");
   std::ofstream(dir_ / "scene.toml") << scene;
-  const test::RunResult r = test::run_binary((dir_ / "scene.toml").string() + " --output-dir " +
-                                             (dir_ / "out").string());
+  const test::RunResult r =
+      test::run_binary((dir_ / "scene.toml").string() + " --output-dir " + (dir_ / "out").string());
   expect_refused(r, "scene.toml:27: key 'mesh[0].file'", "STL file not found");
 }
 
@@ -173,6 +171,16 @@ TEST_F(MeshScene, MeshNameMustDifferFromWallNames) {
   std::string scene = kScene;
   scene.replace(scene.find("name = \"plate\""), 14, "name = \"floor\"");
   expect_refused(run(plate_stl(), scene), "key 'mesh[0].name'", "already used by a wall");
+}
+
+/// A mesh's name names its output file <name>.xmf beside particles.xmf.
+TEST_F(MeshScene, MeshNameMustNameAFileBesideTheParticles) {
+  for (const char* name : {"particles", "..", "tool/blade"}) {
+    SCOPED_TRACE(name);
+    std::string scene = kScene;
+    scene.replace(scene.find("name = \"plate\""), 14, std::string("name = \"") + name + "\"");
+    expect_refused(run(plate_stl(), scene), "key 'mesh[0].name'", "names the mesh's output file");
+  }
 }
 
 }  // namespace

@@ -2,13 +2,18 @@
 // for bit at this run's rank count (each rank checks its own rows), the attributes hold time and
 // step, ranks without particles take part, and the .xmf lists every file by relative name. With
 // the rank field, dataset "rank" holds each row's writing rank, and the .xmf lists it for exactly
-// the snapshots that hold it, also when a resumed series switches it on or off.
+// the snapshots that hold it, also when a resumed series switches it on or off. A mesh wall
+// goes into group /mesh/<name>/ of the same files, with the pressure of each triangle against
+// closed forms, and into <name>.xmf, a Triangle grid per snapshot that lists exactly the
+// snapshots of the particles' .xmf, also after a resume; without meshes nothing of it appears.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <mpi.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -424,11 +429,217 @@ TEST_F(SnapshotWriterTest, FailureNamesTheFileAndTheHdf5Call) {
   EXPECT_TRUE(writer.files().empty());
 }
 
+/// Two triangles sharing the edge of vertices 1 and 2: (0, 1, 2) in the plane z = 0, with
+/// normal +z (right-hand rule) and area 6, and (1, 2, 3) through the axis points x = 3, y = 4,
+/// z = 5, with n = (−3, 4, 0) × (−3, 0, 5) = (20, 15, 12) and area |n| / 2 = √769 / 2.
+MeshSurface two_triangles() {
+  MeshSurface mesh;
+  mesh.vertices = {{0, 0, 0}, {3, 0, 0}, {0, 4, 0}, {0, 0, 5}};
+  mesh.triangles = {{0, 1, 2}, {1, 2, 3}};
+  mesh.triangle_force = {{7, -1, -9}, {1, 2, 3}};
+  return mesh;
+}
+
+/// −(F · n̂) / A of two_triangles(): 9 / 6 on the first, −(1, 2, 3) · (20, 15, 12) / √769
+/// over √769 / 2 = −2 · 86 / 769 on the second [Pa].
+const std::vector<double> kTwoTrianglePressures = {1.5, -172.0 / 769.0};
+
+SnapshotOptions options_with_plate(const std::string& basename) {
+  SnapshotOptions options;
+  options.basename = basename;
+  options.meshes = {{"plate", 4, 2}};
+  return options;
+}
+
+std::vector<std::uint32_t> flat_ids(const std::vector<std::array<std::uint32_t, 3>>& triangles) {
+  std::vector<std::uint32_t> out;
+  for (const auto& t : triangles) out.insert(out.end(), t.begin(), t.end());
+  return out;
+}
+
+/// Reads group /mesh/plate/ of `path` whole on every rank and compares it with `mesh`.
+void expect_plate_holds(const std::string& path, const MeshSurface& mesh,
+                        const std::vector<double>& pressures) {
+  MPI_Barrier(MPI_COMM_WORLD);
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  ASSERT_GE(file.id, 0) << "cannot open " << path;
+  const hid_t f64 = H5T_IEEE_F64LE, f64_mem = H5T_NATIVE_DOUBLE;
+  const hsize_t v = mesh.vertices.size(), t = mesh.triangles.size();
+  expect_bit_identical(
+      xyz_of(mesh.vertices),
+      read_rows<double>(file.id, "mesh/plate/vertices", f64, f64_mem, {v, 3}, 0, v), "vertices");
+  expect_bit_identical(flat_ids(mesh.triangles),
+                       read_rows<std::uint32_t>(file.id, "mesh/plate/triangles", H5T_STD_U32LE,
+                                                H5T_NATIVE_UINT32, {t, 3}, 0, t),
+                       "triangles");
+  expect_bit_identical(xyz_of(mesh.triangle_force),
+                       read_rows<double>(file.id, "mesh/plate/force", f64, f64_mem, {t, 3}, 0, t),
+                       "force");
+  const std::vector<double> stored =
+      read_rows<double>(file.id, "mesh/plate/pressure", f64, f64_mem, {t}, 0, t);
+  ASSERT_EQ(stored.size(), pressures.size());
+  for (std::size_t k = 0; k < stored.size(); ++k)  // closed forms, to 4 ulp
+    EXPECT_NEAR(stored[k], pressures[k], 4e-16 * std::abs(pressures[k])) << "triangle " << k;
+}
+
+TEST_F(SnapshotWriterTest, MeshGroupHoldsTheSurfaceTheForcesAndTheTrianglePressures) {
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, options_with_plate("particles"));
+  const ParticleStore particles = random_store(particles_on_this_rank(), 1400 + comm_rank());
+  writer.write(particles, {two_triangles()}, 0.5, 5);
+  expect_snapshot_holds(writer.files()[0], particles, 0.5, 5);
+  expect_plate_holds(writer.files()[0], two_triangles(), kTwoTrianglePressures);
+}
+
+/// The (file, time value) of each uniform grid of an .xmf, in order.
+std::vector<std::pair<std::string, std::string>> listed_snapshots(const std::string& xmf) {
+  std::vector<std::pair<std::string, std::string>> listed;
+  for (const XmlElement& grid : xml_elements(xmf, "Grid")) {
+    if (xml_attribute(grid.tag, "GridType") != "Uniform") continue;
+    const std::string time = grid.content.substr(grid.content.find("<Time "));
+    const std::vector<XmlElement> items = xml_elements(grid.content, "DataItem");
+    const std::string source = items.empty() ? "" : items.front().content;
+    listed.emplace_back(source.substr(0, source.find(':')),
+                        xml_attribute(time.substr(0, time.find('>')), "Value"));
+  }
+  return listed;
+}
+
+/// The only element named `name` in `text`.
+XmlElement only_element(const std::string& text, const std::string& name) {
+  const std::vector<XmlElement> found = xml_elements(text, name);
+  EXPECT_EQ(found.size(), 1u) << name << " in\n" << text;
+  return found.empty() ? XmlElement{} : found.front();
+}
+
+/// Checks a DataItem: `file`:/mesh/plate/`dataset` of the given type and Dimensions.
+void expect_plate_item(const XmlElement& item, const std::string& file, const std::string& dataset,
+                       const std::string& number_type, const std::string& precision,
+                       const std::string& dims) {
+  EXPECT_EQ(item.content, file + ":/mesh/plate/" + dataset);
+  EXPECT_EQ(xml_attribute(item.tag, "Format"), "HDF") << dataset;
+  EXPECT_EQ(xml_attribute(item.tag, "NumberType"), number_type) << dataset;
+  EXPECT_EQ(xml_attribute(item.tag, "Precision"), precision) << dataset;
+  EXPECT_EQ(xml_attribute(item.tag, "Dimensions"), dims) << dataset;
+}
+
+/// Checks one uniform grid of plate.xmf: 2 triangles over 4 vertices read from `file`, with
+/// force (Vector) and pressure (Scalar) per triangle.
+void expect_plate_grid(const XmlElement& grid, const std::string& file) {
+  const XmlElement topology = only_element(grid.content, "Topology");
+  EXPECT_EQ(xml_attribute(topology.tag, "TopologyType"), "Triangle");
+  EXPECT_EQ(xml_attribute(topology.tag, "NumberOfElements"), "2");
+  expect_plate_item(only_element(topology.content, "DataItem"), file, "triangles", "UInt", "4",
+                    "2 3");
+  const XmlElement geometry = only_element(grid.content, "Geometry");
+  EXPECT_EQ(xml_attribute(geometry.tag, "GeometryType"), "XYZ");
+  expect_plate_item(only_element(geometry.content, "DataItem"), file, "vertices", "Float", "8",
+                    "4 3");
+  const std::vector<XmlElement> attributes = xml_elements(grid.content, "Attribute");
+  ASSERT_EQ(attributes.size(), 2u);
+  const char* const names[] = {"force", "pressure"};
+  const char* const types[] = {"Vector", "Scalar"};
+  const char* const dims[] = {"2 3", "2"};
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(xml_attribute(attributes[k].tag, "Name"), names[k]);
+    EXPECT_EQ(xml_attribute(attributes[k].tag, "AttributeType"), types[k]);
+    EXPECT_EQ(xml_attribute(attributes[k].tag, "Center"), "Cell");
+    expect_plate_item(only_element(attributes[k].content, "DataItem"), file, names[k], "Float", "8",
+                      dims[k]);
+  }
+}
+
+TEST_F(SnapshotWriterTest, MeshXmfHasATriangleGridPerSnapshotOfTheParticlesXmf) {
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, options_with_plate("run"));
+  writer.write(random_store(particles_on_this_rank(), 1500 + comm_rank()), {two_triangles()}, 0.0,
+               0);
+  writer.write(random_store(particles_on_this_rank(), 1600 + comm_rank()), {two_triangles()}, 0.02,
+               200);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const std::string plate_xmf = read_text((fs::path(dir_) / "plate.xmf").string());
+  const XmlElement collection = xml_elements(plate_xmf, "Grid").front();
+  EXPECT_EQ(xml_attribute(collection.tag, "Name"), "plate");
+  EXPECT_EQ(xml_attribute(collection.tag, "CollectionType"), "Temporal");
+  const std::vector<std::pair<std::string, std::string>> expected = {{"run_000000.h5", "0"},
+                                                                     {"run_000001.h5", "0.02"}};
+  EXPECT_EQ(listed_snapshots(plate_xmf), expected);
+  EXPECT_EQ(listed_snapshots(read_text(writer.xmf_path())), expected);
+  std::vector<XmlElement> grids = xml_elements(plate_xmf, "Grid");
+  grids.erase(grids.begin());  // the collection
+  ASSERT_EQ(grids.size(), 2u);
+  for (std::size_t k = 0; k < grids.size(); ++k) expect_plate_grid(grids[k], expected[k].first);
+  EXPECT_EQ(plate_xmf.find(dir_), std::string::npos) << "file names must be relative";
+  EXPECT_FALSE(fs::exists((fs::path(dir_) / "plate.xmf.tmp")));
+}
+
+TEST_F(SnapshotWriterTest, ResumedSeriesKeepsTheMeshXmfInStepWithTheParticles) {
+  const ParticleStore particles = random_store(particles_on_this_rank(), 1700 + comm_rank());
+  MeshSurface moved = two_triangles();
+  for (Vec3& x : moved.vertices) x = x + Vec3{0.25, -0.5, 1};  // a translation keeps p
+  std::vector<XdmfSnapshot> at_checkpoint;
+  {
+    SnapshotWriter before(MPI_COMM_WORLD, dir_, options_with_plate("particles"));
+    before.write(particles, {two_triangles()}, 0.0, 0);
+    before.write(particles, {two_triangles()}, 0.1, 10);
+    at_checkpoint = before.table();
+    before.write(particles, {two_triangles()}, 0.2, 20);  // lost: after the checkpoint
+  }
+  const std::string plate_xmf = (fs::path(dir_) / "plate.xmf").string();
+  SnapshotWriter after(MPI_COMM_WORLD, dir_, options_with_plate("particles"));
+  after.resume(at_checkpoint);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const std::vector<std::pair<std::string, std::string>> resumed = {{"particles_000000.h5", "0"},
+                                                                    {"particles_000001.h5", "0.1"}};
+  EXPECT_EQ(listed_snapshots(read_text(plate_xmf)), resumed);
+  EXPECT_EQ(listed_snapshots(read_text(after.xmf_path())), resumed);
+  after.write(particles, {moved}, 0.15, 15);
+  MPI_Barrier(MPI_COMM_WORLD);
+  std::vector<std::pair<std::string, std::string>> continued = resumed;
+  continued.emplace_back("particles_000002.h5", "0.15");
+  EXPECT_EQ(listed_snapshots(read_text(plate_xmf)), continued);
+  EXPECT_EQ(listed_snapshots(read_text(after.xmf_path())), continued);
+  expect_plate_holds(after.files()[2], moved, kTwoTrianglePressures);
+}
+
+TEST_F(SnapshotWriterTest, WithoutMeshesTheFolderHoldsOnlyTheParticleFiles) {
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_);
+  writer.write(random_store(particles_on_this_rank(), 1800 + comm_rank()), {}, 0.0, 0);
+  MPI_Barrier(MPI_COMM_WORLD);
+  std::vector<std::string> names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir_))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"particles.xmf", "particles_000000.h5"}));
+  EXPECT_FALSE(file_has_dataset(writer.files()[0], "mesh"));
+}
+
+TEST_F(SnapshotWriterTest, RejectsMeshNamesThatCannotNameAFileAndSurfacesOfOtherCounts) {
+  for (const char* name : {"", "a/b", ".", "..", "particles"}) {
+    SnapshotOptions options;
+    options.meshes = {{name, 4, 2}};
+    EXPECT_THROW(SnapshotWriter(MPI_COMM_WORLD, dir_, options), std::invalid_argument) << name;
+  }
+  SnapshotOptions twice;
+  twice.meshes = {{"plate", 4, 2}, {"plate", 4, 2}};
+  EXPECT_THROW(SnapshotWriter(MPI_COMM_WORLD, dir_, twice), std::invalid_argument);
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, options_with_plate("particles"));
+  MeshSurface extra_vertex = two_triangles();
+  extra_vertex.vertices.push_back({1, 1, 1});
+  MeshSurface bad_index = two_triangles();
+  bad_index.triangles[1][2] = 4;
+  for (const std::vector<MeshSurface>& surfaces : {std::vector<MeshSurface>{},
+                                                   {extra_vertex},
+                                                   {bad_index},
+                                                   {two_triangles(), two_triangles()}})
+    EXPECT_THROW(writer.write(ParticleStore{}, surfaces, 0.0, 0), std::invalid_argument);
+  EXPECT_TRUE(writer.files().empty());
+}
+
 #ifdef GPUDEM_SNAPSHOT_FIXTURE_DIR
 // Output folder kept for tests/scripts/check_snapshot.py (every .xmf) and
-// tests/scripts/paraview_open.py (particles.xmf). particles.xmf: two random snapshots and one
-// without any particle; ranked.xmf: the same with the rank field; resumed.xmf: a series resumed
-// with the rank field switched on after a snapshot without it.
+// tests/scripts/paraview_open.py (particles.xmf and plate.xmf). particles.xmf: two random
+// snapshots and one without any particle; ranked.xmf: the same with the rank field;
+// resumed.xmf: a series resumed with the rank field switched on after a snapshot without it;
+// meshed.xmf and plate.xmf: two snapshots with the mesh "plate" (two triangles) in them.
 TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
   const std::string dir = GPUDEM_SNAPSHOT_FIXTURE_DIR;
   if (comm_rank() == 0) {
@@ -448,8 +659,13 @@ TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
   SnapshotWriter after_restart(MPI_COMM_WORLD, dir, {true, "resumed"});
   after_restart.resume(before_restart.table());
   after_restart.write(random_store(particles_on_this_rank() + 3, 1300 + comm_rank()), 0.01, 100);
+  SnapshotWriter meshed(MPI_COMM_WORLD, dir, options_with_plate("meshed"));
+  meshed.write(random_store(particles_on_this_rank(), 1900 + comm_rank()), {two_triangles()}, 0.0,
+               0);
+  meshed.write(ParticleStore{}, {two_triangles()}, 0.01, 100);
   MPI_Barrier(MPI_COMM_WORLD);
-  for (const SnapshotWriter* writer : {&plain, &ranked, &after_restart}) {
+  EXPECT_TRUE(fs::exists(fs::path(dir) / "plate.xmf"));
+  for (const SnapshotWriter* writer : {&plain, &ranked, &after_restart, &meshed}) {
     for (const std::string& file : writer->files()) EXPECT_TRUE(fs::exists(file)) << file;
     EXPECT_TRUE(fs::exists(writer->xmf_path()));
   }
