@@ -18,6 +18,7 @@ struct RunOptions {
   GpuAwareChoice gpu_aware_mpi = GpuAwareChoice::Auto;  ///< --gpu-aware-mpi
   bool check_only = false;  ///< --check
   bool quiet = false;       ///< --quiet
+  bool verbose = false;     ///< --verbose: the memory report at start-up
 };
 
 }  // namespace gpudem

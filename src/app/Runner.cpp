@@ -10,6 +10,7 @@
 #include "app/BedPreparation.hpp"
 #include "app/DomainSetup.hpp"
 #include "app/LoadBalance.hpp"
+#include "app/MemoryReport.hpp"
 #include "app/Progress.hpp"
 #include "comm/Checkpoint.hpp"
 #include "comm/OutputDirectory.hpp"
@@ -118,13 +119,6 @@ SnapshotOptions snapshot_options(const Scene& scene, const EngineSetup& setup) {
     options.meshes.push_back({scene.meshes[m].name, setup.meshes[m].mesh.vertices.size(),
                               setup.meshes[m].mesh.triangles.size()});
   return options;
-}
-
-/// Engine memory summed over all ranks [bytes]. Collective.
-double engine_memory(const MpiContext& mpi, const StepEngine& engine) {
-  double local = static_cast<double>(engine.memory_bytes()), total = local;
-  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, mpi.comm());
-  return total;
 }
 
 /// The start-up summary; engine_bytes < 0 when no engine was made (--check).
@@ -462,8 +456,9 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   start_engine(*engine, particles, checkpoint ? &*checkpoint : nullptr, options.restart_file);
   if (!checkpoint) bed.apply_history(scene, mpi, *engine);
   prepare_output_directory(scene.output.dir);
-  const double engine_bytes = engine_memory(mpi, *engine);
-  if (banner) print_summary(scene, particles, setup, engine.get(), engine_bytes, steps);
+  const std::vector<MemoryUse> memory = memory_over_ranks(mpi, *engine);
+  if (banner) print_summary(scene, particles, setup, engine.get(), total_bytes(memory), steps);
+  if (banner && options.verbose) print_memory_report(memory, engine->particle_count());
   if (banner && domain) print_decomposition(*domain);
   if (banner && settle) print_preparation(scene, *settle, setup.dt);
   LoopStart start;

@@ -47,7 +47,11 @@ int main(int argc, char** argv) {
                  "hand device buffers to MPI: auto (ask the MPI library), on, or off (stage "
                  "through host memory)")
       ->transform(CLI::CheckedTransformer(gpu_aware, CLI::ignore_case));
-  app.add_flag("--quiet", options.quiet, "no banner and no progress lines");
+  CLI::Option* quiet =
+      app.add_flag("--quiet", options.quiet, "no banner and no progress lines");
+  app.add_flag("--verbose", options.verbose,
+               "also print the engine's memory by array (bytes per particle) at start-up")
+      ->excludes(quiet);
 
   try {
     app.parse(argc, argv);

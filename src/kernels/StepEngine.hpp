@@ -90,6 +90,12 @@ struct StepTimes {
   std::uint64_t halo_bytes = 0;  ///< bytes those refreshes sent
 };
 
+/// Bytes one array, or group of arrays, of an engine holds in its memory space.
+struct MemoryUse {
+  const char* name;  ///< what the bytes hold
+  std::size_t bytes;
+};
+
 /// A particle the health check rejected: non-finite state or an overlap beyond the limit.
 struct HealthFailure {
   ParticleId id = 0;
@@ -169,8 +175,14 @@ class StepEngine {
   virtual std::uint64_t removed_count() const = 0;
   virtual std::uint64_t rebuild_count() const = 0;
   virtual StepTimes step_times() const = 0;
-  /// Bytes held in the engine's memory space.
-  virtual std::size_t memory_bytes() const = 0;
+  /// Bytes held in the engine's memory space on this rank, by array (or group of arrays).
+  virtual std::vector<MemoryUse> memory_use() const = 0;
+  /// Σ memory_use() [bytes].
+  std::size_t memory_bytes() const {
+    std::size_t total = 0;
+    for (const MemoryUse& use : memory_use()) total += use.bytes;
+    return total;
+  }
   virtual std::string backend_name() const = 0;
 };
 

@@ -322,12 +322,21 @@ class StepEngineImpl final : public StepEngine {
   std::uint64_t rebuild_count() const override { return rebuilds_; }
   StepTimes step_times() const override { return times_; }
 
-  std::size_t memory_bytes() const override {
-    return position_radius_.bytes() + velocity_inv_mass_.bytes() + angular_velocity_.bytes() +
-           force_.bytes() + torque_.bytes() + id_.bytes() + material_.bytes() +
-           overlap_ratio_.bytes() + position_at_build_.bytes() + pair_history_.bytes() +
-           wall_history_.bytes() + scratch_bytes() + cells_.memory_bytes() +
-           neighbors_.memory_bytes() + meshes_.memory_bytes() + ghosts_.memory_bytes();
+  std::vector<MemoryUse> memory_use() const override {
+    return {{"position, radius", position_radius_.bytes()},
+            {"velocity, inverse mass", velocity_inv_mass_.bytes()},
+            {"angular velocity", angular_velocity_.bytes()},
+            {"id, material", id_.bytes() + material_.bytes()},
+            {"force, torque", force_.bytes() + torque_.bytes()},
+            {"overlap ratio", overlap_ratio_.bytes()},
+            {"position at list build", position_at_build_.bytes()},
+            {"neighbour list", neighbors_.memory_bytes()},
+            {"pair history", pair_history_.bytes()},
+            {"wall history", wall_history_.bytes()},
+            {"cell list", cells_.memory_bytes()},
+            {"rebuild scratch", scratch_bytes()},
+            {"ghost buffers", ghosts_.memory_bytes()},
+            {"meshes", meshes_.memory_bytes()}};
   }
 
   std::string backend_name() const override { return Space::name; }

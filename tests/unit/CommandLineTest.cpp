@@ -106,6 +106,49 @@ TEST_F(CommandLine, ValidSceneRunsAndWritesOutput) {
   EXPECT_NE(header.find("wall0_fz"), std::string::npos) << header;
 }
 
+/// The number after `name` on its line of the memory report (bytes per particle), or −1.
+double bytes_per_particle(const std::string& output, const std::string& name) {
+  const std::size_t at = output.find("\n  " + name + " ");
+  if (at == std::string::npos) return -1;
+  return std::stod(output.substr(at + 3 + name.size()));
+}
+
+/// On one rank (no ghosts) each particle array holds its value type per particle: Real4 for
+/// position and velocity, Vec3 for spin, force and torque, an id and a material index.
+TEST_F(CommandLine, VerboseReportsEachArraysBytesPerParticle) {
+  const Result r = run(scene(kValidScene) + " --output-dir " + out() + " --verbose");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(bytes_per_particle(r.output, "position, radius"), 4.0 * sizeof(double));
+  EXPECT_EQ(bytes_per_particle(r.output, "velocity, inverse mass"), 4.0 * sizeof(double));
+  EXPECT_EQ(bytes_per_particle(r.output, "angular velocity"), 3.0 * sizeof(double));
+  EXPECT_EQ(bytes_per_particle(r.output, "id, material"), 8.0 + 4.0);
+  EXPECT_EQ(bytes_per_particle(r.output, "force, torque"), 6.0 * sizeof(double));
+  EXPECT_EQ(bytes_per_particle(r.output, "position at list build"), 4.0 * sizeof(double));
+  const char* const arrays[] = {"position, radius", "velocity, inverse mass", "angular velocity",
+                                "id, material", "force, torque", "overlap ratio",
+                                "position at list build", "neighbour list", "pair history",
+                                "wall history", "cell list", "rebuild scratch", "ghost buffers",
+                                "meshes"};
+  double sum = 0;
+  for (const char* name : arrays) {
+    const double bytes = bytes_per_particle(r.output, name);
+    EXPECT_GE(bytes, 0) << name << " missing from:\n" << r.output;
+    sum += bytes;
+  }
+  const double total = bytes_per_particle(r.output, "total");
+  EXPECT_NEAR(sum, total, 0.05 * std::size(arrays)) << r.output;  // lines round to 0.1
+  const std::size_t backend = r.output.find("backend host, ");  // the summary line's total
+  ASSERT_NE(backend, std::string::npos) << r.output;
+  EXPECT_EQ(std::stod(r.output.substr(backend + 14)), total) << r.output;
+}
+
+TEST_F(CommandLine, VerboseAndQuietExcludeEachOther) {
+  const Result r = run(scene(kValidScene) + " --output-dir " + out() + " --verbose --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--quiet excludes --verbose"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out()));
+}
+
 TEST_F(CommandLine, CheckValidatesWithoutWriting) {
   const Result r = run(scene(kValidScene) + " --check --output-dir " + out());
   EXPECT_EQ(r.exit_code, 0) << r.output;
