@@ -23,7 +23,8 @@ Output is in $OUT:
   $OUT/till/particles.xmf     open it in ParaView (File > Open, pick the "Xdmf3 Reader"), then
                               apply a "Point Gaussian" representation scaled by 'radius' (or a
                               Glyph filter: Sphere, scale array 'radius', factor 2) to see the
-                              spheres; load inputs/tillage/sweep.stl for the tool at its start
+                              spheres; open $OUT/till/sweep.xmf beside it for the tool, its
+                              triangles coloured by 'pressure' (or 'force')
   $OUT/till/timeseries.csv    energies, contacts, wall forces and the sweep's force and torque
   $OUT/bed/bed.h5             the settled bed (start other tillage scenes from it)
 MSG
