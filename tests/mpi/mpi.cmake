@@ -1,12 +1,13 @@
 # Decomposed runs through mpirun at 1 to 4 ranks (--oversubscribe): the same physics as one
 # rank, restarts across rank counts, load balance, momentum conservation, a sliding contact
-# across a rank boundary and checkpoints of runs killed with SIGKILL (scripts/decomposed_runs.py).
+# across a rank boundary, checkpoints of runs killed with SIGKILL, a tool mesh across ranks and
+# the CUDA backend on 1 to 4 ranks (skipped without a device) (scripts/decomposed_runs.py).
 find_program(GPUDEM_MPIRUN NAMES mpirun mpiexec REQUIRED)
-foreach(case same-physics restart balance momentum sliding-pair killed-checkpoint tool)
+foreach(case same-physics restart balance momentum sliding-pair killed-checkpoint tool cuda)
   add_test(NAME mpi_${case}
     COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/mpi/scripts/decomposed_runs.py
       --binary $<TARGET_FILE:gpudem-mpi> --mpirun ${GPUDEM_MPIRUN}
       --work ${CMAKE_CURRENT_BINARY_DIR}/mpi_${case} ${case})
-  set_tests_properties(mpi_${case} PROPERTIES LABELS mpi TIMEOUT 900
+  set_tests_properties(mpi_${case} PROPERTIES LABELS mpi TIMEOUT 900 SKIP_RETURN_CODE 77
     ENVIRONMENT "OMPI_MCA_rmaps_base_oversubscribe=1")
 endforeach()

@@ -43,7 +43,13 @@ CASE is one of:
                 ranks, mid-cut, holds mesh contact springs, and continued on 2 ranks it ends
                 equal bit for bit to the straight run; continued without those springs it
                 does not.
-Exit status 0 when all holds, 1 with one line per failure otherwise.
+  cuda          tests/mpi/scenes/settle.toml on the CUDA backend (ranks sharing the one GPU) at
+                N = 1, 2 slabs and 2 x 2 blocks: the final states equal N = 1 on the device bit
+                for bit; against the host backend at N = 1, whose arithmetic rounds otherwise
+                (fused multiply-adds), the final gravitational potential energy agrees within
+                1 % of the energy the fall released and the contact count within 5 %. Exits 77
+                (skipped) where this build has no CUDA backend or no device is visible.
+Exit status 0 when all holds, 1 with one line per failure otherwise, 77 when skipped.
 """
 import argparse
 import csv
@@ -73,10 +79,11 @@ class Runner:
         self.failures = []
         self.banner = ""
 
-    def command(self, name, scene, ranks, settings, restart=None, quiet=True):
+    def command(self, name, scene, ranks, settings, restart=None, quiet=True, backend="host"):
         """The mpirun command line that runs `scene` on `ranks` ranks into work/name."""
         command = [self.mpirun, "--allow-run-as-root", "--oversubscribe", "-np", str(ranks),
-                   self.binary, str(scene), "--output-dir", str(self.work / name)]
+                   self.binary, str(scene), "--output-dir", str(self.work / name),
+                   "--backend", backend]
         if quiet:
             command.append("--quiet")
         for s in settings:
@@ -85,10 +92,10 @@ class Runner:
             command += ["--restart", str(restart)]
         return command
 
-    def run(self, name, scene, ranks, *settings, restart=None, quiet=True):
+    def run(self, name, scene, ranks, *settings, restart=None, quiet=True, backend="host"):
         """Runs `scene` on `ranks` ranks into work/name and returns that folder; the standard
         output (the banner unless quiet) is kept in self.banner."""
-        command = self.command(name, scene, ranks, settings, restart, quiet)
+        command = self.command(name, scene, ranks, settings, restart, quiet, backend)
         result = subprocess.run(command, capture_output=True, text=True)
         if result.returncode != 0:
             sys.exit(f"{name}: exit {result.returncode}\n{result.stdout}{result.stderr}")
@@ -504,21 +511,69 @@ def tool(runner):
                     "cannot see them")
 
 
+# ---- cuda ---------------------------------------------------------------------------------------
+
+SKIPPED = 77  # ctest's SKIP_RETURN_CODE
+
+
+def cuda_unavailable(runner, scene):
+    """Why the CUDA backend cannot run here, or None when it can."""
+    command = runner.command("cuda_probe", scene, 1, ["simulation.end_time=1e-6"],
+                             backend="cuda")
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode == 0:
+        return None
+    message = result.stdout + result.stderr
+    for reason in ("no CUDA device is visible", "this build has no CUDA backend"):
+        if reason in message:
+            return reason
+    sys.exit(f"cuda_probe: exit {result.returncode}\n{message}")
+
+
+def final_row(out):
+    return series(out)[-1]
+
+
+def cuda(runner):
+    scene = SCENES / "settle.toml"
+    reason = cuda_unavailable(runner, scene)
+    if reason:
+        print(f"skipped: {reason}")
+        return SKIPPED
+    host = runner.run("host_n1", scene, 1)
+    device = runner.run("cuda_n1", scene, 1, backend="cuda")
+    for name, ranks, dims in (("cuda_slabs_n2", 2, "[2,1,1]"), ("cuda_blocks_2x2", 4, "[2,2,1]")):
+        out = runner.run(name, scene, ranks, f"decomposition.dims={dims}", backend="cuda")
+        compare_states(runner, name, device, out)
+    start = float(series(host)[0]["potential_gravity"])
+    h, d = final_row(host), final_row(device)
+    fall = start - float(h["potential_gravity"])
+    gap = abs(float(h["potential_gravity"]) - float(d["potential_gravity"]))
+    print(f"cuda_n1 against host_n1: potential energy {gap:.3e} J apart of a {fall:.3e} J fall; "
+          f"contacts {d['contacts']} against {h['contacts']}")
+    if not gap < 0.01 * fall:
+        runner.fail(f"cuda_n1: potential energy {gap:.3e} J from the host's ({fall:.3e} J fall)")
+    if not abs(int(d["contacts"]) - int(h["contacts"])) <= 0.05 * int(h["contacts"]):
+        runner.fail(f"cuda_n1: {d['contacts']} contacts against the host's {h['contacts']}")
+    return 0
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--binary", required=True)
     parser.add_argument("--mpirun", required=True)
     parser.add_argument("--work", required=True)
     parser.add_argument("case", choices=["same-physics", "restart", "balance", "momentum",
-                                         "sliding-pair", "killed-checkpoint", "tool"])
+                                         "sliding-pair", "killed-checkpoint", "tool", "cuda"])
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     runner = Runner(args.binary, args.mpirun, args.work)
     cases = {"same-physics": same_physics, "restart": restart, "balance": balance,
              "momentum": momentum, "sliding-pair": sliding_pair,
-             "killed-checkpoint": killed_checkpoint, "tool": tool}
-    cases[args.case](runner)
+             "killed-checkpoint": killed_checkpoint, "tool": tool, "cuda": cuda}
+    if cases[args.case](runner) == SKIPPED:
+        return SKIPPED
     for line in runner.failures:
         print(line)
     return 1 if runner.failures else 0
