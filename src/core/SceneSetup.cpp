@@ -251,6 +251,61 @@ std::string short_number(double x) {
   return text;
 }
 
+/// The largest radius in the store, or 0.
+double largest_radius(const ParticleStore& particles) {
+  double r = 0;
+  for (const Real4& p : particles.position_radius) r = std::max(r, p.w);
+  return r;
+}
+
+/// True when some keyframe of the mesh's motion has a non-zero angular velocity.
+bool ever_rotates(const MeshSettings& mesh) {
+  for (const MotionKeyframe& k : mesh.keyframes)
+    if (norm2(k.angular_velocity) > 0) return true;
+  return false;
+}
+
+/// h_k, how far along axis k the mesh reaches from the centre b₀ of its bounding box: half its
+/// extent along k, or, for a mesh that ever rotates, the largest distance from b₀ to a vertex
+/// (a bound along every axis in every pose) [m].
+double half_span(const TriangleMesh& mesh, bool rotates, int k) {
+  Vec3 lo = mesh.vertices.front(), hi = mesh.vertices.front();
+  for (const Vec3& v : mesh.vertices)
+    for (int a = 0; a < 3; ++a) {
+      axis(lo, a) = std::min(axis(lo, a), axis(v, a));
+      axis(hi, a) = std::max(axis(hi, a), axis(v, a));
+    }
+  if (!rotates) return 0.5 * (axis(hi, k) - axis(lo, k));
+  const Vec3 centre = 0.5 * (lo + hi);
+  double reach = 0;
+  for (const Vec3& v : mesh.vertices) reach = std::max(reach, norm(v - centre));
+  return reach;
+}
+
+/// Refuses a mesh too wide for a periodic axis: a particle meets each mesh as its periodic image
+/// nearest the mesh's image centre, which is the image within reach of the mesh while
+/// h_k + r_max + 2 skin < L_k / 2 (within reach r + skin of the mesh at a list build, then both
+/// move at most skin / 2 until the next).
+void require_meshes_fit_periodic_axes(const Scene& scene, const std::vector<MeshWallSetup>& meshes,
+                                      double r_max, double skin) {
+  static const char* const kAxisName[3] = {"x", "y", "z"};
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    const MeshSettings& settings = scene.meshes[i];
+    for (int k = 0; k < 3; ++k) {
+      if (!scene.domain.periodic[k] || meshes[i].mesh.vertices.empty()) continue;
+      const double L = axis(scene.domain.max, k) - axis(scene.domain.min, k);
+      const double span = 2 * half_span(meshes[i].mesh, ever_rotates(settings), k);
+      const double room = L - 2 * (r_max + 2 * skin);
+      if (span < room) continue;
+      throw InputError(scene.file, settings.line, "mesh[" + std::to_string(i) + "].file",
+                       "mesh '" + settings.name + "' spans " + short_number(span) +
+                           " m along periodic axis " + kAxisName[k] + " (L = " + short_number(L) +
+                           " m); a mesh must fit within L - 2 (r_max + 2 skin) = " +
+                           short_number(room) + " m to meet each particle as one periodic image");
+    }
+  }
+}
+
 /// Refuses an explicit dt above the stable limit unless the scene allows it.
 void require_stable_dt(const Scene& scene, const TimeStepLimits& limits) {
   const SimulationSettings& sim = scene.simulation;
@@ -309,6 +364,7 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   const double r_min = smallest_radius(particles);
   s.skin =
       scene.neighbor.skin > 0 ? scene.neighbor.skin : (std::isfinite(r_min) ? 0.5 * r_min : 0.0);
+  require_meshes_fit_periodic_axes(scene, s.meshes, largest_radius(particles), s.skin);
   const TimeStepLimits limits = time_step_limits(scene, particles);
   require_stable_dt(scene, limits);
   if (scene.simulation.dt_auto) {

@@ -35,7 +35,10 @@ TimeStepLimits time_step_limits(const Scene& scene, const ParticleStore& particl
 /// The engine setup: contact model, pair table (material_count² entries, row-major,
 /// symmetric), walls, skin and dt (dt_fraction × critical step when the scene says "auto",
 /// end_time when there are no particles). Throws InputError naming simulation.dt when an
-/// explicit dt exceeds the stable limit and simulation.allow_unstable_dt is false.
+/// explicit dt exceeds the stable limit and simulation.allow_unstable_dt is false, and naming
+/// mesh[i].file when a mesh spans 2 h_k >= L_k - 2 (r_max + 2 skin) along a periodic axis k
+/// (h_k: half its extent, or for a mesh that ever rotates the largest distance from its
+/// bounding-box centre to a vertex).
 EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles);
 
 }  // namespace gpudem

@@ -157,7 +157,8 @@ GPUDEM_HD typename Law::State mesh_contact_state(const ContactScene<Law>& s, std
 /// The listed triangles of particle i within contact, reduced to the contacts that count
 /// once where triangles meet (select_mesh_contacts); each one is visited with the history of
 /// the list entry of its triangle (mesh_contact_state), and the entries with no contact are
-/// separated. All history is read before any is written.
+/// separated. Each mesh meets the periodic image of i's centre nearest its image centre
+/// (MeshView::image_for). All history is read before any is written.
 template <class Law, class Visitor>
 GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi, MaterialId mi,
                                    const ContactScene<Law>& s, Visitor& visit) {
@@ -165,9 +166,10 @@ GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi,
   const std::uint32_t begin = m.offsets[i], end = m.offsets[i + 1];
   MeshContactCandidates set;
   for (std::uint32_t e = begin; e < end; ++e) {
-    const TriangleCorners t = m.corners[m.triangles[e]];
-    add_mesh_candidate(set, xyz(xi), xi.w, m.vertices[t.v[0]], m.vertices[t.v[1]],
-                       m.vertices[t.v[2]], m.ids[m.triangles[e]]);
+    const std::uint32_t triangle = m.triangles[e];
+    const TriangleCorners t = m.corners[triangle];
+    add_mesh_candidate(set, m.image_for(s.box, xyz(xi), m.triangle_mesh[triangle]), xi.w,
+                       m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]], m.ids[triangle]);
   }
   if (set.overflow) visit.mesh_overflow_seen();
   const int kept = select_mesh_contacts(set, xi.w);
@@ -191,7 +193,7 @@ GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi,
     const MeshContactCandidate& hit = set.items[found];
     const std::uint32_t mesh = m.triangle_mesh[hit.ids.triangle];
     ContactSample<Law> c;
-    c.point.normal = mesh_contact_normal(hit, xyz(xi));
+    c.point.normal = mesh_contact_normal(hit, m.image_for(s.box, xyz(xi), mesh));
     c.point.overlap = mesh_contact_overlap(hit, xi.w);
     c.arm = xi.w - Real(0.5) * c.point.overlap;
     describe_wall(c, xi, vi, wi, m.kinematics[mesh].at(hit.point));

@@ -40,8 +40,9 @@ struct GravityEnergy {
 /// Particle i's contact terms, written per particle so that the sums need no law-specific
 /// reduction: its share of the contact count and of the elastic energy (a particle pair is
 /// seen from both sides, so each side adds ½), the force it exerts on each body (plane walls
-/// w, then meshes wall_count + m) and its torque on each mesh about the mesh's centre. The
-/// stored history is read, not advanced (dt = 0).
+/// w, then meshes wall_count + m) and its torque on each mesh about the mesh's centre, its
+/// lever from the periodic image of the particle that the mesh meets. The stored history is
+/// read, not advanced (dt = 0).
 template <class Law>
 struct ContactTerms {
   ParticleView particles;
@@ -56,7 +57,8 @@ struct ContactTerms {
     Vec3 centre;
     Vec3* body_force;
     Vec3* mesh_torque;
-    const MeshKinematics* kinematics;
+    PeriodicBox box;
+    MeshView mesh;
     std::uint32_t wall_count;
     GPUDEM_HD void operator()(ContactSample<Law>& c) {
       const bool pair = c.wall < 0 && c.mesh < 0;
@@ -69,8 +71,9 @@ struct ContactTerms {
         body_force[c.wall] += load;
       } else {
         body_force[wall_count + c.mesh] += load;
-        const Vec3 at = centre + c.arm * c.point.normal;
-        mesh_torque[c.mesh] += cross(at - kinematics[c.mesh].centre, load);
+        const auto m = static_cast<std::uint32_t>(c.mesh);
+        const Vec3 at = mesh.image_for(box, centre, m) + c.arm * c.point.normal;
+        mesh_torque[m] += cross(at - mesh.kinematics[m].centre, load);
       }
     }
   };
@@ -82,7 +85,8 @@ struct ContactTerms {
     for (std::uint32_t b = 0; b < bodies; ++b) t.body_force[b] = Vec3{};
     for (std::uint32_t m = 0; m < scene.mesh.mesh_count; ++m) t.mesh_torque[m] = Vec3{};
     t.centre = xyz(particles.position_radius[i]);
-    t.kinematics = scene.mesh.kinematics;
+    t.box = scene.box;
+    t.mesh = scene.mesh;
     t.wall_count = scene.wall_count;
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, t);
     contacts[i] = t.contacts;

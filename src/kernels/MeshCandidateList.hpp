@@ -11,8 +11,10 @@
 /// scans the at most 2 × 2 × 2 cells its reach box overlaps, and takes a triangle only from the
 /// lowest cell shared by the triangle's box and its own, so no triangle is seen twice. On
 /// several ranks a rank bins only the triangles whose boxes meet its bin region (its block
-/// grown by the ghost width, which exceeds any reach). Distances are plain (meshes do not wrap
-/// across periodic faces).
+/// grown by the ghost width, which exceeds any reach). In a box with periodic axes a particle
+/// meets each mesh as its periodic image nearest the mesh's image centre (MeshImages), so a
+/// particle queries the grid once per mesh, and a rank bins the triangles that meet its region
+/// or one of its periodic images.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -33,6 +35,28 @@ namespace gpudem {
 /// Vertex ids of one triangle, indices into the mesh's vertex array.
 struct TriangleCorners {
   std::uint32_t v[3];
+};
+
+/// How particles meet the meshes: on the periodic axes of `box`, mesh m meets the periodic image
+/// of a particle nearest image_centre[m] (PeriodicBox::image_near). Without periodic axes, plain
+/// positions and one query over all meshes.
+struct MeshImages {
+  PeriodicBox box;
+  std::uint32_t mesh_count = 0;
+  const std::uint32_t* triangle_mesh = nullptr;  ///< mesh of each triangle
+  const Vec3* image_centre = nullptr;            ///< per mesh [m]
+};
+
+/// Accepts every triangle.
+struct AnyTriangle {
+  GPUDEM_HD bool operator()(std::uint32_t) const { return true; }
+};
+
+/// Accepts the triangles of one mesh.
+struct TrianglesOfMesh {
+  const std::uint32_t* triangle_mesh;
+  std::uint32_t mesh;
+  GPUDEM_HD bool operator()(std::uint32_t t) const { return triangle_mesh[t] == mesh; }
 };
 
 /// The uniform grid over the meshes' bounding box and the binned triangles (sorted by cell).
@@ -66,9 +90,9 @@ struct TriangleBins {
         p);
   }
 
-  /// Calls visit(t) for each triangle within `reach` of p, once each.
-  template <class Visitor>
-  GPUDEM_HD void for_each_near(Vec3 p, Real reach, Visitor& visit) const {
+  /// Calls visit(t) for each triangle t within `reach` of p that `accept(t)` admits, once each.
+  template <class Accept, class Visitor>
+  GPUDEM_HD void for_each_near(Vec3 p, Real reach, const Accept& accept, Visitor& visit) const {
     int first[3], last[3];
     for (int k = 0; k < 3; ++k) {
       const Real x = axis(p, k);
@@ -82,7 +106,7 @@ struct TriangleBins {
           const std::uint64_t cell = key(x, y, z);
           for (std::uint32_t e = cell_begin[cell]; e < cell_begin[cell + 1]; ++e) {
             const std::uint32_t t = binned[e];
-            if (!first_shared_cell(t, first, x, y, z)) continue;
+            if (!accept(t) || !first_shared_cell(t, first, x, y, z)) continue;
             if (distance2(t, p) < reach * reach) visit(t);
           }
         }
@@ -103,17 +127,27 @@ struct TriangleBins {
 
 namespace mesh_candidate_kernels {
 
+/// True when the interval [a, b] meets [lo, hi] shifted by some multiple of the period L: with
+/// the smallest n for which hi + nL >= a, when b >= lo + nL.
+GPUDEM_HD inline bool meets_periodic_interval(Real a, Real b, Real lo, Real hi, Real L) {
+  const Real n = ceil((a - hi) / L);
+  return b >= lo + n * L;
+}
+
 /// True when triangle t's bounding box meets `region` on every axis the region does not span
-/// whole.
+/// whole; on such an axis periodic in `box`, when it meets the region or a periodic image of it.
 GPUDEM_HD inline bool meets_region(const TriangleBins& bins, std::uint32_t t,
-                                   const BinRegion& region) {
+                                   const BinRegion& region, const PeriodicBox& box) {
   for (int k = 0; k < 3; ++k) {
     if (region.periodic[k]) continue;
     const TriangleCorners c = bins.corners[t];
-    const Real a = axis(bins.vertices[c.v[0]], k), b = axis(bins.vertices[c.v[1]], k),
-               d = axis(bins.vertices[c.v[2]], k);
+    const Real u = axis(bins.vertices[c.v[0]], k), v = axis(bins.vertices[c.v[1]], k),
+               w = axis(bins.vertices[c.v[2]], k);
+    const Real a = fmin(u, fmin(v, w)), b = fmax(u, fmax(v, w));
     const Real lo = axis(region.lo, k), hi = lo + axis(region.length, k);
-    if (fmax(a, fmax(b, d)) < lo || fmin(a, fmin(b, d)) > hi) return false;
+    const bool meets = box.periodic[k] ? meets_periodic_interval(a, b, lo, hi, axis(box.length, k))
+                                       : !(b < lo || a > hi);
+    if (!meets) return false;
   }
   return true;
 }
@@ -122,9 +156,10 @@ GPUDEM_HD inline bool meets_region(const TriangleBins& bins, std::uint32_t t,
 struct CountCells {
   TriangleBins bins;
   BinRegion region;
+  PeriodicBox box;
   std::uint32_t* count;
   GPUDEM_HD void operator()(std::size_t t) const {
-    if (!meets_region(bins, static_cast<std::uint32_t>(t), region)) {
+    if (!meets_region(bins, static_cast<std::uint32_t>(t), region, box)) {
       count[t] = 0;
       return;
     }
@@ -148,11 +183,12 @@ struct IsBinned {
 struct WriteCells {
   TriangleBins bins;
   BinRegion region;
+  PeriodicBox box;
   const std::uint32_t* offset;
   std::uint64_t* key;
   std::uint32_t* triangle;
   GPUDEM_HD void operator()(std::size_t t) const {
-    if (!meets_region(bins, static_cast<std::uint32_t>(t), region)) return;
+    if (!meets_region(bins, static_cast<std::uint32_t>(t), region, box)) return;
     int first[3], last[3];
     for (int k = 0; k < 3; ++k)
       bins.triangle_cells(static_cast<std::uint32_t>(t), k, first[k], last[k]);
@@ -195,24 +231,35 @@ GPUDEM_HD inline void sort_short(std::uint32_t* first, std::uint32_t count) {
   }
 }
 
-/// Triangles within r_i + skin of particle i: counted, or written from offsets[i] on in
-/// increasing index.
+/// Triangles within r_i + skin of particle i (of each mesh, of i's image nearest the mesh's
+/// image centre): counted, or written from offsets[i] on in increasing index.
 template <bool kWrite>
 struct ParticleTriangles {
   TriangleBins bins;
+  MeshImages images;
   const Real4* position_radius;
   Real skin;
   std::uint32_t* offsets;
   std::uint32_t* triangles;
+  template <class Visitor>
+  GPUDEM_HD void visit_near(Vec3 x, Real reach, Visitor& visit) const {
+    if (!images.box.any_periodic()) {
+      bins.for_each_near(x, reach, AnyTriangle{}, visit);
+      return;
+    }
+    for (std::uint32_t m = 0; m < images.mesh_count; ++m)
+      bins.for_each_near(images.box.image_near(x, images.image_centre[m]), reach,
+                         TrianglesOfMesh{images.triangle_mesh, m}, visit);
+  }
   GPUDEM_HD void operator()(std::size_t i) const {
     const Real4 p = position_radius[i];
     if constexpr (kWrite) {
       WriteVisitor write{triangles + offsets[i]};
-      bins.for_each_near(xyz(p), p.w + skin, write);
+      visit_near(xyz(p), p.w + skin, write);
       sort_short(triangles + offsets[i], offsets[i + 1] - offsets[i]);
     } else {
       CountVisitor count;
-      bins.for_each_near(xyz(p), p.w + skin, count);
+      visit_near(xyz(p), p.w + skin, count);
       offsets[i] = count.count;
     }
   }
@@ -224,32 +271,34 @@ template <class Space>
 class MeshCandidateList {
  public:
   /// Bins the `triangle_count` triangles (corners into `vertices`, both in Space memory) that
-  /// meet `region` and lists, for each of the n particles (inside the region, each at least
-  /// r_i + skin from its faces), the triangles within r_i + skin. `max_radius` is the largest
-  /// particle radius: cells are at least 2 (max_radius + skin) wide, and no wider than needed
-  /// to keep the grid under `max_cells` cells.
+  /// meet `region` (or, along a periodic axis of images.box, a periodic image of it) and lists,
+  /// for each of the n particles (inside the region, each at least r_i + skin from its faces),
+  /// the triangles within r_i + skin, each mesh seen from the particle's image that `images`
+  /// gives. `max_radius` is the largest particle radius: cells are at least
+  /// 2 (max_radius + skin) wide, and no wider than needed to keep the grid under `max_cells`.
   void build(const Vec3* vertices, std::size_t vertex_count, const TriangleCorners* corners,
-             std::size_t triangle_count, const BinRegion& region, const Real4* position_radius,
-             std::size_t n, Real max_radius, Real skin,
+             std::size_t triangle_count, const BinRegion& region, const MeshImages& images,
+             const Real4* position_radius, std::size_t n, Real max_radius, Real skin,
              std::size_t max_cells = std::size_t(1) << 22) {
     n_ = n;
     offsets_.resize(n + 1);
     plan_grid(vertices, vertex_count, max_radius + skin, max_cells);
     bins_.vertices = vertices;
     bins_.corners = corners;
-    bin_triangles(triangle_count, region);
+    bin_triangles(triangle_count, region, images.box);
     using namespace mesh_candidate_kernels;
-    parallel_for(Space{}, n,
-                 ParticleTriangles<false>{bins_, position_radius, skin, offsets_.data(), nullptr});
+    parallel_for(
+        Space{}, n,
+        ParticleTriangles<false>{bins_, images, position_radius, skin, offsets_.data(), nullptr});
     const std::uint64_t total = exclusive_scan(Space{}, offsets_.data(), offsets_.data(), n);
     if (total > std::numeric_limits<std::uint32_t>::max())
       throw std::overflow_error("MeshCandidateList: more than 2^32 - 1 particle-triangle pairs");
     parallel_for(Space{}, 1,
                  Fill<std::uint32_t>{offsets_.data() + n, static_cast<std::uint32_t>(total)});
     triangles_.resize(total);
-    parallel_for(
-        Space{}, n,
-        ParticleTriangles<true>{bins_, position_radius, skin, offsets_.data(), triangles_.data()});
+    parallel_for(Space{}, n,
+                 ParticleTriangles<true>{bins_, images, position_radius, skin, offsets_.data(),
+                                         triangles_.data()});
     pairs_ = total;
   }
 
@@ -292,17 +341,17 @@ class MeshCandidateList {
     bins_.cell = cell;
   }
 
-  void bin_triangles(std::size_t triangle_count, const BinRegion& region) {
+  void bin_triangles(std::size_t triangle_count, const BinRegion& region, const PeriodicBox& box) {
     using namespace mesh_candidate_kernels;
     DeviceArray<std::uint32_t, Space> count(triangle_count + 1);
-    parallel_for(Space{}, triangle_count, CountCells{bins_, region, count.data()});
+    parallel_for(Space{}, triangle_count, CountCells{bins_, region, box, count.data()});
     binned_count_ = static_cast<std::uint64_t>(
         std::llround(reduce_sum(Space{}, triangle_count, IsBinned{count.data()})));
     const std::uint64_t pairs = exclusive_scan(Space{}, count.data(), count.data(), triangle_count);
     keys_.resize(pairs);
     binned_.resize(pairs);
     parallel_for(Space{}, triangle_count,
-                 WriteCells{bins_, region, count.data(), keys_.data(), binned_.data()});
+                 WriteCells{bins_, region, box, count.data(), keys_.data(), binned_.data()});
     sort_by_key(Space{}, keys_.data(), binned_.data(), pairs);
     const std::size_t cells =
         static_cast<std::size_t>(bins_.dims[0]) * bins_.dims[1] * bins_.dims[2];

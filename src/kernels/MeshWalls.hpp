@@ -4,8 +4,11 @@
 /// rebuilt with the neighbour list, and the contact history of each (particle, listed
 /// triangle) entry, carried over a rebuild (and a migration to another rank) by (particle,
 /// triangle index). Every rank holds every vertex (a rigid tool moves through all blocks; its
-/// vertices cost 72 bytes each), but bins only the triangles that meet its region. Include
-/// the backend's ParallelFor header first.
+/// vertices cost 72 bytes each), but bins only the triangles that meet its region. In a box
+/// with periodic axes each mesh meets the periodic image of a particle nearest the mesh's image
+/// centre: the centre of its bounding box at t = 0, moved rigidly with the mesh. Include the
+/// backend's ParallelFor header first.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -38,6 +41,13 @@ struct MeshView {
   const MeshKinematics* kinematics = nullptr;  ///< per mesh
   const std::uint32_t* offsets = nullptr;      ///< per-particle candidate lists (CSR)
   const std::uint32_t* triangles = nullptr;
+  const Vec3* image_centre = nullptr;  ///< per mesh [m]
+
+  /// The periodic image of the particle centre x that mesh `mesh` meets: the one nearest the
+  /// mesh's image centre (x itself without periodic axes).
+  GPUDEM_HD Vec3 image_for(const PeriodicBox& box, Vec3 x, std::uint32_t mesh) const {
+    return box.image_near(x, image_centre[mesh]);
+  }
 };
 
 namespace mesh_wall_kernels {
@@ -95,7 +105,8 @@ class MeshWalls {
 
  public:
   MeshWalls() = default;
-  explicit MeshWalls(const std::vector<MeshWallSetup>& meshes) : setups_(meshes) {
+  MeshWalls(const std::vector<MeshWallSetup>& meshes, const PeriodicBox& box)
+      : setups_(meshes), box_(box) {
     std::vector<Vec3> vertices;
     std::vector<TriangleCorners> corners;
     std::vector<TriangleIds> ids;
@@ -120,6 +131,7 @@ class MeshWalls {
       }
       edge_base += static_cast<std::uint32_t>(mesh.edges.size());
       material.push_back(meshes[m].material);
+      initial_image_centre_.push_back(bounding_box_centre(mesh.vertices));
     }
     first_vertex_.push_back(vertices.size());
     initial_.upload(vertices);
@@ -136,21 +148,26 @@ class MeshWalls {
   bool empty() const { return setups_.empty(); }
 
   /// Moves every mesh to its pose at time t (from its initial pose, so no error accumulates)
-  /// and records its surface velocity at t.
+  /// and records its surface velocity and its image centre at t: b(t) = R(t)(b₀ − c₀) + c(t),
+  /// b₀ the initial one, R(t) the rotation by ∫₀ᵗ ω, c the rotation centre.
   void set_time(double t) {
     std::vector<MeshKinematics> kinematics;
+    std::vector<Vec3> image_centre = initial_image_centre_;
     for (std::uint32_t m = 0; m < count(); ++m) {
       const PrescribedMotion& motion = setups_[m].motion;
       const Vec3 centre = motion.centre(t);
       kinematics.push_back({motion.velocity(t), motion.angular_velocity(t), centre});
       if (motion.stands_still()) continue;  // its vertices keep their initial positions
+      const Rotation rotation = rotation_by_vector(motion.rotation_vector(0, t));
+      image_centre[m] = rotation.apply(image_centre[m] - motion.centre(0)) + centre;
       const std::size_t n = first_vertex_[m + 1] - first_vertex_[m];
-      parallel_for(Space{}, n,
-                   mesh_wall_kernels::PlaceVertices{
-                       initial_.data(), vertices_.data(), first_vertex_[m],
-                       rotation_by_vector(motion.rotation_vector(0, t)), motion.centre(0), centre});
+      parallel_for(
+          Space{}, n,
+          mesh_wall_kernels::PlaceVertices{initial_.data(), vertices_.data(), first_vertex_[m],
+                                           rotation, motion.centre(0), centre});
     }
     kinematics_.upload(kinematics);
+    image_centre_.upload(image_centre);
   }
 
   /// True once some vertex has moved more than skin/2 since the last build.
@@ -197,8 +214,9 @@ class MeshWalls {
   void rebuild(const Real4* position_radius, std::size_t n, Real max_radius, Real skin,
                const BinRegion& region, const std::uint32_t* previous_index, bool had_lists) {
     if (empty()) return;
+    const MeshImages images{box_, count(), triangle_mesh_.data(), image_centre_.data()};
     candidates_.build(vertices_.data(), vertices_.size(), corners_.data(), ids_.size(), region,
-                      position_radius, n, max_radius, skin);
+                      images, position_radius, n, max_radius, skin);
     parallel_for(Space{}, vertices_.size(), CopyArray<Vec3>{vertices_.data(), at_build_.data()});
     if constexpr (Law::history_size > 0) {
       DeviceArray<State, Space> fresh(candidates_.pairs());
@@ -254,7 +272,8 @@ class MeshWalls {
                     material_.data(),
                     kinematics_.data(),
                     candidates_.offsets(),
-                    candidates_.triangles()};
+                    candidates_.triangles(),
+                    image_centre_.data()};
   }
   State* history() { return history_.data(); }
   const State* history() const { return history_.data(); }
@@ -265,8 +284,22 @@ class MeshWalls {
   }
 
  private:
+  /// Centre of the bounding box of the points [m].
+  static Vec3 bounding_box_centre(const std::vector<Vec3>& points) {
+    if (points.empty()) return Vec3{};
+    Vec3 lo = points.front(), hi = points.front();
+    for (const Vec3& p : points)
+      for (int k = 0; k < 3; ++k) {
+        axis(lo, k) = std::min(axis(lo, k), axis(p, k));
+        axis(hi, k) = std::max(axis(hi, k), axis(p, k));
+      }
+    return Real(0.5) * (lo + hi);
+  }
+
   std::vector<MeshWallSetup> setups_;
   std::vector<std::size_t> first_vertex_;  ///< mesh m's vertices: [first[m], first[m + 1])
+  PeriodicBox box_;
+  std::vector<Vec3> initial_image_centre_;  ///< b₀ of each mesh [m]
   DeviceArray<Vec3, Space> initial_;
   DeviceArray<Vec3, Space> vertices_;
   DeviceArray<Vec3, Space> at_build_;
@@ -275,6 +308,7 @@ class MeshWalls {
   DeviceArray<std::uint32_t, Space> triangle_mesh_;
   DeviceArray<MaterialId, Space> material_;
   DeviceArray<MeshKinematics, Space> kinematics_;
+  DeviceArray<Vec3, Space> image_centre_;  ///< per mesh, at the time of set_time [m]
   MeshCandidateList<Space> candidates_;
   DeviceArray<State, Space> history_;  ///< per candidate-list entry
   // The rows kept for the next rebuild: per particle, (triangle, history) entries.

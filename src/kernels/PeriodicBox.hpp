@@ -22,6 +22,21 @@ struct PeriodicBox {
     return d;
   }
 
+  /// The periodic image of p nearest `centre`: on each periodic axis
+  /// x_k − L_k ⌊(x_k − c_k) / L_k + ½⌋, the other axes untouched (p itself, bit for bit, when no
+  /// shift applies).
+  GPUDEM_HD Vec3 image_near(Vec3 p, Vec3 centre) const {
+    for (int k = 0; k < 3; ++k)
+      if (periodic[k]) {
+        const Real L = axis(length, k);
+        axis(p, k) -= L * floor((axis(p, k) - axis(centre, k)) / L + Real(0.5));
+      }
+    return p;
+  }
+
+  /// True when some axis is periodic.
+  GPUDEM_HD bool any_periodic() const { return periodic[0] || periodic[1] || periodic[2]; }
+
   /// Position mapped back into [lo, lo + length) on each periodic axis.
   GPUDEM_HD Vec3 wrap(Vec3 p) const {
     for (int k = 0; k < 3; ++k)

@@ -157,7 +157,7 @@ class StepEngineImpl final : public StepEngine {
       : setup_(setup),
         one_rank_(setup.box),
         domain_(setup.domain ? *setup.domain : one_rank_),
-        meshes_(setup.meshes),
+        meshes_(setup.meshes, setup.box),
         steps_(setup.start_step) {
     pair_params_.upload(setup.pair_params);
     walls_.upload(setup.walls);

@@ -4,7 +4,10 @@
 // The per-triangle loads of the snapshot output: a sphere pressed into one triangle of a mesh
 // plane loads that triangle alone with the Hooke force k δ, at the pressure k δ / A, and on a
 // moving plane under many spheres each triangle carries what its spheres push on it, adding up
-// to the mesh force of the diagnostics.
+// to the mesh force of the diagnostics. In a box periodic along x, a plate sticking out through
+// the face x = 1 holds the spheres on the other side of the face as their periodic images: a
+// sphere rolling across the face follows the analytic plane, and one at rest there stays at the
+// equilibrium overlap, with the torque of its weight about the mesh's centre taken at its image.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -242,6 +245,86 @@ TEST_P(MeshWall, EachTriangleCarriesTheLoadOfTheSpheresOnIt) {
   const Vec3 sum = surface.triangle_force[0] + surface.triangle_force[1];
   RecordProperty("triangle_sum_vs_mesh_force", significant(relative_difference(sum, mesh_force)));
   EXPECT_LT(relative_difference(sum, mesh_force), 1e-12);
+}
+
+/// The plate of the periodic tests: the plane z = 0 over x ∈ [0.7, 1.3], y ∈ [−0.3, 0.3] (two
+/// triangles whose diagonal runs from (0.7, −0.3) to (1.3, 0.3)). In the box periodic along x
+/// with L = 1, its part beyond x = 1 stands for x ∈ [0, 0.3].
+MeshWallSetup plate_across_the_face() {
+  MeshWallSetup plate;
+  plate.mesh = square({1.0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0.3);
+  return plate;
+}
+
+/// `s` in the box [0, 1) × [−0.5, 0.5] × [−0.5, 0.5], periodic along x.
+Scene periodic_in_x(Scene s) {
+  s.domain.min = {0, -0.5, -0.5};
+  s.domain.max = {1, 0.5, 0.5};
+  s.domain.periodic = {true, false, false};
+  return s;
+}
+
+/// A sphere starting at x = 0.9 with v_x = 0.5 m/s slides, then rolls (Hertz–Mindlin, μ = 0.5)
+/// on the plate across the face x = 1, and on on its part beyond the face, which holds it as
+/// its image nearest the plate: its trajectory (positions compared modulo L) is that of the
+/// same sphere on the analytic plane z = 0.
+TEST_P(MeshWall, SphereRollingAcrossAPeriodicFaceFollowsTheAnalyticPlane) {
+  const double r = 0.01;
+  Scene plane = periodic_in_x(hertz_scene(0.3, 0.5, 0));
+  add_floor(plane);
+  const ParticleStore p = one_sphere(plane, {0.9, 0, r - 2e-6}, {0.5, 0, 0}, r);
+  const EngineSetup plane_setup = make_engine_setup(plane, p);
+  EngineSetup mesh_setup = make_engine_setup(periodic_in_x(hertz_scene(0.3, 0.5, 0)), p);
+  mesh_setup.meshes.push_back(plate_across_the_face());
+  const auto expected = trajectory(plane_setup, p, 40, 5000);  // 0.4 s
+  const auto got = trajectory(mesh_setup, p, 40, 5000);
+  double worst = 0;
+  for (std::size_t k = 0; k < got.size(); ++k)
+    worst = std::max(worst, norm(plane_setup.box.minimum_image(got[k] - expected[k])));
+  RecordProperty("largest_position_difference_m", significant(worst));
+  // Only rounding separates the two: the image shifts x by exactly L (1 m), and the closest
+  // point on the mesh carries rounding of ~1e-16 m, as does the tilted plane above (1.3e-13 m
+  // over 0.4 s), which 1e-12 m bounds with room.
+  EXPECT_LT(worst, 1e-12);
+  const double end_x = expected.back().x;                    // wrapped into [0, 1)
+  EXPECT_GT(end_x, 0.02);                                    // past the face by more than a radius
+  EXPECT_LT(end_x, 0.3 - 2 * r);                             // still on the plate
+  for (const Vec3& x : expected) EXPECT_NEAR(x.z, r, 1e-4);  // on the plane all the way
+}
+
+/// A sphere at rest at x = 0.1, over the plate's part beyond the face (Hooke k, no damping),
+/// started at the equilibrium overlap δ = m g / k, stays there; the diagnostics give the plate
+/// the force (0, 0, −m g) and, about the mesh's centre (the origin), the torque of that force
+/// at the image contact point (1.1, 0, ·): (0, 1.1 m g, 0).
+TEST_P(MeshWall, SphereAtRestBeyondAPeriodicFaceStaysAtTheEquilibriumOverlap) {
+  const double k = 1e4, r = 0.01, g = 9.81;
+  const Scene s = periodic_in_x(elastic_scene(k, {0, 0, -g}));
+  const double m = sphere_mass(s.materials[0].density, r);
+  const double delta = m * g / k;
+  ParticleStore p = one_sphere(s, {0.1, 0, r - delta}, {}, r);
+  EngineSetup setup = make_engine_setup(s, p);
+  setup.meshes.push_back(plate_across_the_face());
+  auto engine = make_engine(setup);
+  engine->set_particles(p);
+  double worst = 0;
+  for (int block = 0; block < 10; ++block) {  // 0.1 s: a free fall would take 4.9 cm
+    for (int n = 0; n < 1000; ++n) engine->step();
+    engine->get_particles(p);
+    worst = std::max(worst, std::abs((r - p.position_radius[0].z) - delta));
+  }
+  RecordProperty("largest_overlap_error_m", significant(worst));
+  // The force balance k δ = m g holds to the rounding of z (ulp(0.01 m) = 1.7e-18 m); 1e-15 m
+  // is several hundred times that.
+  EXPECT_LT(worst, 1e-15);
+  const Diagnostics d = engine->diagnostics();
+  const Vec3 weight{0, 0, -m * g}, torque{0, 1.1 * m * g, 0};
+  RecordProperty("mesh_force_relative_error",
+                 significant(relative_difference(d.mesh_force[0], weight)));
+  RecordProperty("mesh_torque_relative_error",
+                 significant(relative_difference(d.mesh_torque[0], torque)));
+  // δ = r − z carries the rounding of z: ulp(0.01 m) / δ ≈ 2e-13 relative.
+  EXPECT_LT(relative_difference(d.mesh_force[0], weight), 1e-12);
+  EXPECT_LT(relative_difference(d.mesh_torque[0], torque), 1e-12);
 }
 
 GPUDEM_INSTANTIATE_BACKENDS(MeshWall);

@@ -1,6 +1,6 @@
 // Mesh walls through the binary: a [[mesh]] plate pushes grains and its force and torque
-// columns appear in the time series; bad meshes and bad motion stop the run before any output
-// with the scene file, line and key.
+// columns appear in the time series; bad meshes and bad motion, and a mesh too wide for a
+// periodic axis, stop the run before any output with the scene file, line and key.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -181,6 +181,40 @@ TEST_F(MeshScene, MeshNameMustNameAFileBesideTheParticles) {
     scene.replace(scene.find("name = \"plate\""), 14, std::string("name = \"") + name + "\"");
     expect_refused(run(plate_stl(), scene), "key 'mesh[0].name'", "names the mesh's output file");
   }
+}
+
+/// kScene with the domain periodic along y, of length L (from y = 0).
+std::string periodic_in_y(double length) {
+  std::string scene = kScene;
+  const std::string old_max = "max = [0.2, 0.1, 0.1]\n";
+  scene.replace(
+      scene.find(old_max), old_max.size(),
+      "max = [0.2, " + std::to_string(length) + ", 0.1]\nperiodic = [false, true, false]\n");
+  return scene;
+}
+
+/// The plate spans 0.1 m along y. Radii 3 mm and the automatic skin (half the smallest radius,
+/// 1.5 mm) leave L − 2 (r_max + 2 skin) = L − 0.012 m for it: a period of 0.1 m is too short.
+TEST_F(MeshScene, MeshWiderThanAPeriodAllowsIsRefused) {
+  expect_refused(run(plate_stl(), periodic_in_y(0.1)), "scene.toml:28: key 'mesh[0].file'",
+                 "mesh 'plate' spans 0.1 m along periodic axis y (L = 0.1 m); a mesh must fit "
+                 "within L - 2 (r_max + 2 skin) = 0.088 m");
+}
+
+/// With a period of 0.15 m (room 0.138 m) the translating plate fits; once it also turns, it
+/// reaches up to half its diagonal, 0.05 √2 m, from its centre in any pose, so it counts as
+/// spanning 0.1 √2 = 0.1414 m and is refused.
+TEST_F(MeshScene, TurningMeshCountsItsWholeDiagonal) {
+  const std::string scene = periodic_in_y(0.15);
+  EXPECT_EQ(run(plate_stl(), scene, " --check").exit_code, 0);
+  fs::remove_all(dir_ / "out");
+  std::string turning = scene;
+  const std::string velocities = "velocities = [[0.2, 0.0, 0.0], [0.2, 0.0, 0.0]]\n";
+  turning.insert(turning.find(velocities) + velocities.size(),
+                 "angular_velocities = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]\n");
+  expect_refused(run(plate_stl(), turning), "key 'mesh[0].file'",
+                 "spans 0.1414 m along periodic axis y (L = 0.15 m); a mesh must fit within "
+                 "L - 2 (r_max + 2 skin) = 0.138 m to meet each particle as one periodic image");
 }
 
 }  // namespace
