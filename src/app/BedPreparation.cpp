@@ -62,7 +62,8 @@ void keep_particles(Checkpoint& c, const std::vector<char>& keep) {
   keep_rows(c.list_position_radius, keep);
 }
 
-/// Keeps the pair records whose two particles are kept and the wall records of kept particles.
+/// Keeps the pair records whose two particles are kept and the wall records of kept particles;
+/// drops every mesh record (a bed starts other scenes, with tools of their own).
 void keep_history(ContactHistory& h, const std::unordered_set<ParticleId>& kept) {
   std::vector<char> pairs(h.pair_owner.size()), walls(h.wall_owner.size());
   for (std::size_t k = 0; k < pairs.size(); ++k)
@@ -74,6 +75,9 @@ void keep_history(ContactHistory& h, const std::unordered_set<ParticleId>& kept)
   keep_rows(h.wall_owner, walls);
   keep_rows(h.wall_index, walls);
   keep_rows(h.wall_values, walls, h.width);
+  h.mesh_owner.clear();
+  h.mesh_triangle.clear();
+  h.mesh_values.clear();
 }
 
 /// What trimming did: particles kept and removed, and the highest top of a kept particle [m].
@@ -82,6 +86,15 @@ struct TrimResult {
   std::size_t removed = 0;
   double bed_height = -std::numeric_limits<double>::infinity();
 };
+
+/// The trim results of all ranks together (each trims the particles it owns). Collective.
+TrimResult over_ranks(const MpiContext& mpi, const TrimResult& mine) {
+  unsigned long long counts[2] = {mine.kept, mine.removed};
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, mpi.comm());
+  TrimResult all{counts[0], counts[1], mine.bed_height};
+  MPI_Allreduce(MPI_IN_PLACE, &all.bed_height, 1, MPI_DOUBLE, MPI_MAX, mpi.comm());
+  return all;
+}
 
 /// Removes the particles whose centre lies above `remove_above` along `up`, and their contacts.
 TrimResult trim(Checkpoint& c, Vec3 up, double remove_above) {
@@ -202,8 +215,8 @@ void report_unsettled(const Scene& scene, const MpiContext& mpi, double time,
 }
 
 void save_bed(const Scene& scene, const MpiContext& mpi, Checkpoint state) {
-  const TrimResult result =
-      trim(state, up_direction(scene.simulation.gravity), scene.preparation.remove_above);
+  const TrimResult result = over_ranks(
+      mpi, trim(state, up_direction(scene.simulation.gravity), scene.preparation.remove_above));
   const std::string path = bed_file_path(scene);
   write_bed_file(mpi, path, state);
   if (mpi.is_root()) print_bed_summary(scene, result, state.time, path);

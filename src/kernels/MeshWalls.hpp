@@ -237,7 +237,7 @@ class MeshWalls {
   void get_rows(std::vector<std::uint32_t>& offsets, std::vector<std::uint32_t>& triangles,
                 std::vector<State>& history) const {
     offsets = download_values<Space>(candidates_.offsets(), empty() ? 0 : candidates_.size() + 1);
-    triangles = download_values<Space>(candidates_.triangles(), empty() ? 0 : candidates_.pairs());
+    triangles = entry_triangles();
     history_.download(history);
   }
 

@@ -43,6 +43,9 @@ CASE is one of:
                 ranks, mid-cut, holds mesh contact springs, and continued on 2 ranks it ends
                 equal bit for bit to the straight run; continued without those springs it
                 does not.
+  bed           tests/mpi/scenes/settle.toml as a bed preparation (settle, trim at 0.03 m, save)
+                at N = 1 and 3: the two bed files hold the same particles bit for bit, and both
+                runs print the same summary line with the counts over all ranks.
   cuda          tests/mpi/scenes/settle.toml on the CUDA backend (ranks sharing the one GPU) at
                 N = 1, 2 slabs and 2 x 2 blocks: the final states equal N = 1 on the device bit
                 for bit; against the host backend at N = 1, whose arithmetic rounds otherwise
@@ -511,6 +514,43 @@ def tool(runner):
                     "cannot see them")
 
 
+# ---- bed ----------------------------------------------------------------------------------------
+
+BED_SETTINGS = ("simulation.end_time=0.8", "preparation.kinetic_energy=1e-7",
+                "preparation.check_after=0.1", "preparation.remove_above=0.03")
+
+
+def bed_summary(banner):
+    """The 'bed: ... particles kept ...' line of a preparation run, up to its output path."""
+    for line in banner.splitlines():
+        if line.startswith("bed: "):
+            return line.split("; written to")[0]
+    return None
+
+
+def bed(runner):
+    scene = SCENES / "settle.toml"
+    summaries = {}
+    for ranks in (1, 3):
+        out = runner.run(f"bed_n{ranks}", scene, ranks, *BED_SETTINGS, quiet=False)
+        summaries[ranks] = bed_summary(runner.banner)
+        print(f"bed_n{ranks}: {summaries[ranks]}")
+    if summaries[1] is None or summaries[1] != summaries[3]:
+        runner.fail(f"bed summaries differ: {summaries[1]!r} against {summaries[3]!r}")
+    ids_1, a = read_bed(runner.work / "bed_n1" / "bed.h5")
+    ids_3, b = read_bed(runner.work / "bed_n3" / "bed.h5")
+    if not np.array_equal(ids_1, ids_3) or not all(np.array_equal(a[k], b[k]) for k in a):
+        runner.fail("bed_n3: the bed differs from bed_n1's")
+
+
+def read_bed(path):
+    """Particle ids (sorted) and state of a bed file, rows in id order."""
+    with h5py.File(path, "r") as f:
+        ids = f["id"][...]
+        order = np.argsort(ids)
+        return ids[order], {name: f[name][...][order] for name in
+                            ("position_radius", "velocity_inv_mass", "angular_velocity")}
+
 # ---- cuda ---------------------------------------------------------------------------------------
 
 SKIPPED = 77  # ctest's SKIP_RETURN_CODE
@@ -564,14 +604,14 @@ def main():
     parser.add_argument("--mpirun", required=True)
     parser.add_argument("--work", required=True)
     parser.add_argument("case", choices=["same-physics", "restart", "balance", "momentum",
-                                         "sliding-pair", "killed-checkpoint", "tool", "cuda"])
+                                         "sliding-pair", "killed-checkpoint", "tool", "bed", "cuda"])
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     runner = Runner(args.binary, args.mpirun, args.work)
     cases = {"same-physics": same_physics, "restart": restart, "balance": balance,
              "momentum": momentum, "sliding-pair": sliding_pair,
-             "killed-checkpoint": killed_checkpoint, "tool": tool, "cuda": cuda}
+             "killed-checkpoint": killed_checkpoint, "tool": tool, "bed": bed, "cuda": cuda}
     if cases[args.case](runner) == SKIPPED:
         return SKIPPED
     for line in runner.failures:
