@@ -62,12 +62,14 @@ void keep_particles(Checkpoint& c, const std::vector<char>& keep) {
   keep_rows(c.list_position_radius, keep);
 }
 
-/// Keeps the pair records whose two particles are kept and the wall records of kept particles;
-/// drops every mesh record (a bed starts other scenes, with tools of their own).
-void keep_history(ContactHistory& h, const std::unordered_set<ParticleId>& kept) {
+/// Keeps the pair records of a kept owner whose partner (on any rank) was not removed and the
+/// wall records of kept particles; drops every mesh record (a bed starts other scenes, with
+/// tools of their own).
+void keep_history(ContactHistory& h, const std::unordered_set<ParticleId>& kept,
+                  const std::unordered_set<ParticleId>& removed) {
   std::vector<char> pairs(h.pair_owner.size()), walls(h.wall_owner.size());
   for (std::size_t k = 0; k < pairs.size(); ++k)
-    pairs[k] = kept.count(h.pair_owner[k]) && kept.count(h.pair_partner[k]);
+    pairs[k] = kept.count(h.pair_owner[k]) && !removed.count(h.pair_partner[k]);
   for (std::size_t k = 0; k < walls.size(); ++k) walls[k] = kept.count(h.wall_owner[k]);
   keep_rows(h.pair_owner, pairs);
   keep_rows(h.pair_partner, pairs);
@@ -96,23 +98,41 @@ TrimResult over_ranks(const MpiContext& mpi, const TrimResult& mine) {
   return all;
 }
 
-/// Removes the particles whose centre lies above `remove_above` along `up`, and their contacts.
-TrimResult trim(Checkpoint& c, Vec3 up, double remove_above) {
+/// The ids of `mine` of every rank. Collective.
+std::unordered_set<ParticleId> ids_of_all_ranks(const MpiContext& mpi,
+                                                const std::vector<ParticleId>& mine) {
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(mpi.size()), offsets(mpi.size(), 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, mpi.comm());
+  for (int r = 1; r < mpi.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<ParticleId> all(static_cast<std::size_t>(offsets.back() + counts.back()));
+  MPI_Allgatherv(mine.data(), count, MPI_UINT64_T, all.data(), counts.data(), offsets.data(),
+                 MPI_UINT64_T, mpi.comm());
+  return std::unordered_set<ParticleId>(all.begin(), all.end());
+}
+
+/// Removes this rank's particles whose centre lies above `remove_above` along `up`, and their
+/// contacts, also those with particles another rank removed. Collective.
+TrimResult trim(const MpiContext& mpi, Checkpoint& c, Vec3 up, double remove_above) {
   const ParticleStore& p = c.particles;
   std::vector<char> keep(p.size());
   std::unordered_set<ParticleId> kept;
+  std::vector<ParticleId> removed;
   TrimResult result;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double height = dot(xyz(p.position_radius[i]), up);
     keep[i] = height <= remove_above;
-    if (!keep[i]) continue;
+    if (!keep[i]) {
+      removed.push_back(p.id[i]);
+      continue;
+    }
     kept.insert(p.id[i]);
     result.bed_height = std::max(result.bed_height, height + p.position_radius[i].w);
   }
   result.kept = kept.size();
-  result.removed = p.size() - kept.size();
+  result.removed = removed.size();
   keep_particles(c, keep);
-  keep_history(c.history, kept);
+  keep_history(c.history, kept, ids_of_all_ranks(mpi, removed));
   return result;
 }
 
@@ -215,8 +235,8 @@ void report_unsettled(const Scene& scene, const MpiContext& mpi, double time,
 }
 
 void save_bed(const Scene& scene, const MpiContext& mpi, Checkpoint state) {
-  const TrimResult result = over_ranks(
-      mpi, trim(state, up_direction(scene.simulation.gravity), scene.preparation.remove_above));
+  const TrimResult result = over_ranks(mpi, trim(mpi, state, up_direction(scene.simulation.gravity),
+                                                 scene.preparation.remove_above));
   const std::string path = bed_file_path(scene);
   write_bed_file(mpi, path, state);
   if (mpi.is_root()) print_bed_summary(scene, result, state.time, path);
