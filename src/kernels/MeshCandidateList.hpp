@@ -271,7 +271,9 @@ template <class Space>
 class MeshCandidateList {
  public:
   /// Bins the `triangle_count` triangles (corners into `vertices`, both in Space memory) that
-  /// meet `region` (or, along a periodic axis of images.box, a periodic image of it) and lists,
+  /// meet `region` grown by the largest reach max_radius + skin (or, along a periodic axis of
+  /// images.box, a periodic image of it: a triangle just outside the box or the block can touch
+  /// a particle inside) and lists,
   /// for each of the n particles (inside the region, each at least r_i + skin from its faces),
   /// the triangles within r_i + skin, each mesh seen from the particle's image that `images`
   /// gives. `max_radius` is the largest particle radius: cells are at least
@@ -285,7 +287,7 @@ class MeshCandidateList {
     plan_grid(vertices, vertex_count, max_radius + skin, max_cells);
     bins_.vertices = vertices;
     bins_.corners = corners;
-    bin_triangles(triangle_count, region, images.box);
+    bin_triangles(triangle_count, grown(region, max_radius + skin), images.box);
     using namespace mesh_candidate_kernels;
     parallel_for(
         Space{}, n,
@@ -339,6 +341,16 @@ class MeshCandidateList {
       cell *= 2;
     }
     bins_.cell = cell;
+  }
+
+  /// `region` grown by `reach` on each axis it does not span whole.
+  static BinRegion grown(BinRegion region, Real reach) {
+    for (int k = 0; k < 3; ++k) {
+      if (region.periodic[k]) continue;
+      axis(region.lo, k) -= reach;
+      axis(region.length, k) += 2 * reach;
+    }
+    return region;
   }
 
   void bin_triangles(std::size_t triangle_count, const BinRegion& region, const PeriodicBox& box) {

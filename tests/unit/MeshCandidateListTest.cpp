@@ -207,14 +207,30 @@ TEST(MeshCandidateList, ARegionBinsOnlyItsTrianglesAndMissesNoneItsParticlesReac
   list.build(sheet.vertices.data(), sheet.vertices.size(), sheet.corners.data(),
              sheet.corners.size(), region, images_of(sheet, PeriodicBox{}), spheres.data(),
              spheres.size(), 0.010, skin);
-  std::uint64_t meeting = 0;  // triangles whose x range meets [−0.1, 0.3]
+  std::uint64_t meeting = 0;  // triangles whose x range meets [−0.1, 0.3] grown by the reach
   for (const TriangleCorners& c : sheet.corners) {
     const Real lo =
         std::min({sheet.vertices[c.v[0]].x, sheet.vertices[c.v[1]].x, sheet.vertices[c.v[2]].x});
-    meeting += lo <= 0.3 ? 1 : 0;
+    meeting += lo <= 0.3 + reach ? 1 : 0;
   }
   EXPECT_EQ(list.binned_triangles(), meeting);
   EXPECT_LT(meeting, sheet.corners.size() / 2);
+}
+
+/// On one rank the region is the box itself: a sheet over x ∈ [−0.05, 0.5] reaches out of the
+/// box [0, 1]³ through x = 0, and particles just inside it still find the triangles that lie
+/// wholly outside the box within their reach.
+TEST(MeshCandidateList, TrianglesJustOutsideTheBoxAreFoundFromInside) {
+  const Mesh sheet = wavy_sheet(100, -0.05, 0.5);
+  PeriodicBox box;
+  box.lo = {0, -0.1, -0.1};
+  box.length = {1, 1.2, 0.2};
+  const auto spheres = random_spheres(2000, {0.0, -0.02, -0.07}, {0.012, 1.02, 0.07}, 6);
+  std::size_t outside = 0;  // particles whose reach crosses x = 0
+  for (const Real4& p : spheres) outside += p.x < p.w + 0.001 ? 1 : 0;
+  ASSERT_GT(outside, 100u);
+  EXPECT_GT(expect_same_as_brute_force(sheet, spheres, 0.001, 1u << 22, whole_box_region(box), box),
+            500u);
 }
 
 /// Smallest and largest x of triangle t.
@@ -256,8 +272,9 @@ TEST(MeshCandidateList, SheetAcrossAPeriodicFaceMatchesBruteForceOverImages) {
 
 /// A rank whose region is the high end of a periodic x axis, [0.8, 1.05] (its block [0.85, 1)
 /// grown by 0.05), with a sheet over [−0.1, 0.4] at the low end and one over [0.6, 0.9]: it bins
-/// the first sheet's triangles that meet the region's image [−0.2, 0.05] and the second's that
-/// meet [0.8, 1.05], and its particles find, through the face, all the triangles they reach.
+/// the first sheet's triangles that meet the region's image [−0.2, 0.05] grown by the reach and
+/// the second's that meet [0.8, 1.05] so grown, and its particles find, through the face, all
+/// the triangles they reach.
 TEST(MeshCandidateList, ARegionAtTheHighEndReachesTrianglesAtTheLowEndThroughTheFace) {
   const Mesh meshes = join(wavy_sheet(40, -0.1, 0.4), wavy_sheet(40, 0.6, 0.9));
   const PeriodicBox box = box_periodic_in_x();
@@ -277,9 +294,10 @@ TEST(MeshCandidateList, ARegionAtTheHighEndReachesTrianglesAtTheLowEndThroughThe
   for (std::uint32_t t = 0; t < meshes.corners.size(); ++t) {
     Real lo, hi;
     x_range(meshes, t, lo, hi);
-    const bool at_low_end = meshes.triangle_mesh[t] == 0 && lo <= 0.05;
+    const Real reach = 0.010 + skin;
+    const bool at_low_end = meshes.triangle_mesh[t] == 0 && lo <= 0.05 + reach;
     low_end += at_low_end ? 1 : 0;
-    meeting += at_low_end || (meshes.triangle_mesh[t] == 1 && hi >= 0.8) ? 1 : 0;
+    meeting += at_low_end || (meshes.triangle_mesh[t] == 1 && hi >= 0.8 - reach) ? 1 : 0;
   }
   RecordProperty("binned_triangles", static_cast<int>(list.binned_triangles()));
   EXPECT_EQ(list.binned_triangles(), meeting);
