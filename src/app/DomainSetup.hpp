@@ -15,9 +15,9 @@ namespace gpudem {
 /// edge at least the ghost width 2 r_max + skin (r_max over `particles`) are weighted by the
 /// particles they hold; "grid" cuts the particle bed into blocks of equal particle counts
 /// along each axis ("auto" dims judge the bed as it will settle under gravity), "metis"
-/// partitions the cell graph. Throws InputError for dims that do not
-/// multiply to the rank count, more ranks than coarse cells, or triangle-mesh walls (they run
-/// on one rank in this version). gpu_aware: MPI accepts device buffers (GpuAwareMpi.hpp).
+/// partitions the cell graph. Throws InputError for dims that do not multiply to the rank
+/// count or more ranks than coarse cells. gpu_aware: MPI accepts device buffers
+/// (GpuAwareMpi.hpp).
 std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi,
                                        const ParticleStore& particles, const EngineSetup& setup,
                                        bool gpu_aware);
