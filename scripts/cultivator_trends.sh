@@ -21,15 +21,9 @@ pass() {  # parameter value --set options...
   local dir="$OUT/trends/$name-$value"
   mpirun -np "$NP" --bind-to none build/gpudem-mpi --quiet inputs/tillage/cultivator_till.toml \
     --output-dir "$dir" --set "insert.0.bed=\"$BED\"" "$@"
-  local line
-  line=$(/usr/bin/python3 scripts/plot_draft.py "$dir/timeseries.csv" "$dir/draft.png" \
-    --tool sweep --axis x --steady 0.45 0.84)
-  echo "$name $value: $line"
-  /usr/bin/python3 - "$line" "$name" "$value" >> "$OUT/trends.csv" <<'PY'
-import re, sys
-mean, std = re.search(r": ([-0-9.e+]+) ± ([-0-9.e+]+) N", sys.argv[1]).groups()
-print(f"{sys.argv[2]},{sys.argv[3]},{mean},{std}")
-PY
+  echo -n "$name $value: "
+  /usr/bin/python3 scripts/plot_draft.py "$dir/timeseries.csv" "$dir/draft.png" \
+    --tool sweep --axis x --steady 0.45 0.84 --append-csv "$OUT/trends.csv" --label "$name,$value"
 }
 for rho in 1500 1850 2200; do pass density "$rho" --set "material.0.density=$rho"; done
 for e in 0.2 0.5 0.8; do pass restitution "$e" --set "material.0.restitution=$e"; done

@@ -25,15 +25,9 @@ pass() {  # VALUE BED_VALUE: the sweep pass with KEY = VALUE from the bed settle
   local dir="$OUT/pass-$1-bed-$2"
   run inputs/tillage/quickstart_till.toml --output-dir "$dir" --set "$KEY=$1" \
     --set "insert.0.bed=\"$OUT/bed-$2/bed.h5\""
-  local line
-  line=$(/usr/bin/python3 scripts/plot_draft.py "$dir/timeseries.csv" "$dir/draft.png" \
-    --tool sweep --axis x --steady 0.45 0.84)
-  echo "$KEY = $1, bed at $2: $line"
-  /usr/bin/python3 - "$line" "$1" "$2" >> "$OUT/trend.csv" <<'PY'
-import re, sys
-mean, std = re.search(r": ([-0-9.e+]+) ± ([-0-9.e+]+) N", sys.argv[1]).groups()
-print(f"{sys.argv[2]},{sys.argv[3]},{mean},{std}")
-PY
+  echo -n "$KEY = $1, bed at $2: "
+  /usr/bin/python3 scripts/plot_draft.py "$dir/timeseries.csv" "$dir/draft.png" \
+    --tool sweep --axis x --steady 0.45 0.84 --append-csv "$OUT/trend.csv" --label "$1,$2"
 }
 mkdir -p "$OUT"
 echo "value,bed_value,draft_mean_N,draft_std_N" > "$OUT/trend.csv"

@@ -3,11 +3,12 @@
 travel, over time, with its mean over the steady window.
 
 Usage: scripts/plot_draft.py TIMESERIES_CSV OUT_PNG [--tool NAME] [--axis x|y|z]
-       [--steady START END]
+       [--steady START END] [--append-csv FILE --label TEXT]
 
 The draft is minus the tool's force component along its travel axis (default: the mesh column
 prefix NAME = "sweep", axis x, and a travel along +x). The steady window defaults to the second
-half of the run. Prints the mean and standard deviation of the draft over the window.
+half of the run. Prints the mean and standard deviation of the draft over the window and,
+with --append-csv, appends them to FILE as the row "TEXT,mean,std" (as printed).
 """
 import argparse
 import csv
@@ -26,7 +27,11 @@ def main():
     parser.add_argument("--tool", default="sweep")
     parser.add_argument("--axis", default="x", choices=["x", "y", "z"])
     parser.add_argument("--steady", nargs=2, type=float, metavar=("START", "END"))
+    parser.add_argument("--append-csv", metavar="FILE")
+    parser.add_argument("--label", metavar="TEXT", help="first fields of the appended row")
     args = parser.parse_args()
+    if args.append_csv and args.label is None:
+        parser.error("--append-csv needs --label")
     with open(args.csv, newline="") as f:
         rows = list(csv.DictReader(f))
     column = f"{args.tool}_f{args.axis}"
@@ -53,6 +58,9 @@ def main():
     fig.savefig(args.png, dpi=120)
     print(f"draft force over {start:.3g}–{end:.3g} s: {mean:.4g} ± {std:.3g} N "
           f"({len(window)} rows); plot: {args.png}")
+    if args.append_csv:
+        with open(args.append_csv, "a") as table:
+            table.write(f"{args.label},{mean:.4g},{std:.3g}\n")
 
 
 if __name__ == "__main__":
