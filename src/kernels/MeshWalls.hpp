@@ -233,12 +233,17 @@ class MeshWalls {
     }
   }
 
-  /// Host copies of the candidate lists (CSR over the owned particles) and their history.
-  void get_rows(std::vector<std::uint32_t>& offsets, std::vector<std::uint32_t>& triangles,
-                std::vector<State>& history) const {
-    offsets = download_values<Space>(candidates_.offsets(), empty() ? 0 : candidates_.size() + 1);
-    triangles = entry_triangles();
+  /// Host copy of the candidate lists' CSR offsets over the owned particles (none without
+  /// meshes).
+  std::vector<std::uint32_t> entry_offsets() const {
+    return download_values<Space>(candidates_.offsets(), empty() ? 0 : candidates_.size() + 1);
+  }
+
+  /// Host copy of the history of each candidate-list entry.
+  std::vector<State> entry_history() const {
+    std::vector<State> history;
     history_.download(history);
+    return history;
   }
 
   /// Replaces the history of the candidate-list entries (one State per entry).

@@ -210,7 +210,7 @@ class StepEngineImpl final : public StepEngine {
     HistoryValues values;
     values.pair = flat_values(pair_history_);
     values.wall = flat_values(wall_history_);
-    values.mesh = flat_values(mesh_history());
+    values.mesh = flat_values(meshes_.entry_history());
     history = collect_history(contact_slots(), kHistoryWidth, values);
   }
 
@@ -502,14 +502,6 @@ class StepEngineImpl final : public StepEngine {
     return flat_values(host);
   }
 
-  /// Host copies of the mesh candidates' history (none without meshes or history).
-  std::vector<State> mesh_history() const {
-    std::vector<std::uint32_t> offsets, triangles;
-    std::vector<State> history;
-    if (!meshes_.empty()) meshes_.get_rows(offsets, triangles, history);
-    return history;
-  }
-
   /// Host copy of a history array as kHistoryWidth values per contact.
   static std::vector<Real> flat_values(const std::vector<State>& host) {
     std::vector<Real> values;
@@ -543,8 +535,8 @@ class StepEngineImpl final : public StepEngine {
     if (slots.offsets.empty()) slots.offsets.assign(owned_ + 1, 0);
     slots.wall_count = wall_count();
     if (meshes_.empty()) return slots;
-    std::vector<State> unused;
-    meshes_.get_rows(slots.mesh_offsets, slots.mesh_triangles, unused);
+    slots.mesh_offsets = meshes_.entry_offsets();
+    slots.mesh_triangles = meshes_.entry_triangles();
     if (slots.mesh_offsets.empty()) slots.mesh_offsets.assign(owned_ + 1, 0);
     slots.triangle_count = meshes_.triangle_count();
     return slots;
