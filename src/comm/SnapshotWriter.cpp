@@ -72,21 +72,12 @@ void write_rank_field(MPI_Comm comm, const ParallelFile& file, const Slice& slic
   file.write_dataset({"rank", ranks.data(), H5T_NATIVE_UINT32, H5T_STD_U32LE, 1, 1, 0}, slice);
 }
 
-/// What keeps `name` from naming a mesh's group and its .xmf next to `<basename>.xmf`, or null.
-const char* mesh_name_problem(const std::string& name, const std::string& basename) {
-  if (name.empty()) return "is empty";
-  if (name.find('/') != std::string::npos) return "contains '/'";
-  if (name == "." || name == "..") return "is not a file name";
-  if (name == basename) return "is the particles' basename";
-  return nullptr;
-}
-
-/// Throws std::invalid_argument unless every mesh name is allowed (mesh_name_problem) and used
-/// once.
+/// Throws std::invalid_argument unless every mesh name is allowed (mesh_output_name_problem)
+/// and used once.
 void check_mesh_names(const SnapshotOptions& options) {
   std::set<std::string> seen;
   for (const XdmfMesh& mesh : options.meshes) {
-    const char* problem = mesh_name_problem(mesh.name, options.basename);
+    const char* problem = mesh_output_name_problem(mesh.name, options.basename);
     if (!problem && !seen.insert(mesh.name).second) problem = "is used twice";
     if (problem) throw std::invalid_argument("snapshot mesh name '" + mesh.name + "' " + problem);
   }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "comm/XdmfDocument.hpp"
+#include "core/OutputNames.hpp"
 #include "core/ParticleStore.hpp"
 #include "kernels/StepEngine.hpp"
 
@@ -18,8 +19,8 @@ namespace gpudem {
 
 /// What the snapshots of one writer hold beyond the fields every snapshot has, and their names.
 struct SnapshotOptions {
-  bool rank_field = false;             ///< add dataset "rank": the MPI rank owning each particle
-  std::string basename = "particles";  ///< files `<basename>_<index>.h5` and `<basename>.xmf`
+  bool rank_field = false;  ///< add dataset "rank": the MPI rank owning each particle
+  std::string basename = kParticlesBasename;  ///< files `<basename>_<index>.h5`, `<basename>.xmf`
   /// The mesh walls every snapshot holds, in the order write() gets them: names unique,
   /// non-empty, without '/', neither "." nor ".." and not `basename`.
   std::vector<XdmfMesh> meshes = {};

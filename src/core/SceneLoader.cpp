@@ -14,6 +14,7 @@
 #include <toml.hpp>
 
 #include "core/InputError.hpp"
+#include "core/OutputNames.hpp"
 #include "core/SceneOverrides.hpp"
 #include "core/TomlReader.hpp"
 
@@ -341,15 +342,6 @@ MeshSettings read_mesh(const TableReader& table, std::size_t index, const Scene&
   return m;
 }
 
-/// Why `name` cannot name a mesh's output (group /mesh/<name>/ and file <name>.xmf next to
-/// particles.xmf), or null. (The reader refuses an empty name.)
-const char* mesh_name_problem(const std::string& name) {
-  if (name.find('/') != std::string::npos) return "contains '/'";
-  if (name == "." || name == "..") return "is not a file name";
-  if (name == "particles") return "is the particles' output name";
-  return nullptr;
-}
-
 /// The [[mesh]] tables; names label force columns, so they differ from each other and from
 /// the walls' names, and name the mesh's output files.
 std::vector<MeshSettings> read_meshes(const TableReader& root, const Scene& scene) {
@@ -357,7 +349,7 @@ std::vector<MeshSettings> read_meshes(const TableReader& root, const Scene& scen
   const std::vector<TableReader> tables = root.array_of_tables("mesh");
   for (std::size_t i = 0; i < tables.size(); ++i) {
     MeshSettings mesh = read_mesh(tables[i], i, scene);
-    if (const char* problem = mesh_name_problem(mesh.name))
+    if (const char* problem = mesh_output_name_problem(mesh.name, kParticlesBasename))
       tables[i].fail("name", "name '" + mesh.name + "' " + problem +
                                  "; it names the mesh's output file <name>.xmf");
     bool taken = false;
