@@ -134,6 +134,14 @@ BinRegion everywhere() {
   return r;
 }
 
+/// Builds `list` for `spheres` (radii at most 0.010 m) against `mesh`.
+void build_list(MeshCandidateList<HostSpace>& list, const Mesh& mesh,
+                const std::vector<Real4>& spheres, Real skin, const BinRegion& region,
+                const PeriodicBox& box, std::size_t max_cells = std::size_t(1) << 22) {
+  list.build(mesh.vertices.data(), mesh.vertices.size(), mesh.corners.data(), mesh.corners.size(),
+             region, images_of(mesh, box), spheres.data(), spheres.size(), 0.010, skin, max_cells);
+}
+
 /// Compares the list with the brute-force set of triangles within r + skin of each particle
 /// (of its nearest periodic image in `box`), in increasing index; returns the number of
 /// particle-triangle pairs.
@@ -142,8 +150,7 @@ std::size_t expect_same_as_brute_force(const Mesh& mesh, const std::vector<Real4
                                        const BinRegion& region = everywhere(),
                                        const PeriodicBox& box = PeriodicBox{}) {
   MeshCandidateList<HostSpace> list;
-  list.build(mesh.vertices.data(), mesh.vertices.size(), mesh.corners.data(), mesh.corners.size(),
-             region, images_of(mesh, box), spheres.data(), spheres.size(), 0.010, skin, max_cells);
+  build_list(list, mesh, spheres, skin, region, box, max_cells);
   EXPECT_EQ(list.size(), spheres.size());
   std::size_t pairs = 0;
   for (std::size_t i = 0; i < spheres.size(); ++i) {
@@ -184,9 +191,7 @@ TEST(MeshCandidateList, ParticlesFarFromTheMeshHaveNoCandidates) {
   const Mesh sheet = wavy_sheet(4);
   const std::vector<Real4> far{{5, 5, 5, 0.01}, {-3, 0.5, 0.5, 0.01}, {0.5, 0.5, 0.5, 0.01}};
   MeshCandidateList<HostSpace> list;
-  list.build(sheet.vertices.data(), sheet.vertices.size(), sheet.corners.data(),
-             sheet.corners.size(), everywhere(), images_of(sheet, PeriodicBox{}), far.data(),
-             far.size(), 0.01, 0.001);
+  build_list(list, sheet, far, 0.001, everywhere(), PeriodicBox{});
   EXPECT_EQ(list.pairs(), 0u);
 }
 
@@ -204,9 +209,7 @@ TEST(MeshCandidateList, ARegionBinsOnlyItsTrianglesAndMissesNoneItsParticlesReac
   EXPECT_GT(expect_same_as_brute_force(sheet, spheres, skin, 1u << 22, region), 300u);
 
   MeshCandidateList<HostSpace> list;
-  list.build(sheet.vertices.data(), sheet.vertices.size(), sheet.corners.data(),
-             sheet.corners.size(), region, images_of(sheet, PeriodicBox{}), spheres.data(),
-             spheres.size(), 0.010, skin);
+  build_list(list, sheet, spheres, skin, region, PeriodicBox{});
   std::uint64_t meeting = 0;  // triangles whose x range meets [−0.1, 0.3] grown by the reach
   for (const TriangleCorners& c : sheet.corners) {
     const Real lo =
@@ -254,9 +257,7 @@ TEST(MeshCandidateList, SheetAcrossAPeriodicFaceMatchesBruteForceOverImages) {
   EXPECT_GT(expect_same_as_brute_force(meshes, spheres, skin, 1u << 22, region, box), 1000u);
 
   MeshCandidateList<HostSpace> list;
-  list.build(meshes.vertices.data(), meshes.vertices.size(), meshes.corners.data(),
-             meshes.corners.size(), region, images_of(meshes, box), spheres.data(), spheres.size(),
-             0.010, skin);
+  build_list(list, meshes, spheres, skin, region, box);
   std::size_t through_face = 0;  // particles at x < 0.25 listing triangles beyond x = 1
   for (std::size_t i = 0; i < spheres.size(); ++i) {
     if (spheres[i].x >= 0.25) continue;
@@ -287,9 +288,7 @@ TEST(MeshCandidateList, ARegionAtTheHighEndReachesTrianglesAtTheLowEndThroughThe
   EXPECT_GT(expect_same_as_brute_force(meshes, spheres, skin, 1u << 22, region, box), 200u);
 
   MeshCandidateList<HostSpace> list;
-  list.build(meshes.vertices.data(), meshes.vertices.size(), meshes.corners.data(),
-             meshes.corners.size(), region, images_of(meshes, box), spheres.data(), spheres.size(),
-             0.010, skin);
+  build_list(list, meshes, spheres, skin, region, box);
   std::uint64_t meeting = 0, low_end = 0;
   for (std::uint32_t t = 0; t < meshes.corners.size(); ++t) {
     Real lo, hi;
