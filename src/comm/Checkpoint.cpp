@@ -44,13 +44,7 @@ void check_lengths(const Checkpoint& c) {
       p.angular_velocity.size() != n || p.force.size() != n || p.torque.size() != n ||
       p.material.size() != n || c.list_position_radius.size() != n)
     throw std::logic_error("checkpoint: particle arrays differ in length");
-  const ContactHistory& h = c.history;
-  if (h.pair_partner.size() != h.pair_owner.size() ||
-      h.pair_values.size() != h.pair_owner.size() * h.width ||
-      h.wall_index.size() != h.wall_owner.size() ||
-      h.wall_values.size() != h.wall_owner.size() * h.width ||
-      h.mesh_triangle.size() != h.mesh_owner.size() ||
-      h.mesh_values.size() != h.mesh_owner.size() * h.width)
+  if (!c.history.lengths_agree())
     throw std::logic_error("checkpoint: contact history arrays differ in length");
 }
 

@@ -53,6 +53,15 @@ struct ContactHistory {
     mesh_values.insert(mesh_values.end(), values, values + width);
   }
   bool empty() const { return pair_owner.empty() && wall_owner.empty() && mesh_owner.empty(); }
+  /// True when each kind of record has its keys and `width` values per record in full.
+  bool lengths_agree() const {
+    return pair_partner.size() == pair_owner.size() &&
+           pair_values.size() == pair_owner.size() * width &&
+           wall_index.size() == wall_owner.size() &&
+           wall_values.size() == wall_owner.size() * width &&
+           mesh_triangle.size() == mesh_owner.size() &&
+           mesh_values.size() == mesh_owner.size() * width;
+  }
 };
 
 /// Where the history records of an engine live, as host copies: global ids in the engine's
@@ -121,16 +130,6 @@ inline std::uint32_t mesh_entry(const ContactSlots& slots, std::uint32_t owner,
          std::to_string(triangle));
 }
 
-inline void check_lengths(const ContactHistory& h) {
-  if (h.pair_partner.size() != h.pair_owner.size() ||
-      h.pair_values.size() != h.pair_owner.size() * h.width ||
-      h.wall_index.size() != h.wall_owner.size() ||
-      h.wall_values.size() != h.wall_owner.size() * h.width ||
-      h.mesh_triangle.size() != h.mesh_owner.size() ||
-      h.mesh_values.size() != h.mesh_owner.size() * h.width)
-    reject("the arrays of one kind of contact differ in length");
-}
-
 /// Copies record k of `from` (`width` values) to record `to` of `into`.
 inline void copy_record(const std::vector<Real>& from, std::size_t k, std::vector<Real>& into,
                         std::size_t to, std::uint32_t width) {
@@ -173,7 +172,7 @@ inline HistoryValues scatter_history(const ContactSlots& slots, std::uint32_t wi
   if (history.width != width && !history.empty())
     reject("it holds " + std::to_string(history.width) +
            " values per contact but this contact law keeps " + std::to_string(width));
-  check_lengths(history);
+  if (!history.lengths_agree()) reject("the arrays of one kind of contact differ in length");
   std::unordered_map<ParticleId, std::uint32_t> slot;
   for (std::size_t i = 0; i < slots.rows; ++i) slot[slots.id[i]] = static_cast<std::uint32_t>(i);
   HistoryValues values;
