@@ -1,7 +1,9 @@
 // Host-backend throughput on settled beds: settles a periodic bed of 10^4 spheres, tiles it
 // in x and y to 10^4, 10^5 and 10^6 particles, and times the step loop at 1 and 2 OpenMP
-// threads. Prints a Markdown table (particle-steps/s, bytes per particle). With a second
-// argument, also writes the 10^5 bed for LAMMPS (scripts/bench_vs_lammps.sh).
+// threads in double and in mixed precision. Prints a Markdown table (particle-steps/s, bytes
+// per particle, and for mixed the largest force error against double over the largest force).
+// With a second argument, also writes the 10^5 bed for LAMMPS (scripts/bench_vs_lammps.sh).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,11 +16,40 @@
 namespace gpudem {
 namespace {
 
-void measure(const ParticleStore& bed, int tx, int ty, int threads) {
+const char* precision_name(Precision precision) {
+  return precision == Precision::Mixed ? "mixed" : "double";
+}
+
+/// Largest |F_a − F_b| over the largest |F_b| of two engines holding the same particles in the
+/// same order.
+double force_error(const StepEngine& a, const StepEngine& b) {
+  ParticleStore pa, pb;
+  a.get_particles(pa);
+  b.get_particles(pb);
+  double largest = 0, worst = 0;
+  for (std::size_t i = 0; i < pb.size(); ++i) {
+    largest = std::max(largest, norm(pb.force[i]));
+    worst = std::max(worst, norm(pa.force[i] - pb.force[i]));
+  }
+  return worst / largest;
+}
+
+void measure(const ParticleStore& bed, int tx, int ty, int threads, Precision precision) {
   set_threads(threads);
   const Scene scene = bed_scene(kSide * tx, kSide * ty);
-  auto engine = make_host_engine(make_engine_setup(scene, bed));
+  EngineSetup setup = make_engine_setup(scene, bed);
+  setup.precision = precision;
+  auto engine = make_host_engine(setup);
   engine->set_particles(bed);
+  std::string error = "–";
+  if (precision != Precision::Double) {
+    setup.precision = Precision::Double;
+    auto exact = make_host_engine(setup);
+    exact->set_particles(bed);
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2g", force_error(*engine, *exact));
+    error = text;
+  }
   const int steps = std::max(20, static_cast<int>(3e7 / bed.size()));
   for (int n = 0; n < 5; ++n) engine->step();
   const std::uint64_t rebuilds0 = engine->rebuild_count();
@@ -30,9 +61,11 @@ void measure(const ParticleStore& bed, int tx, int ty, int threads) {
   engine->rebuild_neighbors();  // sort by cell, list, history carry-over, forces
   const double rebuild =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-  std::printf("| %zu | %d | %d | %.3g | %.1f | %llu | %.3g |\n", bed.size(), threads, steps,
-              steps * double(bed.size()) / seconds, double(engine->memory_bytes()) / bed.size(),
-              static_cast<unsigned long long>(engine->rebuild_count() - rebuilds0), rebuild);
+  std::printf("| %zu | %s | %d | %d | %.3g | %.1f | %llu | %.3g | %s |\n", bed.size(),
+              precision_name(precision), threads, steps, steps * double(bed.size()) / seconds,
+              double(engine->memory_bytes()) / bed.size(),
+              static_cast<unsigned long long>(engine->rebuild_count() - rebuilds0), rebuild,
+              error.c_str());
   std::fflush(stdout);
 }
 
@@ -60,14 +93,15 @@ void write_lammps_bed(const ParticleStore& bed, int tx, int ty, const std::strin
   const double reduced_mass = mean_mass / 2;
   std::FILE* params = std::fopen((path + ".params").c_str(), "w");
   if (!params) throw std::runtime_error("cannot write " + path + ".params");
-  std::fprintf(params,
-               "variable dt equal %.9g\nvariable kn equal %.9g\nvariable kt equal %.9g\n"
-               "variable gn equal %.9g\nvariable gt equal %.9g\nvariable mu equal %.9g\n"
-               "variable skin equal %.9g\n",
-               setup.dt, pair.hooke_stiffness, pair.hooke_tangential_stiffness,
-               2 * pair.restitution_beta * std::sqrt(pair.hooke_stiffness / reduced_mass),
-               2 * pair.restitution_beta * std::sqrt(pair.hooke_tangential_stiffness / reduced_mass),
-               pair.friction_static, setup.skin);
+  std::fprintf(
+      params,
+      "variable dt equal %.9g\nvariable kn equal %.9g\nvariable kt equal %.9g\n"
+      "variable gn equal %.9g\nvariable gt equal %.9g\nvariable mu equal %.9g\n"
+      "variable skin equal %.9g\n",
+      setup.dt, pair.hooke_stiffness, pair.hooke_tangential_stiffness,
+      2 * pair.restitution_beta * std::sqrt(pair.hooke_stiffness / reduced_mass),
+      2 * pair.restitution_beta * std::sqrt(pair.hooke_tangential_stiffness / reduced_mass),
+      pair.friction_static, setup.skin);
   std::fclose(params);
 }
 
@@ -82,14 +116,15 @@ int main(int argc, char** argv) {
   std::fflush(stdout);
   const ParticleStore seed = settled_seed_bed();
   std::printf(
-      "| particles | threads | steps | particle-steps/s | bytes/particle | rebuilds in "
-      "timed steps | one rebuild [s] |\n");
-  std::printf("|---|---|---|---|---|---|---|\n");
+      "| particles | precision | threads | steps | particle-steps/s | bytes/particle | rebuilds "
+      "in timed steps | one rebuild [s] | force error vs double |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
   const int tiles[][2] = {{1, 1}, {5, 2}, {10, 10}};
   for (int e = 4; e <= max_exponent && e <= 6; ++e) {
     const ParticleStore bed = tile(seed, tiles[e - 4][0], tiles[e - 4][1]);
     if (e == 5 && !lammps_data.empty()) write_lammps_bed(bed, 5, 2, lammps_data);
-    for (int threads : {1, 2}) measure(bed, tiles[e - 4][0], tiles[e - 4][1], threads);
+    for (Precision precision : {Precision::Double, Precision::Mixed})
+      for (int threads : {1, 2}) measure(bed, tiles[e - 4][0], tiles[e - 4][1], threads, precision);
   }
   return 0;
 }

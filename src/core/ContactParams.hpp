@@ -1,23 +1,45 @@
 #pragma once
 /// Per material pair contact constants, resolved once on the host from the materials, the
 /// mixing rule and any explicit [[pair]] entry (SceneSetup.cpp), then read by every contact
-/// law slot. A slot reads only the fields it needs; the table has material_count² entries.
+/// law slot. A slot reads only the fields it needs; the table has material_count² entries. The
+/// host resolves them in Real; a law evaluated in float reads a converted copy (params_cast).
 #include "core/Config.hpp"
 
 namespace gpudem {
 
-struct ContactPairParams {
-  Real hooke_stiffness = 0;             ///< k_n of the Hooke law [N/m]
-  Real hooke_tangential_stiffness = 0;  ///< k_t = 2/7 k_n of the linear history law [N/m]
-  Real effective_young = 0;             ///< E*: 1/E* = (1−ν₁²)/E₁ + (1−ν₂²)/E₂ [Pa]
-  Real effective_shear = 0;  ///< G*: 1/G* = (2−ν₁)/G₁ + (2−ν₂)/G₂, G = E/(2(1+ν)) [Pa]
-  Real restitution_beta = 0;   ///< |β| = |ln e| / √(ln² e + π²) of the pair restitution e [-]
-  Real viscoelastic_time = 0;  ///< A of the viscoelastic law [s]
-  Real friction_static = 0;    ///< μ_s, tested before sliding starts [-]
-  Real friction_dynamic = 0;   ///< μ_d, applied while sliding [-]
-  Real rolling_friction = 0;   ///< μ_r [-]
-  Real rolling_damping = 0;    ///< η_r, EPSD rolling dashpot ratio [-]
-  Real cohesion_energy_density = 0;  ///< k_c of simplified JKR [J/m³]
+template <class S>
+struct ContactPairParamsT {
+  S hooke_stiffness = 0;             ///< k_n of the Hooke law [N/m]
+  S hooke_tangential_stiffness = 0;  ///< k_t = 2/7 k_n of the linear history law [N/m]
+  S effective_young = 0;             ///< E*: 1/E* = (1−ν₁²)/E₁ + (1−ν₂²)/E₂ [Pa]
+  S effective_shear = 0;   ///< G*: 1/G* = (2−ν₁)/G₁ + (2−ν₂)/G₂, G = E/(2(1+ν)) [Pa]
+  S restitution_beta = 0;  ///< |β| = |ln e| / √(ln² e + π²) of the pair restitution e [-]
+  S viscoelastic_time = 0;        ///< A of the viscoelastic law [s]
+  S friction_static = 0;          ///< μ_s, tested before sliding starts [-]
+  S friction_dynamic = 0;         ///< μ_d, applied while sliding [-]
+  S rolling_friction = 0;         ///< μ_r [-]
+  S rolling_damping = 0;          ///< η_r, EPSD rolling dashpot ratio [-]
+  S cohesion_energy_density = 0;  ///< k_c of simplified JKR [J/m³]
 };
+
+using ContactPairParams = ContactPairParamsT<Real>;
+
+/// `p` with every constant converted to scalar To.
+template <class To>
+ContactPairParamsT<To> params_cast(const ContactPairParams& p) {
+  ContactPairParamsT<To> out;
+  out.hooke_stiffness = static_cast<To>(p.hooke_stiffness);
+  out.hooke_tangential_stiffness = static_cast<To>(p.hooke_tangential_stiffness);
+  out.effective_young = static_cast<To>(p.effective_young);
+  out.effective_shear = static_cast<To>(p.effective_shear);
+  out.restitution_beta = static_cast<To>(p.restitution_beta);
+  out.viscoelastic_time = static_cast<To>(p.viscoelastic_time);
+  out.friction_static = static_cast<To>(p.friction_static);
+  out.friction_dynamic = static_cast<To>(p.friction_dynamic);
+  out.rolling_friction = static_cast<To>(p.rolling_friction);
+  out.rolling_damping = static_cast<To>(p.rolling_damping);
+  out.cohesion_energy_density = static_cast<To>(p.cohesion_energy_density);
+  return out;
+}
 
 }  // namespace gpudem

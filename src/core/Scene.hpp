@@ -17,6 +17,11 @@ namespace gpudem {
 
 enum class IntegratorKind { VelocityVerlet, SymplecticEuler };
 
+/// Precision policy of the contact computation (DESIGN §3): Double everywhere, or Mixed —
+/// positions, velocities and the distance that forms each overlap in Real, the contact laws,
+/// their history and the force and torque sums in float.
+enum class Precision { Double, Mixed };
+
 struct SimulationSettings {
   bool dt_auto = true;       ///< dt = "auto": dt_fraction of the critical time step
   double dt = 0;             ///< [s] explicit step (when dt_auto is false)
@@ -24,6 +29,7 @@ struct SimulationSettings {
   double dt_fraction = 0.1;  ///< fraction of the critical step used by "auto" [-]
   double end_time = 0;       ///< [s] simulated time to reach (required)
   IntegratorKind integrator = IntegratorKind::VelocityVerlet;
+  Precision precision = Precision::Double;
   std::uint64_t seed = 1;     ///< random seed for particle insertion
   Vec3 gravity{0, 0, -9.81};  ///< [m/s^2]
   /// [m/s] largest expected impact speed, for the Hertz contact duration; 0 = "auto":

@@ -60,7 +60,7 @@ void require_extent(const TableReader& table, const std::string& key, Vec3 min, 
 
 SimulationSettings read_simulation(const TableReader& root) {
   const TableReader table = root.table("simulation");
-  table.allow_only({"end_time", "dt", "dt_fraction", "integrator", "seed", "gravity",
+  table.allow_only({"end_time", "dt", "dt_fraction", "integrator", "precision", "seed", "gravity",
                     "impact_speed", "allow_unstable_dt"});
   SimulationSettings s;
   s.end_time = table.number("end_time", positive("s"));
@@ -72,6 +72,9 @@ SimulationSettings read_simulation(const TableReader& root) {
       table.choice("integrator", {"velocity_verlet", "symplectic_euler"}, "velocity_verlet");
   s.integrator = integrator == "velocity_verlet" ? IntegratorKind::VelocityVerlet
                                                  : IntegratorKind::SymplecticEuler;
+  s.precision = table.choice("precision", {"double", "mixed"}, "double") == "mixed"
+                    ? Precision::Mixed
+                    : Precision::Double;
   s.seed = static_cast<std::uint64_t>(table.integer("seed", non_negative(), 1));
   s.gravity = table.vec3("gravity", "m/s^2", s.gravity);
   s.impact_speed = auto_or_positive(table, "impact_speed", "m/s");

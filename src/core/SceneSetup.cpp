@@ -355,6 +355,7 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   for (int k = 0; k < 3; ++k) s.box.periodic[k] = scene.domain.periodic[k];
   s.gravity = scene.simulation.gravity;
   s.integrator = scene.simulation.integrator;
+  s.precision = scene.simulation.precision;
   s.contact_model = scene.contact.model;
   s.material_count = static_cast<std::uint32_t>(scene.materials.size());
   s.pair_params = pair_table(scene);

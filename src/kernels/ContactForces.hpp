@@ -1,7 +1,8 @@
 #pragma once
 /// Per-particle force, torque and worst overlap: one thread per particle sums all its
 /// contacts from the full neighbour list (no atomics), walls and gravity, and advances the
-/// contact history it owns (its own neighbour-list entries and wall slots).
+/// contact history it owns (its own neighbour-list entries and wall slots). Forces and torques
+/// are summed in the law's scalar.
 #include "kernels/ContactVisitor.hpp"
 
 namespace gpudem {
@@ -9,11 +10,14 @@ namespace gpudem {
 /// Overlap ratio recorded for a particle whose mesh candidates overflowed (health check).
 constexpr Real kMeshOverflowScore = Real(1e200);
 
-/// Torque of a contact force about i's centre plus the law's rolling torque.
+/// Torque of a contact force about i's centre, arm·n × F_t, plus the law's rolling torque.
 template <class Law>
-GPUDEM_HD Vec3 contact_torque(const ContactSample<Law>& c, const ContactForce& f) {
-  Vec3 torque = f.rolling_torque;
-  if constexpr (Law::has_tangential_force) torque += cross(c.arm * c.point.normal, f.force);
+GPUDEM_HD Vec3T<typename Law::Scalar> contact_torque(const ContactSample<Law>& c,
+                                                     const typename Law::Force& f) {
+  using S = typename Law::Scalar;
+  Vec3T<S> torque = f.rolling_torque;
+  if constexpr (Law::has_tangential_force)
+    torque += cross(vec_cast<S>(c.arm * c.point.normal), f.tangential);
   return torque;
 }
 
@@ -32,12 +36,12 @@ template <class Law>
 struct ForceSum {
   HistoryArrays<Law> history;
   Real dt;
-  Vec3 force;
-  Vec3 torque;
+  Vec3T<typename Law::Scalar> force;
+  Vec3T<typename Law::Scalar> torque;
   Real worst_overlap_ratio = 0;
   bool mesh_overflow = false;
   GPUDEM_HD void operator()(ContactSample<Law>& c) {
-    const ContactForce f = Law::evaluate(*c.params, c.point, c.state.value, dt);
+    const typename Law::Force f = evaluate_contact(c, c.state.value, dt);
     if constexpr (Law::history_size > 0) history.of(c)[c.slot] = c.state;
     force += f.force;
     if constexpr (Law::needs_spin) torque += contact_torque(c, f);
@@ -61,18 +65,19 @@ struct ForceSum {
 /// F_i = m_i g + Σ contacts, T_i = Σ (arm × F + rolling torque) (one thread per particle).
 template <class Law>
 struct ComputeForces {
+  using S = typename Law::Scalar;
   ParticleView particles;
   ContactScene<Law> scene;
   Vec3 gravity;
   Real dt;
   HistoryArrays<Law> history;  ///< scene's history arrays, writable
-  Vec3* force;
-  Vec3* torque;
+  Vec3T<S>* force;
+  Vec3T<S>* torque;
   Real* overlap_ratio;
   GPUDEM_HD void operator()(std::size_t i) const {
-    ForceSum<Law> sum{history, dt, Vec3{}, Vec3{}, Real(0)};
+    ForceSum<Law> sum{history, dt, Vec3T<S>{}, Vec3T<S>{}, Real(0)};
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, sum);
-    force[i] = sum.force + (Real(1) / particles.velocity_inv_mass[i].w) * gravity;
+    force[i] = sum.force + vec_cast<S>((Real(1) / particles.velocity_inv_mass[i].w) * gravity);
     if constexpr (Law::needs_spin) torque[i] = sum.torque;
     overlap_ratio[i] = sum.mesh_overflow ? kMeshOverflowScore : sum.worst_overlap_ratio;
   }

@@ -31,9 +31,9 @@ struct ParticleView {
 /// Law::history_size values per contact and are null for a law without history.
 template <class Law>
 struct ContactScene {
-  const std::uint32_t* neighbor_offsets;  ///< CSR offsets, n + 1
-  const std::uint32_t* neighbor_index;    ///< full neighbour list
-  const ContactPairParams* pair_params;   ///< material_count² entries
+  const std::uint32_t* neighbor_offsets;    ///< CSR offsets, n + 1
+  const std::uint32_t* neighbor_index;      ///< full neighbour list
+  const typename Law::Params* pair_params;  ///< material_count² entries
   std::uint32_t material_count;
   const PlaneWall* walls;
   std::uint32_t wall_count;
@@ -52,18 +52,35 @@ struct IgnoreSeparated {
   GPUDEM_HD void mesh_overflow_seen() {}
 };
 
-/// One touching contact as seen from particle i.
+/// One touching contact as seen from particle i, its geometry formed in Real from the
+/// particle state.
 template <class Law>
 struct ContactSample {
   ContactPoint point;
   Real arm;         ///< lever arm on i: r_i − δ/2, along point.normal [m]
   Real min_radius;  ///< smaller radius of the pair (r_i for walls) [m]
-  const ContactPairParams* params;
+  const typename Law::Params* params;
   std::int32_t wall;          ///< plane wall index, or −1
   std::int32_t mesh = -1;     ///< mesh index, or −1
   std::uint32_t slot;         ///< index of this contact's history (pair, wall or mesh array)
   typename Law::State state;  ///< history stored at the end of the last step
 };
+
+/// The law's force and rolling torque on i for contact c, in the law's scalar; advances
+/// `history` by dt (dt = 0: reads the stored state).
+template <class Law>
+GPUDEM_HD typename Law::Force evaluate_contact(const ContactSample<Law>& c,
+                                               typename Law::Scalar* history, Real dt) {
+  using S = typename Law::Scalar;
+  return Law::evaluate(*c.params, point_cast<S>(c.point), history, static_cast<S>(dt));
+}
+
+/// Elastic energy stored in contact c [J].
+template <class Law>
+GPUDEM_HD Real contact_energy(const ContactSample<Law>& c) {
+  using S = typename Law::Scalar;
+  return Law::energy(*c.params, point_cast<S>(c.point), c.state.value);
+}
 
 /// Moment of inertia about the contact point, I + m r², of a sphere (for I_r).
 GPUDEM_HD inline Real inertia_about_contact(Real radius, Real inv_mass) {
@@ -72,8 +89,8 @@ GPUDEM_HD inline Real inertia_about_contact(Real radius, Real inv_mass) {
 
 /// Fills the fields of a pair contact that the law's flags ask for.
 template <class Law>
-GPUDEM_HD void describe_pair(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi, Real4 xj,
-                             Real4 vj, Vec3 wj) {
+GPUDEM_HD void describe_pair(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi, Real4 xj, Real4 vj,
+                             Vec3 wj) {
   ContactPoint& k = c.point;
   const Real arm_j = xj.w - Real(0.5) * k.overlap;
   Vec3 ui = xyz(vi), uj = xyz(vj);
@@ -181,7 +198,8 @@ GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi,
   }
   typename Law::State state[MeshContactCandidates::kCapacity];
   if constexpr (Law::history_size > 0)
-    for (int k = 0; k < kept; ++k) state[k] = mesh_contact_state(s, begin, end, entry[k], entry, kept);
+    for (int k = 0; k < kept; ++k)
+      state[k] = mesh_contact_state(s, begin, end, entry[k], entry, kept);
   for (std::uint32_t e = begin; e < end; ++e) {
     int found = -1;
     for (int k = 0; k < kept; ++k)
@@ -209,8 +227,8 @@ GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi,
 
 /// Calls visit(sample) for each contact of particle i with positive overlap.
 template <class Law, class Visitor>
-GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p,
-                                const ContactScene<Law>& s, Visitor& visit) {
+GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p, const ContactScene<Law>& s,
+                                Visitor& visit) {
   const Real4 xi = p.position_radius[i];
   const Real4 vi = p.velocity_inv_mass[i];
   Vec3 wi{};

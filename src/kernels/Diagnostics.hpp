@@ -64,9 +64,9 @@ struct ContactTerms {
       const bool pair = c.wall < 0 && c.mesh < 0;
       const Real share = pair ? Real(0.5) : Real(1);
       contacts += share;
-      energy += share * Law::energy(*c.params, c.point, c.state.value);
+      energy += share * contact_energy(c);
       if (pair) return;
-      const Vec3 load = -Law::evaluate(*c.params, c.point, c.state.value, 0).force;
+      const Vec3 load = -vec_cast<Real>(evaluate_contact(c, c.state.value, 0).force);
       if (c.wall >= 0) {
         body_force[c.wall] += load;
       } else {
@@ -119,7 +119,7 @@ struct MeshEntryLoads {
     Vec3* entry_load;
     GPUDEM_HD void operator()(ContactSample<Law>& c) {
       if (c.mesh >= 0)
-        entry_load[c.slot] = -Law::evaluate(*c.params, c.point, c.state.value, 0).force;
+        entry_load[c.slot] = -vec_cast<Real>(evaluate_contact(c, c.state.value, 0).force);
     }
     GPUDEM_HD void separated_from_mesh(std::uint32_t e) { entry_load[e] = Vec3{}; }
   };

@@ -12,22 +12,25 @@
 
 namespace gpudem {
 
-/// v += h·F/m and, when the contact law exerts torques (kRotate), ω += h·T/I.
-template <bool kRotate>
+/// v += h·F/m and, when the contact law exerts torques (kRotate), ω += h·T/I, in Real from
+/// forces and torques held in scalar S.
+template <bool kRotate, class S>
 struct Kick {
   Real4* velocity_inv_mass;
   Vec3* angular_velocity;
-  const Vec3* force;
-  const Vec3* torque;
+  const Vec3T<S>* force;
+  const Vec3T<S>* torque;
   const Real4* position_radius;
   Real h;
   GPUDEM_HD void operator()(std::size_t i) const {
     Real4& v = velocity_inv_mass[i];
-    v.x += h * v.w * force[i].x;
-    v.y += h * v.w * force[i].y;
-    v.z += h * v.w * force[i].z;
+    const Vec3 f = vec_cast<Real>(force[i]);
+    v.x += h * v.w * f.x;
+    v.y += h * v.w * f.y;
+    v.z += h * v.w * f.z;
     if constexpr (kRotate)
-      angular_velocity[i] += (h / sphere_inertia(position_radius[i].w, v.w)) * torque[i];
+      angular_velocity[i] +=
+          (h / sphere_inertia(position_radius[i].w, v.w)) * vec_cast<Real>(torque[i]);
   }
 };
 

@@ -27,6 +27,7 @@ struct EngineSetup {
   Vec3 gravity;
   Real dt = 0;
   IntegratorKind integrator = IntegratorKind::VelocityVerlet;
+  Precision precision = Precision::Double;  ///< selects the law's scalar (EngineFactory.hpp)
   Real skin = 0;               ///< Verlet skin [m]
   ContactModel contact_model;  ///< must be one of valid_contact_models()
   std::uint32_t material_count = 0;

@@ -1,4 +1,4 @@
-/// CUDA-backend step engine: picks the instantiation for the scene's contact law.
+/// CUDA-backend step engine: picks the instantiation for the scene's contact law and precision.
 #include <stdexcept>
 
 #include "kernels/CudaMemory.hpp"
@@ -10,8 +10,9 @@ std::unique_ptr<StepEngine> make_cuda_engine(const EngineSetup& setup) {
   if (cuda::device_count() == 0)
     throw std::runtime_error("--backend cuda: no CUDA device is visible on this node");
   require_valid_contact_model(setup);
-  return setup.contact_model.normal == NormalLaw::Hertz ? make_cuda_hertz_engine(setup)
-                                                        : make_cuda_hooke_engine(setup);
+  return make_for_law_and_precision(setup, [&setup](auto law, auto scalar) {
+    return make_cuda_engine_for<decltype(law)::value, decltype(scalar)>(setup);
+  });
 }
 
 }  // namespace gpudem

@@ -1,4 +1,4 @@
-/// Host-backend step engine: picks the instantiation for the scene's contact law.
+/// Host-backend step engine: picks the instantiation for the scene's contact law and precision.
 #include <stdexcept>
 
 #include "kernels/EngineInstances.hpp"
@@ -13,8 +13,9 @@ void require_valid_contact_model(const EngineSetup& setup) {
 
 std::unique_ptr<StepEngine> make_host_engine(const EngineSetup& setup) {
   require_valid_contact_model(setup);
-  return setup.contact_model.normal == NormalLaw::Hertz ? make_host_hertz_engine(setup)
-                                                        : make_host_hooke_engine(setup);
+  return make_for_law_and_precision(setup, [&setup](auto law, auto scalar) {
+    return make_host_engine_for<decltype(law)::value, decltype(scalar)>(setup);
+  });
 }
 
 #if !defined(GPUDEM_HAVE_CUDA)

@@ -150,6 +150,7 @@ struct SwapValues {
 template <class Space, class Law>
 class StepEngineImpl final : public StepEngine {
   using State = typename Law::State;
+  using ForceVec = Vec3T<typename Law::Scalar>;  ///< forces and torques, in the law's scalar
   static constexpr std::uint32_t kHistoryWidth = Law::history_size;
 
  public:
@@ -159,7 +160,7 @@ class StepEngineImpl final : public StepEngine {
         domain_(setup.domain ? *setup.domain : one_rank_),
         meshes_(setup.meshes, setup.box),
         steps_(setup.start_step) {
-    pair_params_.upload(setup.pair_params);
+    pair_params_.upload(converted(setup.pair_params, params_cast<typename Law::Scalar>));
     walls_.upload(setup.walls);
     if (!meshes_.empty()) meshes_.set_time(steps_ * setup.dt);
   }
@@ -202,8 +203,8 @@ class StepEngineImpl final : public StepEngine {
     p.angular_velocity.resize(owned_);
     p.id.resize(owned_);
     p.material.resize(owned_);
-    force_.download(p.force);
-    torque_.download(p.torque);
+    p.force = download_vec3(force_);
+    p.torque = download_vec3(torque_);
   }
 
   void get_contact_history(ContactHistory& history) const override {
@@ -418,9 +419,9 @@ class StepEngineImpl final : public StepEngine {
   void restore_owned(const ParticleStore& p, const std::vector<Real4>& list_positions) {
     upload_particles(p);
     position_at_build_.upload(list_positions);
-    DeviceArray<Vec3, Space> saved_force, saved_torque;
-    saved_force.upload(p.force);
-    saved_torque.upload(p.torque);
+    DeviceArray<ForceVec, Space> saved_force, saved_torque;
+    upload_vec3(p.force, saved_force);
+    upload_vec3(p.torque, saved_torque);
     build_list_at_saved_positions(saved_force, saved_torque);
     compute_forces();  // for the overlap ratios; the forces and history it leaves are replaced
     force_.swap(saved_force);
@@ -447,7 +448,7 @@ class StepEngineImpl final : public StepEngine {
   /// torques zero (a law without spin never writes them).
   void upload_particles(const ParticleStore& p) {
     upload_state(p);
-    parallel_for(Space{}, owned_, Fill<Vec3>{torque_.data(), Vec3{}});
+    parallel_for(Space{}, owned_, Fill<ForceVec>{torque_.data(), ForceVec{}});
     if constexpr (kHistoryWidth > 0) {
       wall_history_.resize(owned_ * wall_count());
       parallel_for(Space{}, wall_history_.size(), Fill<State>{wall_history_.data(), State{}});
@@ -457,8 +458,8 @@ class StepEngineImpl final : public StepEngine {
   /// The neighbour list of a restored state, built at the saved positions of the last build
   /// (position_at_build_) as the saved engine built it, with ghosts at their saved positions
   /// too; the particles then take their saved current state again, ghosts included.
-  void build_list_at_saved_positions(DeviceArray<Vec3, Space>& force,
-                                     DeviceArray<Vec3, Space>& torque) {
+  void build_list_at_saved_positions(DeviceArray<ForceVec, Space>& force,
+                                     DeviceArray<ForceVec, Space>& torque) {
     position_radius_.swap(position_at_build_);
     iota(previous_index_, owned_);
     sort_owned_by_cell();
@@ -493,6 +494,26 @@ class StepEngineImpl final : public StepEngine {
   void zero_history() {
     parallel_for(Space{}, pair_history_.size(), Fill<State>{pair_history_.data(), State{}});
     parallel_for(Space{}, wall_history_.size(), Fill<State>{wall_history_.data(), State{}});
+  }
+
+  /// `host` with f applied to each element.
+  template <class T, class F>
+  static auto converted(const std::vector<T>& host, F f) {
+    std::vector<decltype(f(host.front()))> out;
+    out.reserve(host.size());
+    for (const T& value : host) out.push_back(f(value));
+    return out;
+  }
+
+  /// Host copy of a force or torque array, in Real.
+  static std::vector<Vec3> download_vec3(const DeviceArray<ForceVec, Space>& a) {
+    std::vector<ForceVec> host;
+    a.download(host);
+    return converted(host, vec_cast<Real, typename Law::Scalar>);
+  }
+
+  static void upload_vec3(const std::vector<Vec3>& host, DeviceArray<ForceVec, Space>& a) {
+    a.upload(converted(host, vec_cast<typename Law::Scalar, Real>));
   }
 
   /// Host copy of a history array as kHistoryWidth values per contact.
@@ -557,8 +578,9 @@ class StepEngineImpl final : public StepEngine {
 
   void kick(Real h) {
     parallel_for(Space{}, owned_,
-                 Kick<Law::needs_spin>{velocity_inv_mass_.data(), angular_velocity_.data(),
-                                       force_.data(), torque_.data(), position_radius_.data(), h});
+                 Kick<Law::needs_spin, typename Law::Scalar>{
+                     velocity_inv_mass_.data(), angular_velocity_.data(), force_.data(),
+                     torque_.data(), position_radius_.data(), h});
   }
 
   std::uint32_t wall_count() const { return static_cast<std::uint32_t>(setup_.walls.size()); }
@@ -932,7 +954,7 @@ class StepEngineImpl final : public StepEngine {
   EngineSetup setup_;
   OneRankDomain one_rank_;
   DomainLink& domain_;  ///< setup.domain, or one_rank_ when there is none
-  DeviceArray<ContactPairParams, Space> pair_params_;
+  DeviceArray<typename Law::Params, Space> pair_params_;
   DeviceArray<PlaneWall, Space> walls_;
   // Per particle: the owned_ owned particles, then (the first five) the ghosts.
   DeviceArray<Real4, Space> position_radius_;
@@ -940,8 +962,8 @@ class StepEngineImpl final : public StepEngine {
   DeviceArray<Vec3, Space> angular_velocity_;
   DeviceArray<ParticleId, Space> id_;
   DeviceArray<MaterialId, Space> material_;
-  DeviceArray<Vec3, Space> force_;
-  DeviceArray<Vec3, Space> torque_;
+  DeviceArray<ForceVec, Space> force_;
+  DeviceArray<ForceVec, Space> torque_;
   DeviceArray<Real, Space> overlap_ratio_;
   DeviceArray<Real4, Space> position_at_build_;
   DeviceArray<State, Space> pair_history_;  ///< per neighbour-list entry (empty: no history)

@@ -10,14 +10,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <vector>
 
 #include "core/ParticleSources.hpp"
 #include "core/SceneSetup.hpp"
 #include "kernels/CudaMemory.hpp"
 #include "support/Format.hpp"
-#include "support/SceneBuilder.hpp"
+#include "support/RandomBed.hpp"
 
 namespace gpudem::test {
 namespace {
@@ -25,39 +24,6 @@ namespace {
 constexpr double kForceAgreement = 1e-12;  ///< of the largest force (torque) in the bed
 
 bool cuda_device_visible() { return cuda::compiled_in() && cuda::device_count() > 0; }
-
-/// Hertz–Mindlin with constant-torque rolling resistance in a walled box.
-Scene hertz_mindlin_box(Vec3 hi, std::uint64_t count, double mean_radius) {
-  Scene scene = basic_scene({0, 0, 0}, hi, 0, 0.5, 0.5);
-  scene.materials[0].young = 5e6;
-  scene.materials[0].rolling_friction = 0.1;
-  scene.contact.model = {NormalLaw::Hertz, DampingLaw::Restitution, TangentialLaw::Mindlin,
-                         RollingLaw::ConstantTorque, CohesionLaw::None};
-  scene.simulation.gravity = {0, 0, -9.81};
-  add_box_walls(scene);
-  add_box_source(scene, {0, 0, 0}, hi, count, mean_radius, 0.3 * mean_radius);
-  return scene;
-}
-
-/// Row of each particle id in `p`.
-std::map<ParticleId, std::size_t> rows_by_id(const ParticleStore& p) {
-  std::map<ParticleId, std::size_t> rows;
-  for (std::size_t i = 0; i < p.size(); ++i) rows[p.id[i]] = i;
-  return rows;
-}
-
-/// Largest |a − b| over the particles of two stores (matched by id), over the largest |a|.
-double relative_spread(const ParticleStore& a, const ParticleStore& b,
-                       std::vector<Vec3> ParticleStore::*field) {
-  const std::map<ParticleId, std::size_t> in_b = rows_by_id(b);
-  double largest = 0, worst = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const Vec3 x = (a.*field)[i], y = (b.*field)[in_b.at(a.id[i])];
-    largest = std::max(largest, norm(x));
-    worst = std::max(worst, norm(x - y));
-  }
-  return largest > 0 ? worst / largest : worst;
-}
 
 /// Forces and torques of host and CUDA engines, compared by particle id.
 void expect_same_loads(const StepEngine& host, const StepEngine& device, const char* when) {
@@ -76,13 +42,7 @@ void expect_same_loads(const StepEngine& host, const StepEngine& device, const c
 TEST(BackendAgreement, ForcesOfARandomBedAgreeBeforeAndAfterOneStep) {
   if (!cuda_device_visible()) GTEST_SKIP() << "no CUDA device on this machine";
   const Scene scene = hertz_mindlin_box({0.08, 0.08, 0.08}, 1200, 2.5e-3);
-  ParticleStore particles;
-  create_particles(scene, particles);  // random positions, not touching
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    particles.position_radius[i].w *= 1.3;         // grown in place: many overlapping pairs
-    const double s = double(i % 97) / 97.0 - 0.5;  // spins for the rolling slot
-    particles.angular_velocity[i] = {10 * s, -7 * s, 3 * s};
-  }
+  const ParticleStore particles = overlapping_bed(scene);
   const EngineSetup setup = make_engine_setup(scene, particles);
   auto host = make_host_engine(setup);
   auto device = make_cuda_engine(setup);

@@ -189,7 +189,7 @@ TEST_P(Incline, SphereSlidesAtCoulombLimit) {
   EXPECT_NEAR(alpha, expected_alpha, 0.01 * expected_alpha);
 }
 
-GPUDEM_INSTANTIATE_BACKENDS(Incline);
+GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(Incline);
 
 }  // namespace
 }  // namespace gpudem::test
@@ -226,7 +226,7 @@ TEST_P(Rolling, ConstantTorqueStopsSphereAtClosedFormDistance) {
   EXPECT_LT(std::fabs(particles.angular_velocity[0].y), 1e-6 * v0 / r);
 }
 
-GPUDEM_INSTANTIATE_BACKENDS(Rolling);
+GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(Rolling);
 
 }  // namespace
 }  // namespace gpudem::test
@@ -264,7 +264,7 @@ TEST_P(Boundaries, LeaversAreRemovedAndPeriodicImagesWrap) {
   }
 }
 
-GPUDEM_INSTANTIATE_BACKENDS(Boundaries);
+GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(Boundaries);
 
 }  // namespace
 }  // namespace gpudem::test

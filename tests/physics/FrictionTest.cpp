@@ -339,7 +339,7 @@ TEST_P(Friction, SjkrPairSticksAtCohesiveOverlap) {
 }
 
 GPUDEM_INSTANTIATE_BACKENDS(Friction);
-GPUDEM_INSTANTIATE_BACKENDS(TiltedFloor);
+GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(TiltedFloor);
 
 }  // namespace
 }  // namespace gpudem::test

@@ -297,8 +297,8 @@ TEST_P(NormalImpact, ViscoelasticNeverPullsAndFollowsFifthRootLaw) {
   EXPECT_NEAR(ratio, expected, 0.03 * expected);
 }
 
-GPUDEM_INSTANTIATE_BACKENDS(NormalImpact);
-GPUDEM_INSTANTIATE_BACKENDS(Restitution);
+GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(NormalImpact);
+GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(Restitution);
 
 }  // namespace
 }  // namespace gpudem::test

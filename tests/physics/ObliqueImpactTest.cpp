@@ -237,7 +237,7 @@ TEST_P(ObliqueImpact, SpinningDropSlidesWithCoulombImpulse) {
   EXPECT_LT(a.spin.y, omega);
 }
 
-GPUDEM_INSTANTIATE_BACKENDS(ObliqueImpact);
+GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(ObliqueImpact);
 
 }  // namespace
 }  // namespace gpudem::test

@@ -231,7 +231,7 @@ TEST_P(Restart, HistoryOfAnotherContactLawIsRejected) {
   expect_rejected(*engine, rolling_too, "holds 7 values per contact but this contact law keeps 4");
 }
 
-GPUDEM_INSTANTIATE_BACKENDS(Restart);
+GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(Restart);
 
 }  // namespace
 }  // namespace gpudem::test

@@ -75,7 +75,7 @@ TEST_P(Settling, BedComesToRestWithRandomPacking) {
   EXPECT_LE(packing, 0.64);
 }
 
-GPUDEM_INSTANTIATE_BACKENDS(Settling);
+GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(Settling);
 
 }  // namespace
 }  // namespace gpudem::test

@@ -1,6 +1,8 @@
 #pragma once
 // Runs a physics test once per backend: "host" always, "cuda" when compiled in and a device is
-// visible (otherwise the test is skipped, not passed silently).
+// visible (otherwise the test is skipped, not passed silently). Suites instantiated with
+// GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS also run each backend in mixed precision
+// ("host-mixed", "cuda-mixed"), to the same tolerances.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -11,12 +13,18 @@
 
 namespace gpudem::test {
 
-inline std::unique_ptr<StepEngine> engine_for(const std::string& backend, const EngineSetup& s) {
-  return backend == "cuda" ? make_cuda_engine(s) : make_host_engine(s);
+inline bool is_cuda(const std::string& backend) { return backend.rfind("cuda", 0) == 0; }
+
+inline std::unique_ptr<StepEngine> engine_for(const std::string& backend, EngineSetup s) {
+  const std::string mixed = "-mixed";
+  if (backend.size() > mixed.size() &&
+      backend.compare(backend.size() - mixed.size(), mixed.size(), mixed) == 0)
+    s.precision = Precision::Mixed;
+  return is_cuda(backend) ? make_cuda_engine(s) : make_host_engine(s);
 }
 
 inline bool backend_available(const std::string& backend) {
-  return backend == "host" || (cuda::compiled_in() && cuda::device_count() > 0);
+  return !is_cuda(backend) || (cuda::compiled_in() && cuda::device_count() > 0);
 }
 
 class BackendTest : public ::testing::TestWithParam<std::string> {
@@ -31,5 +39,9 @@ class BackendTest : public ::testing::TestWithParam<std::string> {
 
 #define GPUDEM_INSTANTIATE_BACKENDS(Suite) \
   INSTANTIATE_TEST_SUITE_P(Backends, Suite, ::testing::Values("host", "cuda"))
+
+#define GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(Suite) \
+  INSTANTIATE_TEST_SUITE_P(Backends, Suite,               \
+                           ::testing::Values("host", "cuda", "host-mixed", "cuda-mixed"))
 
 }  // namespace gpudem::test

@@ -3,8 +3,10 @@
 // nothing (the Hooke-only kernel runs with no spin, torque or history arrays at all).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/ContactModel.hpp"
@@ -67,8 +69,9 @@ TEST(ContactLawSlots, FollowEnumOrder) {
   static_assert(std::is_same_v<All::Tangential, MindlinTangential>);
   static_assert(std::is_same_v<All::Rolling, EpsdRolling>);
   static_assert(std::is_same_v<All::Cohesion, SjkrCohesion>);
-  using Middle = ContactLawOf<NormalLaw::Hooke, DampingLaw::Restitution, TangentialLaw::LinearHistory,
-                              RollingLaw::ConstantTorque, CohesionLaw::None>;
+  using Middle =
+      ContactLawOf<NormalLaw::Hooke, DampingLaw::Restitution, TangentialLaw::LinearHistory,
+                   RollingLaw::ConstantTorque, CohesionLaw::None>;
   static_assert(std::is_same_v<Middle::Normal, HookeNormal>);
   static_assert(std::is_same_v<Middle::Damping, RestitutionDamping>);
   static_assert(std::is_same_v<Middle::Tangential, LinearHistoryTangential>);
@@ -105,14 +108,20 @@ TEST(ContactLawCost, HookeOnlyKernelReadsNoSpinTorqueOrHistory) {
   box.lo = {-1, -1, -1};
   box.length = {2, 2, 2};
   const ParticleView view{x.data(), v.data(), nullptr, material.data()};
-  const ContactScene<HookeOnly> scene{offsets.data(), neighbors.data(), &params, 1, nullptr, 0,
-                                      box,            nullptr,          nullptr, MeshView{},
-                                      nullptr};
+  const ContactScene<HookeOnly> scene{
+      offsets.data(), neighbors.data(), &params,    1,      nullptr, 0, box,
+      nullptr,        nullptr,          MeshView{}, nullptr};
   std::vector<Vec3> force(2);
   std::vector<Real> ratio(2);
   parallel_for(HostSpace{}, 2,
-               ComputeForces<HookeOnly>{view, scene, Vec3{}, Real(1e-6), {nullptr, nullptr, nullptr},
-                                        force.data(), nullptr, ratio.data()});
+               ComputeForces<HookeOnly>{view,
+                                        scene,
+                                        Vec3{},
+                                        Real(1e-6),
+                                        {nullptr, nullptr, nullptr},
+                                        force.data(),
+                                        nullptr,
+                                        ratio.data()});
   const double expected = params.hooke_stiffness * 0.001;
   EXPECT_NEAR(force[0].x, -expected, 1e-9 * expected);
   EXPECT_NEAR(force[1].x, expected, 1e-9 * expected);
@@ -136,6 +145,45 @@ TEST_P(EveryContactLaw, BuildsAndObeysNewtonsThirdLaw) {
     for (int n = 0; n < 10; ++n) engine->step();
     HealthFailure failure;
     EXPECT_FALSE(engine->find_unhealthy(0.5, failure));
+  }
+}
+
+/// Largest |a − b| / |b| over the two spheres' forces, and over their torques.
+std::pair<double, double> relative_differences(const ParticleStore& a, const ParticleStore& b) {
+  double force = 0, torque = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    force = std::max(force, norm(a.force[i] - b.force[i]) / norm(b.force[i]));
+    if (norm(b.torque[i]) > 0)
+      torque = std::max(torque, norm(a.torque[i] - b.torque[i]) / norm(b.torque[i]));
+  }
+  return {force, torque};
+}
+
+/// Each valid model in mixed precision gives the forces and torques of double precision to
+/// float rounding, on the first contact step and after ten steps of history: within 1e-5 (a
+/// few dozen roundings of 6e-8 each), and not bit for bit (the law really runs in float).
+TEST_P(EveryContactLaw, MixedPrecisionAgreesWithDoubleToFloatRounding) {
+  for (const ContactModel& model : valid_contact_models()) {
+    SCOPED_TRACE(contact_model_name(model));
+    EngineSetup setup = two_sphere_setup(model);
+    auto exact = make_engine(setup);
+    setup.precision = Precision::Mixed;
+    auto mixed = make_engine(setup);
+    exact->set_particles(two_spheres());
+    mixed->set_particles(two_spheres());
+    for (int n = 0; n <= 10; n += 10) {
+      for (int k = 0; k < n; ++k) {
+        exact->step();
+        mixed->step();
+      }
+      ParticleStore a, b;
+      mixed->get_particles(a);
+      exact->get_particles(b);
+      const auto [force, torque] = relative_differences(a, b);
+      EXPECT_GT(force, 0) << "after " << n << " steps";
+      EXPECT_LE(force, 1e-5) << "after " << n << " steps";
+      EXPECT_LE(torque, 1e-5) << "after " << n << " steps";
+    }
   }
 }
 

@@ -155,6 +155,7 @@ TEST_F(SceneLoaderTest, FullSceneReadsEveryValue) {
   EXPECT_DOUBLE_EQ(s.simulation.dt_fraction, 0.2);
   EXPECT_DOUBLE_EQ(s.simulation.end_time, 2.5);
   EXPECT_EQ(s.simulation.integrator, IntegratorKind::SymplecticEuler);
+  EXPECT_EQ(s.simulation.precision, Precision::Mixed);
   EXPECT_EQ(s.simulation.seed, 42u);
   expect_vec3(s.simulation.gravity, 0.5, 0, -9.5);
   EXPECT_EQ(s.simulation.dt_line, 7);
@@ -263,6 +264,7 @@ TEST_F(SceneLoaderTest, MinimalSceneTakesDefaults) {
   EXPECT_TRUE(s.simulation.dt_auto);
   EXPECT_DOUBLE_EQ(s.simulation.dt_fraction, 0.1);
   EXPECT_EQ(s.simulation.integrator, IntegratorKind::VelocityVerlet);
+  EXPECT_EQ(s.simulation.precision, Precision::Double);
   EXPECT_EQ(s.simulation.seed, 1u);
   expect_vec3(s.simulation.gravity, 0, 0, -9.81);
   EXPECT_EQ(s.domain.periodic, (std::array<bool, 3>{false, false, false}));
@@ -367,6 +369,9 @@ TEST_F(SceneLoaderTest, WrongTypeNamesExpectedType) {
   expect_error(load_error(base_with(kSimulationSlot, "integrator = \"rk4\"")), kSimulationSlot,
                "simulation.integrator",
                "expected one of \"velocity_verlet\", \"symplectic_euler\", got the string \"rk4\"");
+  expect_error(load_error(base_with(kSimulationSlot, "precision = \"half\"")), kSimulationSlot,
+               "simulation.precision",
+               "expected one of \"double\", \"mixed\", got the string \"half\"");
   expect_error(load_error(base_with(kSimulationSlot, "dt = \"fast\"")), kSimulationSlot,
                "simulation.dt", "expected \"auto\" or a number > 0 [s]");
   expect_error(load_error(base_with(kContactSlot, "normal = \"hertzian\"")), kContactSlot,
@@ -651,8 +656,9 @@ TEST_F(SceneLoaderTest, InvalidCombinationNamesTheSlotThatDoesNotFit) {
                    std::string(kValidCombinations));
   expect_error(load_error(base_with(kContactSlot, "damping = \"viscoelastic\"")), kContactSlot,
                "contact.damping", "normal = \"hooke\" does not go with damping = \"viscoelastic\"");
-  expect_error(load_error(base_with(kStiffnessLine, "normal = \"hertz\"\ndamping = \"none\"\n"
-                                                   "tangential = \"linear_history\"")),
+  expect_error(load_error(base_with(kStiffnessLine,
+                                    "normal = \"hertz\"\ndamping = \"none\"\n"
+                                    "tangential = \"linear_history\"")),
                kStiffnessLine + 2, "contact.tangential",
                "normal = \"hertz\" does not go with tangential = \"linear_history\"");
 }

@@ -7,7 +7,10 @@ namespace gpudem {
 
 struct NoCohesion {
   static constexpr bool needs_contact_area = false;
-  GPUDEM_HD static Real force(const ContactPairParams&, const ContactPoint&) { return 0; }
+  template <class S>
+  GPUDEM_HD static S force(const ContactPairParamsT<S>&, const ContactPointT<S>&) {
+    return 0;
+  }
 };
 
 /// Simplified JKR of LIGGGHTS `cohesion sjkr`: F_c = k_c · A with A = π a² the contact-circle
@@ -15,8 +18,9 @@ struct NoCohesion {
 /// enter the Coulomb limit. Acts only while the particles overlap.
 struct SjkrCohesion {
   static constexpr bool needs_contact_area = true;
-  GPUDEM_HD static Real force(const ContactPairParams& p, const ContactPoint& c) {
-    return p.cohesion_energy_density * Real(3.14159265358979323846) * c.contact_radius_sq;
+  template <class S>
+  GPUDEM_HD static S force(const ContactPairParamsT<S>& p, const ContactPointT<S>& c) {
+    return p.cohesion_energy_density * S(3.14159265358979323846) * c.contact_radius_sq;
   }
 };
 

@@ -10,14 +10,14 @@ namespace gpudem {
 /// No dissipation in the contact.
 struct NoDamping {
   static constexpr bool clamps_attraction = false;
-  template <class Normal>
-  GPUDEM_HD static Real normal_force(const ContactPairParams&, const ContactPoint&,
-                                     const NormalResponse&) {
+  template <class Normal, class S>
+  GPUDEM_HD static S normal_force(const ContactPairParamsT<S>&, const ContactPointT<S>&,
+                                  const NormalResponse<S>&) {
     return 0;
   }
-  template <class Normal>
-  GPUDEM_HD static Real tangential_coefficient(const ContactPairParams&, const ContactPoint&,
-                                               Real) {
+  template <class Normal, class S>
+  GPUDEM_HD static S tangential_coefficient(const ContactPairParamsT<S>&, const ContactPointT<S>&,
+                                            S) {
     return 0;
   }
 };
@@ -29,16 +29,16 @@ struct NoDamping {
 /// the rebound e exact at every e in (0, 1] (clamping would raise e = 0.05 to about 0.21).
 struct RestitutionDamping {
   static constexpr bool clamps_attraction = false;
-  template <class Normal>
-  GPUDEM_HD static Real normal_force(const ContactPairParams& p, const ContactPoint& c,
-                                     const NormalResponse& n) {
-    return Normal::damping_scale * p.restitution_beta * sqrt(n.stiffness * c.reduced_mass) *
-           c.overlap_rate;
+  template <class Normal, class S>
+  GPUDEM_HD static S normal_force(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
+                                  const NormalResponse<S>& n) {
+    return S(Normal::damping_scale) * p.restitution_beta *
+           square_root(n.stiffness * c.reduced_mass) * c.overlap_rate;
   }
-  template <class Normal>
-  GPUDEM_HD static Real tangential_coefficient(const ContactPairParams& p, const ContactPoint& c,
-                                               Real stiffness) {
-    return Normal::damping_scale * p.restitution_beta * sqrt(stiffness * c.reduced_mass);
+  template <class Normal, class S>
+  GPUDEM_HD static S tangential_coefficient(const ContactPairParamsT<S>& p,
+                                            const ContactPointT<S>& c, S stiffness) {
+    return S(Normal::damping_scale) * p.restitution_beta * square_root(stiffness * c.reduced_mass);
   }
 };
 
@@ -48,14 +48,14 @@ struct RestitutionDamping {
 /// 1 − e ∝ v^{1/5}.
 struct ViscoelasticDamping {
   static constexpr bool clamps_attraction = true;
-  template <class Normal>
-  GPUDEM_HD static Real normal_force(const ContactPairParams& p, const ContactPoint& c,
-                                     const NormalResponse& n) {
-    return Real(2) / 3 * p.viscoelastic_time * n.stiffness * c.overlap_rate;
+  template <class Normal, class S>
+  GPUDEM_HD static S normal_force(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
+                                  const NormalResponse<S>& n) {
+    return S(2) / 3 * p.viscoelastic_time * n.stiffness * c.overlap_rate;
   }
-  template <class Normal>
-  GPUDEM_HD static Real tangential_coefficient(const ContactPairParams&, const ContactPoint&,
-                                               Real) {
+  template <class Normal, class S>
+  GPUDEM_HD static S tangential_coefficient(const ContactPairParamsT<S>&, const ContactPointT<S>&,
+                                            S) {
     return 0;
   }
 };

@@ -9,10 +9,11 @@
 
 namespace gpudem {
 
+template <class S>
 struct NormalResponse {
-  Real force = 0;      ///< F_e > 0, repulsive [N]
-  Real stiffness = 0;  ///< tangent stiffness S_n = dF_e/dδ [N/m]
-  Real secant = 0;     ///< F_e / δ [N/m]
+  S force = 0;      ///< F_e > 0, repulsive [N]
+  S stiffness = 0;  ///< tangent stiffness S_n = dF_e/dδ [N/m]
+  S secant = 0;     ///< F_e / δ [N/m]
 };
 
 /// Linear spring (Cundall & Strack 1979): F_e = k_n δ, S_n = k_n, energy ½ k_n δ².
@@ -20,11 +21,14 @@ struct NormalResponse {
 struct HookeNormal {
   static constexpr bool needs_effective_radius = false;
   static constexpr Real damping_scale = 2;
-  GPUDEM_HD static NormalResponse respond(const ContactPairParams& p, const ContactPoint& c) {
-    return NormalResponse{p.hooke_stiffness * c.overlap, p.hooke_stiffness, p.hooke_stiffness};
+  template <class S>
+  GPUDEM_HD static NormalResponse<S> respond(const ContactPairParamsT<S>& p,
+                                             const ContactPointT<S>& c) {
+    return NormalResponse<S>{p.hooke_stiffness * c.overlap, p.hooke_stiffness, p.hooke_stiffness};
   }
-  GPUDEM_HD static Real energy(const ContactPairParams& p, const ContactPoint& c) {
-    return Real(0.5) * p.hooke_stiffness * c.overlap * c.overlap;
+  template <class S>
+  GPUDEM_HD static S energy(const ContactPairParamsT<S>& p, const ContactPointT<S>& c) {
+    return S(0.5) * p.hooke_stiffness * c.overlap * c.overlap;
   }
 };
 
@@ -34,13 +38,16 @@ struct HookeNormal {
 struct HertzNormal {
   static constexpr bool needs_effective_radius = true;
   static constexpr Real damping_scale = Real(1.8257418583505538);  // 2√(5/6)
-  GPUDEM_HD static NormalResponse respond(const ContactPairParams& p, const ContactPoint& c) {
-    const Real root = sqrt(c.effective_radius * c.overlap);  // √(R* δ)
-    const Real secant = Real(4) / 3 * p.effective_young * root;
-    return NormalResponse{secant * c.overlap, 2 * p.effective_young * root, secant};
+  template <class S>
+  GPUDEM_HD static NormalResponse<S> respond(const ContactPairParamsT<S>& p,
+                                             const ContactPointT<S>& c) {
+    const S root = square_root(c.effective_radius * c.overlap);  // √(R* δ)
+    const S secant = S(4) / 3 * p.effective_young * root;
+    return NormalResponse<S>{secant * c.overlap, 2 * p.effective_young * root, secant};
   }
-  GPUDEM_HD static Real energy(const ContactPairParams& p, const ContactPoint& c) {
-    return Real(8) / 15 * p.effective_young * sqrt(c.effective_radius * c.overlap) * c.overlap *
+  template <class S>
+  GPUDEM_HD static S energy(const ContactPairParamsT<S>& p, const ContactPointT<S>& c) {
+    return S(8) / 15 * p.effective_young * square_root(c.effective_radius * c.overlap) * c.overlap *
            c.overlap;
   }
 };

@@ -12,35 +12,42 @@ struct NoRolling {
   static constexpr bool needs_spin = false;
   static constexpr bool needs_effective_radius = false;
   static constexpr bool needs_inertia = false;
-  GPUDEM_HD static Vec3 torque(const ContactPairParams&, const ContactPoint&, const NormalResponse&,
-                               Real, Real*, Real) {
-    return Vec3{};
+  template <class S>
+  GPUDEM_HD static Vec3T<S> torque(const ContactPairParamsT<S>&, const ContactPointT<S>&,
+                                   const NormalResponse<S>&, S, S*, S) {
+    return Vec3T<S>{};
   }
-  GPUDEM_HD static Real energy(const ContactPairParams&, const ContactPoint&, const NormalResponse&,
-                               const Real*) {
+  template <class S>
+  GPUDEM_HD static S energy(const ContactPairParamsT<S>&, const ContactPointT<S>&,
+                            const NormalResponse<S>&, const S*) {
     return 0;
   }
 };
 
 /// Constant directional torque, EDEM rolling model type A (Ai et al. 2011, model A):
-/// M = −μ_r F_e R* ω̂_rel (F_e the elastic normal force). So that it cannot chatter as ω_rel → 0, its magnitude is capped
-/// at I*|ω_rel|/dt, the torque that stops the relative spin in one step. A sphere rolling on a
-/// plane then stops after d = v₀² / (2·(5/7)·μ_r·g).
+/// M = −μ_r F_e R* ω̂_rel (F_e the elastic normal force). So that it cannot chatter as ω_rel → 0,
+/// its magnitude is capped at I*|ω_rel|/dt, the torque that stops the relative spin in one step. A
+/// sphere rolling on a plane then stops after d = v₀² / (2·(5/7)·μ_r·g).
 struct ConstantTorqueRolling {
   static constexpr int history_size = 0;
   static constexpr bool needs_spin = true;
   static constexpr bool needs_effective_radius = true;
   static constexpr bool needs_inertia = true;
-  GPUDEM_HD static Vec3 torque(const ContactPairParams& p, const ContactPoint& c,
-                               const NormalResponse&, Real elastic_force, Real*, Real dt) {
-    const Real spin = norm(c.relative_spin);
-    if (spin == 0) return Vec3{};
-    Real magnitude = p.rolling_friction * elastic_force * c.effective_radius;
-    if (dt > 0) magnitude = fmin(magnitude, c.reduced_inertia * spin / dt);
+  template <class S>
+  GPUDEM_HD static Vec3T<S> torque(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
+                                   const NormalResponse<S>&, S elastic_force, S*, S dt) {
+    const S spin = norm(c.relative_spin);
+    if (spin == 0) return Vec3T<S>{};
+    S magnitude = p.rolling_friction * elastic_force * c.effective_radius;
+    if (dt > 0) {
+      const S stopping = c.reduced_inertia * spin / dt;
+      if (stopping < magnitude) magnitude = stopping;
+    }
     return (-magnitude / spin) * c.relative_spin;
   }
-  GPUDEM_HD static Real energy(const ContactPairParams&, const ContactPoint&, const NormalResponse&,
-                               const Real*) {
+  template <class S>
+  GPUDEM_HD static S energy(const ContactPairParamsT<S>&, const ContactPointT<S>&,
+                            const NormalResponse<S>&, const S*) {
     return 0;
   }
 };
@@ -56,34 +63,36 @@ struct EpsdRolling {
   static constexpr bool needs_spin = true;
   static constexpr bool needs_effective_radius = true;
   static constexpr bool needs_inertia = true;
-  GPUDEM_HD static Real stiffness(const ContactPairParams& p, const ContactPoint& c,
-                                  const NormalResponse& n) {
-    const Real arm = p.rolling_friction * c.effective_radius;
-    return Real(2.25) * n.secant * arm * arm;
+  template <class S>
+  GPUDEM_HD static S stiffness(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
+                               const NormalResponse<S>& n) {
+    const S arm = p.rolling_friction * c.effective_radius;
+    return S(2.25) * n.secant * arm * arm;
   }
-  GPUDEM_HD static Vec3 torque(const ContactPairParams& p, const ContactPoint& c,
-                               const NormalResponse& n, Real elastic_force, Real* history,
-                               Real dt) {
-    const Vec3 roll = c.relative_spin - dot(c.relative_spin, c.normal) * c.normal;
-    const Real k_r = stiffness(p, c, n);
-    Vec3 spring = rotate_into_plane(Vec3{history[0], history[1], history[2]}, c.normal) -
-                  (k_r * dt) * roll;
-    const Real limit = p.rolling_friction * elastic_force * c.effective_radius;
-    const Real magnitude = norm(spring);
+  template <class S>
+  GPUDEM_HD static Vec3T<S> torque(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
+                                   const NormalResponse<S>& n, S elastic_force, S* history, S dt) {
+    const Vec3T<S> roll = c.relative_spin - dot(c.relative_spin, c.normal) * c.normal;
+    const S k_r = stiffness(p, c, n);
+    Vec3T<S> spring = rotate_into_plane(Vec3T<S>{history[0], history[1], history[2]}, c.normal) -
+                      (k_r * dt) * roll;
+    const S limit = p.rolling_friction * elastic_force * c.effective_radius;
+    const S magnitude = norm(spring);
     const bool at_limit = magnitude >= limit;
-    if (at_limit) spring = (magnitude > 0 ? limit / magnitude : Real(0)) * spring;
+    if (at_limit) spring = (magnitude > 0 ? limit / magnitude : S(0)) * spring;
     history[0] = spring.x;
     history[1] = spring.y;
     history[2] = spring.z;
     if (at_limit) return spring;
-    return spring - (p.rolling_damping * 2 * sqrt(c.rolling_inertia * k_r)) * roll;
+    return spring - (p.rolling_damping * 2 * square_root(c.rolling_inertia * k_r)) * roll;
   }
   /// ½ |M_k|² / k_r [J].
-  GPUDEM_HD static Real energy(const ContactPairParams& p, const ContactPoint& c,
-                               const NormalResponse& n, const Real* history) {
-    const Real k_r = stiffness(p, c, n);
+  template <class S>
+  GPUDEM_HD static S energy(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
+                            const NormalResponse<S>& n, const S* history) {
+    const S k_r = stiffness(p, c, n);
     if (k_r == 0) return 0;
-    return Real(0.5) * (history[0] * history[0] + history[1] * history[1] + history[2] * history[2]) /
+    return S(0.5) * (history[0] * history[0] + history[1] * history[1] + history[2] * history[2]) /
            k_r;
   }
 };

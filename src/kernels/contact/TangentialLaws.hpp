@@ -22,61 +22,66 @@ struct NoTangential {
   static constexpr int history_size = 0;
   static constexpr bool needs_spin = false;
   static constexpr bool needs_effective_radius = false;
-  template <class Damping, class Normal>
-  GPUDEM_HD static Vec3 force(const ContactPairParams&, const ContactPoint&, Real, Real*, Real) {
-    return Vec3{};
+  template <class Damping, class Normal, class S>
+  GPUDEM_HD static Vec3T<S> force(const ContactPairParamsT<S>&, const ContactPointT<S>&, S, S*, S) {
+    return Vec3T<S>{};
   }
-  GPUDEM_HD static Real energy(const ContactPairParams&, const ContactPoint&, const Real*) {
+  template <class S>
+  GPUDEM_HD static S energy(const ContactPairParamsT<S>&, const ContactPointT<S>&, const S*) {
     return 0;
   }
 };
 
 /// ξ rotated into the tangent plane of `normal`, its length kept.
-GPUDEM_HD inline Vec3 rotate_into_plane(Vec3 v, Vec3 normal) {
-  const Real length = norm(v);
+template <class S>
+GPUDEM_HD Vec3T<S> rotate_into_plane(Vec3T<S> v, Vec3T<S> normal) {
+  const S length = norm(v);
   v -= dot(v, normal) * normal;
-  const Real projected = norm(v);
+  const S projected = norm(v);
   return projected > 0 ? (length / projected) * v : v;
 }
 
 /// `v` scaled to length `length` (unchanged when it is zero).
-GPUDEM_HD inline Vec3 with_length(Vec3 v, Real length) {
-  const Real current = norm(v);
+template <class S>
+GPUDEM_HD Vec3T<S> with_length(Vec3T<S> v, S length) {
+  const S current = norm(v);
   return current > 0 ? (length / current) * v : v;
 }
 
 /// The Coulomb spring above for stiffness S_t and elastic normal force F_e; `history` holds ξ
 /// and the sliding flag.
-template <class Damping, class Normal>
-GPUDEM_HD Vec3 coulomb_spring_force(const ContactPairParams& p, const ContactPoint& c,
-                                    Real stiffness, Real elastic_force, Real* history, Real dt) {
-  const Vec3 vt = tangential_velocity(c);
-  Vec3 spring = rotate_into_plane(Vec3{history[0], history[1], history[2]}, c.normal) + dt * vt;
-  const Real spring_force = stiffness * norm(spring);
+template <class Damping, class Normal, class S>
+GPUDEM_HD Vec3T<S> coulomb_spring_force(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
+                                        S stiffness, S elastic_force, S* history, S dt) {
+  const Vec3T<S> vt = tangential_velocity(c);
+  Vec3T<S> spring =
+      rotate_into_plane(Vec3T<S>{history[0], history[1], history[2]}, c.normal) + dt * vt;
+  const S spring_force = stiffness * norm(spring);
   const bool was_sliding = history[3] != 0;
-  const bool sliding = dt == 0        ? was_sliding  // reading the stored state
+  const bool sliding = dt == 0       ? was_sliding  // reading the stored state
                        : was_sliding ? spring_force >= p.friction_dynamic * elastic_force
                                      : spring_force > p.friction_static * elastic_force;
-  Vec3 force;
+  Vec3T<S> force;
   if (sliding) {
     spring = with_length(spring, p.friction_dynamic * elastic_force / stiffness);
     force = -stiffness * spring;
   } else {
-    const Real gamma = Damping::template tangential_coefficient<Normal>(p, c, stiffness);
+    const S gamma = Damping::template tangential_coefficient<Normal>(p, c, stiffness);
     force = -stiffness * spring - gamma * vt;
-    const Real limit = p.friction_static * elastic_force;
+    const S limit = p.friction_static * elastic_force;
     if (norm(force) > limit) force = with_length(force, limit);
   }
   history[0] = spring.x;
   history[1] = spring.y;
   history[2] = spring.z;
-  history[3] = sliding ? Real(1) : Real(0);
+  history[3] = sliding ? S(1) : S(0);
   return force;
 }
 
 /// ½ S_t |ξ|² [J].
-GPUDEM_HD inline Real coulomb_spring_energy(Real stiffness, const Real* history) {
-  return Real(0.5) * stiffness *
+template <class S>
+GPUDEM_HD S coulomb_spring_energy(S stiffness, const S* history) {
+  return S(0.5) * stiffness *
          (history[0] * history[0] + history[1] * history[1] + history[2] * history[2]);
 }
 
@@ -86,14 +91,15 @@ struct LinearHistoryTangential {
   static constexpr int history_size = 4;
   static constexpr bool needs_spin = true;
   static constexpr bool needs_effective_radius = false;
-  template <class Damping, class Normal>
-  GPUDEM_HD static Vec3 force(const ContactPairParams& p, const ContactPoint& c,
-                              Real elastic_force, Real* history, Real dt) {
-    return coulomb_spring_force<Damping, Normal>(p, c, p.hooke_tangential_stiffness,
-                                                 elastic_force, history, dt);
+  template <class Damping, class Normal, class S>
+  GPUDEM_HD static Vec3T<S> force(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
+                                  S elastic_force, S* history, S dt) {
+    return coulomb_spring_force<Damping, Normal>(p, c, p.hooke_tangential_stiffness, elastic_force,
+                                                 history, dt);
   }
-  GPUDEM_HD static Real energy(const ContactPairParams& p, const ContactPoint&,
-                               const Real* history) {
+  template <class S>
+  GPUDEM_HD static S energy(const ContactPairParamsT<S>& p, const ContactPointT<S>&,
+                            const S* history) {
     return coulomb_spring_energy(p.hooke_tangential_stiffness, history);
   }
 };
@@ -104,17 +110,18 @@ struct MindlinTangential {
   static constexpr int history_size = 4;
   static constexpr bool needs_spin = true;
   static constexpr bool needs_effective_radius = true;
-  GPUDEM_HD static Real stiffness(const ContactPairParams& p, const ContactPoint& c) {
-    return 8 * p.effective_shear * sqrt(c.effective_radius * c.overlap);
+  template <class S>
+  GPUDEM_HD static S stiffness(const ContactPairParamsT<S>& p, const ContactPointT<S>& c) {
+    return 8 * p.effective_shear * square_root(c.effective_radius * c.overlap);
   }
-  template <class Damping, class Normal>
-  GPUDEM_HD static Vec3 force(const ContactPairParams& p, const ContactPoint& c,
-                              Real elastic_force, Real* history, Real dt) {
-    return coulomb_spring_force<Damping, Normal>(p, c, stiffness(p, c), elastic_force, history,
-                                                 dt);
+  template <class Damping, class Normal, class S>
+  GPUDEM_HD static Vec3T<S> force(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
+                                  S elastic_force, S* history, S dt) {
+    return coulomb_spring_force<Damping, Normal>(p, c, stiffness(p, c), elastic_force, history, dt);
   }
-  GPUDEM_HD static Real energy(const ContactPairParams& p, const ContactPoint& c,
-                               const Real* history) {
+  template <class S>
+  GPUDEM_HD static S energy(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
+                            const S* history) {
     return coulomb_spring_energy(stiffness(p, c), history);
   }
 };
