@@ -1,7 +1,7 @@
 # The step engine, instantiated per backend and per contact law from one template
 # (StepEngineImpl.hpp via EngineFactory.hpp), one translation unit per normal law.
-add_library(gpudem_kernels STATIC kernels/StepEngineHost.cpp kernels/StepEngineHostHooke.cpp
-                                  kernels/StepEngineHostHertz.cpp)
+add_library(gpudem_kernels STATIC kernels/LaunchTuning.cpp kernels/StepEngineHost.cpp
+                                  kernels/StepEngineHostHooke.cpp kernels/StepEngineHostHertz.cpp)
 target_link_libraries(gpudem_kernels PUBLIC gpudem_contact_model gpudem_mesh)
 if(GPUDEM_HAVE_CUDA)
   target_sources(gpudem_kernels PRIVATE kernels/CudaMemory.cu kernels/StepEngineCuda.cu
