@@ -48,10 +48,6 @@ struct MaxOp {
   __host__ __device__ Real operator()(Real a, Real b) const { return a > b ? a : b; }
 };
 
-}  // namespace detail
-
-namespace detail {
-
 /// One thread per index in [0, n), `block` threads per block.
 template <class F>
 void launch_per_index(std::size_t n, const F& f, unsigned block) {
@@ -60,6 +56,15 @@ void launch_per_index(std::size_t n, const F& f, unsigned block) {
   parallel_for_kernel<<<blocks, block>>>(n, f);
   check_cuda(cudaGetLastError(), "parallel_for launch");
 }
+
+/// A CUDA event, destroyed with its scope.
+struct ScopedEvent {
+  cudaEvent_t event = nullptr;
+  ScopedEvent() { check_cuda(cudaEventCreate(&event), "cudaEventCreate"); }
+  ~ScopedEvent() { cudaEventDestroy(event); }
+  ScopedEvent(const ScopedEvent&) = delete;
+  ScopedEvent& operator=(const ScopedEvent&) = delete;
+};
 
 }  // namespace detail
 
@@ -79,24 +84,14 @@ void parallel_for(CudaSpace, std::size_t n, const F& f, LaunchSlot slot) {
 /// stream; waits for it to finish.
 template <class W>
 double seconds_to_run(CudaSpace, const W& work) {
-  cudaEvent_t start, stop;
-  detail::check_cuda(cudaEventCreate(&start), "seconds_to_run");
-  detail::check_cuda(cudaEventCreate(&stop), "seconds_to_run");
+  const detail::ScopedEvent start, stop;
+  detail::check_cuda(cudaEventRecord(start.event), "seconds_to_run (start)");
+  work();
+  detail::check_cuda(cudaEventRecord(stop.event), "seconds_to_run (stop)");
+  detail::check_cuda(cudaEventSynchronize(stop.event), "seconds_to_run (wait)");
   float milliseconds = 0;
-  cudaError_t status = cudaEventRecord(start);
-  try {
-    work();
-  } catch (...) {
-    cudaEventDestroy(start);
-    cudaEventDestroy(stop);
-    throw;
-  }
-  if (status == cudaSuccess) status = cudaEventRecord(stop);
-  if (status == cudaSuccess) status = cudaEventSynchronize(stop);
-  if (status == cudaSuccess) status = cudaEventElapsedTime(&milliseconds, start, stop);
-  cudaEventDestroy(start);
-  cudaEventDestroy(stop);
-  detail::check_cuda(status, "seconds_to_run");
+  detail::check_cuda(cudaEventElapsedTime(&milliseconds, start.event, stop.event),
+                     "seconds_to_run (elapsed)");
   return 1e-3 * milliseconds;
 }
 

@@ -6,14 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "kernels/LaunchTuning.hpp"
+#include "kernels/ParallelFor.hpp"
 
 namespace gpudem {
 namespace {
@@ -156,6 +159,19 @@ TEST(LaunchTuning, VerboseReportNamesEachSlotOrSaysTheHostHasNothingToTune) {
   EXPECT_EQ(launch_tuning_report(table, true),
             "launch tuning (threads per block): forces 256 neighbor_list 64 integrate 256");
   EXPECT_NE(launch_tuning_report(table, false).find("host backend"), std::string::npos);
+}
+
+TEST(LaunchTuning, HostSlotLaunchIsThePlainLoopAndHostTimingMeasuresTheWork) {
+  std::vector<int> hits(1000, 0);
+  launch_tuning().set_block_size(LaunchSlot::forces, 64);
+  parallel_for(
+      HostSpace{}, hits.size(), [&](std::size_t i) { ++hits[i]; }, LaunchSlot::forces);
+  launch_tuning().reset();
+  EXPECT_EQ(hits, std::vector<int>(1000, 1));
+  const double seconds = seconds_to_run(
+      HostSpace{}, [] { std::this_thread::sleep_for(std::chrono::milliseconds(20)); });
+  EXPECT_GE(seconds, 0.02);
+  EXPECT_LT(seconds, 10.0);
 }
 
 }  // namespace

@@ -10,3 +10,10 @@ gpudem_add_test(test_launch_tuning
   LIBS gpudem_kernels
   LABELS unit
   TIMEOUT 60)
+if(GPUDEM_HAVE_CUDA)
+  gpudem_add_test(test_portable_cuda
+    SOURCES ${CMAKE_CURRENT_LIST_DIR}/PortableCudaTest.cu
+    LIBS gpudem_kernels
+    LABELS unit
+    TIMEOUT 60)
+endif()
