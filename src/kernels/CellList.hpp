@@ -213,7 +213,8 @@ class CellList {
     parallel_for(
         Space{}, n_,
         cell_list_kernels::AssignCell{grids_, position_radius, cell_.data(), order_.data()});
-    sort_by_key(Space{}, cell_.data(), order_.data(), n_);
+    const std::uint32_t largest_cell = std::max<std::uint32_t>(grids_.total_cells, 1) - 1;
+    sort_by_key(Space{}, cell_.data(), order_.data(), n_, bits_for(largest_cell));
   }
 
   void find_cell_begins() {

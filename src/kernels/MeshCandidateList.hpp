@@ -364,9 +364,9 @@ class MeshCandidateList {
     binned_.resize(pairs);
     parallel_for(Space{}, triangle_count,
                  WriteCells{bins_, region, box, count.data(), keys_.data(), binned_.data()});
-    sort_by_key(Space{}, keys_.data(), binned_.data(), pairs);
     const std::size_t cells =
         static_cast<std::size_t>(bins_.dims[0]) * bins_.dims[1] * bins_.dims[2];
+    sort_by_key(Space{}, keys_.data(), binned_.data(), pairs, bits_for(cells - 1));
     cell_begin_.resize(cells + 1);
     parallel_for(Space{}, cells + 1,
                  cell_list_kernels::FindCellBegin{keys_.data(), static_cast<std::uint32_t>(pairs),

@@ -7,16 +7,19 @@
 #include <thrust/functional.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/scan.h>
-#include <thrust/sort.h>
 #include <thrust/transform_reduce.h>
+#include <cub/device/device_radix_sort.cuh>
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "core/Config.hpp"
+#include "kernels/DeviceArray.hpp"
 #include "kernels/ExecutionSpace.hpp"
+#include "kernels/LaunchTuning.hpp"
 
 namespace gpudem {
 
@@ -45,17 +48,51 @@ struct MaxOp {
   __host__ __device__ Real operator()(Real a, Real b) const { return a > b ? a : b; }
 };
 
+/// One thread per index in [0, n), `block` threads per block.
+template <class F>
+void launch_per_index(std::size_t n, const F& f, unsigned block) {
+  if (n == 0) return;
+  const unsigned blocks = static_cast<unsigned>((n + block - 1) / block);
+  parallel_for_kernel<<<blocks, block>>>(n, f);
+  check_cuda(cudaGetLastError(), "parallel_for launch");
+}
+
+/// A CUDA event, destroyed with its scope.
+struct ScopedEvent {
+  cudaEvent_t event = nullptr;
+  ScopedEvent() { check_cuda(cudaEventCreate(&event), "cudaEventCreate"); }
+  ~ScopedEvent() { cudaEventDestroy(event); }
+  ScopedEvent(const ScopedEvent&) = delete;
+  ScopedEvent& operator=(const ScopedEvent&) = delete;
+};
+
 }  // namespace detail
 
-/// Threads per block of the one-thread-per-index launch.
-constexpr unsigned kCudaBlockSize = 256;
-
+/// Calls f(i) for every i in [0, n), kDefaultBlockSize threads per block.
 template <class F>
 void parallel_for(CudaSpace, std::size_t n, const F& f) {
-  if (n == 0) return;
-  const unsigned blocks = static_cast<unsigned>((n + kCudaBlockSize - 1) / kCudaBlockSize);
-  detail::parallel_for_kernel<<<blocks, kCudaBlockSize>>>(n, f);
-  detail::check_cuda(cudaGetLastError(), "parallel_for launch");
+  detail::launch_per_index(n, f, kDefaultBlockSize);
+}
+
+/// Calls f(i) for every i in [0, n) with the block size launch_tuning() holds for `slot`.
+template <class F>
+void parallel_for(CudaSpace, std::size_t n, const F& f, LaunchSlot slot) {
+  detail::launch_per_index(n, f, launch_tuning().block_size(slot));
+}
+
+/// Seconds that the device work queued by work() takes, between two events on the default
+/// stream; waits for it to finish.
+template <class W>
+double seconds_to_run(CudaSpace, const W& work) {
+  const detail::ScopedEvent start, stop;
+  detail::check_cuda(cudaEventRecord(start.event), "seconds_to_run (start)");
+  work();
+  detail::check_cuda(cudaEventRecord(stop.event), "seconds_to_run (stop)");
+  detail::check_cuda(cudaEventSynchronize(stop.event), "seconds_to_run (wait)");
+  float milliseconds = 0;
+  detail::check_cuda(cudaEventElapsedTime(&milliseconds, start.event, stop.event),
+                     "seconds_to_run (elapsed)");
+  return 1e-3 * milliseconds;
 }
 
 template <class F>
@@ -85,8 +122,66 @@ inline std::uint64_t exclusive_scan(CudaSpace, const std::uint32_t* in, std::uin
   return static_cast<std::uint64_t>(last_out) + last_in;
 }
 
-inline void sort_by_key(CudaSpace, std::uint64_t* keys, std::uint32_t* values, std::size_t n) {
-  thrust::stable_sort_by_key(thrust::device, keys, keys + n, values);
+namespace detail {
+
+/// Device memory of sort_by_key kept between calls and only ever grown, so that a sort of no more
+/// items than before allocates nothing: the second key and value buffers and CUB's temporary
+/// storage.
+struct RadixSortScratch {
+  DeviceArray<std::uint64_t, CudaSpace> keys;
+  DeviceArray<std::uint32_t, CudaSpace> values;
+  DeviceArray<unsigned char, CudaSpace> temporary;
+};
+
+/// The scratch of this process (one device per rank).
+inline RadixSortScratch& radix_sort_scratch() {
+  static RadixSortScratch scratch;
+  return scratch;
+}
+
+/// Gives `a` n elements without keeping its contents: allocates only when n exceeds its capacity
+/// (from size 0, DeviceArray::resize has nothing to copy).
+template <class T>
+void size_discarding(DeviceArray<T, CudaSpace>& a, std::size_t n) {
+  a.resize(0);
+  a.resize(n);
+}
+
+}  // namespace detail
+
+/// Sorts `values` by `keys` (stable, ascending) with cub::DeviceRadixSort over the low key_bits
+/// bits; both arrays are reordered. Every key must be below 2^key_bits (bits_for of the largest
+/// key): higher bits are not looked at. Same order as the host backend.
+inline void sort_by_key(CudaSpace, std::uint64_t* keys, std::uint32_t* values, std::size_t n,
+                        int key_bits) {
+  if (key_bits < 0 || key_bits > 64)
+    throw std::invalid_argument("sort_by_key: key_bits must be in [0, 64]");
+  if (n > std::numeric_limits<std::uint32_t>::max())
+    throw std::length_error("sort_by_key: more than 2^32 - 1 items");
+  if (n < 2 || key_bits == 0) return;  // already in order
+  const auto items = static_cast<std::uint32_t>(n);
+  detail::RadixSortScratch& scratch = detail::radix_sort_scratch();
+  detail::size_discarding(scratch.keys, n);
+  detail::size_discarding(scratch.values, n);
+  cub::DoubleBuffer<std::uint64_t> key_buffers(keys, scratch.keys.data());
+  cub::DoubleBuffer<std::uint32_t> value_buffers(values, scratch.values.data());
+  std::size_t temporary_bytes = 0;
+  detail::check_cuda(cub::DeviceRadixSort::SortPairs(nullptr, temporary_bytes, key_buffers,
+                                                     value_buffers, items, 0, key_bits),
+                     "sort_by_key (temporary storage size)");
+  detail::size_discarding(scratch.temporary, temporary_bytes);
+  detail::check_cuda(
+      cub::DeviceRadixSort::SortPairs(scratch.temporary.data(), temporary_bytes, key_buffers,
+                                      value_buffers, items, 0, key_bits),
+      "sort_by_key");
+  if (key_buffers.Current() != keys)
+    detail::check_cuda(
+        cudaMemcpyAsync(keys, key_buffers.Current(), n * sizeof *keys, cudaMemcpyDeviceToDevice),
+        "sort_by_key (keys back)");
+  if (value_buffers.Current() != values)
+    detail::check_cuda(cudaMemcpyAsync(values, value_buffers.Current(), n * sizeof *values,
+                                       cudaMemcpyDeviceToDevice),
+                       "sort_by_key (values back)");
 }
 
 }  // namespace gpudem

@@ -888,7 +888,7 @@ class StepEngineImpl final : public StepEngine {
       parallel_for(
           Space{}, n,
           LeaverKey{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
-      sort_by_key(Space{}, sort_key_.data(), sort_index_.data(), n);
+      sort_by_key(Space{}, sort_key_.data(), sort_index_.data(), n, bits_for(1));  // keys 0, 1
       reorder(sort_index_.data(), n);
       leaver_ids = id_checksum(download_values<Space>(id_.data() + (n - leavers), leavers));
       resize_owned(n - leavers);

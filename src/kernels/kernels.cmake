@@ -1,7 +1,7 @@
 # The step engine, instantiated per backend, normal law and precision from one template
-# (StepEngineImpl.hpp via EngineFactory.hpp), one translation unit each.
+# (StepEngineImpl.hpp via EngineFactory.hpp), one translation unit each; launch tuning.
 add_library(gpudem_kernels STATIC
-  kernels/StepEngineHost.cpp
+  kernels/LaunchTuning.cpp kernels/StepEngineHost.cpp
   kernels/StepEngineHostHookeDouble.cpp kernels/StepEngineHostHertzDouble.cpp
   kernels/StepEngineHostHookeMixed.cpp kernels/StepEngineHostHertzMixed.cpp)
 target_link_libraries(gpudem_kernels PUBLIC gpudem_contact_model gpudem_mesh)

@@ -1,0 +1,81 @@
+// The CUDA backend's sort and slot launches against the host backend (skipped without a device):
+// sort_by_key on random keys with duplicates gives the host sort's order for several bit counts,
+// twice in a row (the kept scratch), and parallel_for with a slot visits every index exactly once
+// at each candidate block size.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "kernels/ParallelForCuda.cuh"
+// The CUDA backend first, then the host one, as in the engine's translation units.
+#include "kernels/DeviceArray.hpp"
+#include "kernels/ParallelFor.hpp"
+
+namespace gpudem {
+namespace {
+
+bool have_device() { return cuda::device_count() > 0; }
+
+/// Adds one to hits[i].
+struct CountVisit {
+  std::uint32_t* hits;
+  __host__ __device__ void operator()(std::size_t i) const { ++hits[i]; }
+};
+
+/// n random keys below 2^key_bits drawn from 300 values (many duplicates).
+std::vector<std::uint64_t> random_keys(std::size_t n, int key_bits, std::uint32_t seed) {
+  std::mt19937_64 random(seed);
+  const std::uint64_t top = key_bits == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << key_bits) - 1;
+  std::uniform_int_distribution<std::uint64_t> any_key(0, top);
+  std::vector<std::uint64_t> pool{top};
+  while (pool.size() < 300) pool.push_back(any_key(random));
+  std::uniform_int_distribution<std::size_t> pick(0, pool.size() - 1);
+  std::vector<std::uint64_t> keys(n);
+  for (auto& k : keys) k = pool[pick(random)];
+  return keys;
+}
+
+TEST(CudaSortByKey, GivesTheHostOrder) {
+  if (!have_device()) GTEST_SKIP() << "no CUDA device on this machine";
+  for (int key_bits : {1, 9, 22, 33, 64}) {
+    for (int round = 0; round < 2; ++round) {
+      SCOPED_TRACE(::testing::Message() << key_bits << " bits, round " << round);
+      std::vector<std::uint64_t> host_keys = random_keys(100000, key_bits, key_bits + round);
+      std::vector<std::uint32_t> host_values(host_keys.size());
+      for (std::size_t i = 0; i < host_values.size(); ++i) host_values[i] = std::uint32_t(i);
+      DeviceArray<std::uint64_t, CudaSpace> keys;
+      DeviceArray<std::uint32_t, CudaSpace> values;
+      keys.upload(host_keys);
+      values.upload(host_values);
+      sort_by_key(CudaSpace{}, keys.data(), values.data(), keys.size(), key_bits);
+      sort_by_key(HostSpace{}, host_keys.data(), host_values.data(), host_keys.size(), key_bits);
+      std::vector<std::uint64_t> device_keys;
+      std::vector<std::uint32_t> device_values;
+      keys.download(device_keys);
+      values.download(device_values);
+      EXPECT_EQ(device_keys, host_keys);
+      EXPECT_EQ(device_values, host_values);
+    }
+  }
+}
+
+TEST(CudaParallelFor, SlotLaunchVisitsEveryIndexOnceAtEachBlockSize) {
+  if (!have_device()) GTEST_SKIP() << "no CUDA device on this machine";
+  const std::size_t n = 100003;  // not a multiple of any block size
+  for (const unsigned block : kBlockSizeCandidates) {
+    SCOPED_TRACE(::testing::Message() << block << " threads per block");
+    launch_tuning().set_block_size(LaunchSlot::integrate, block);
+    DeviceArray<std::uint32_t, CudaSpace> hits;
+    hits.upload(std::vector<std::uint32_t>(n, 0));
+    parallel_for(CudaSpace{}, n, CountVisit{hits.data()}, LaunchSlot::integrate);
+    std::vector<std::uint32_t> seen;
+    hits.download(seen);
+    EXPECT_EQ(seen, std::vector<std::uint32_t>(n, 1));
+  }
+  launch_tuning().reset();
+}
+
+}  // namespace
+}  // namespace gpudem
