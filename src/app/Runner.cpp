@@ -455,10 +455,14 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   std::unique_ptr<StepEngine> engine = make_engine(options.backend, mpi, setup);
   start_engine(*engine, particles, checkpoint ? &*checkpoint : nullptr, options.restart_file);
   if (!checkpoint) bed.apply_history(scene, mpi, *engine);
+  const std::string tuning = engine->tune_launches();
   prepare_output_directory(scene.output.dir);
   const std::vector<MemoryUse> memory = memory_over_ranks(mpi, *engine);
   if (banner) print_summary(scene, particles, setup, engine.get(), total_bytes(memory), steps);
-  if (banner && options.verbose) print_memory_report(memory, engine->particle_count());
+  if (banner && options.verbose) {
+    print_memory_report(memory, engine->particle_count());
+    std::printf("%s\n", tuning.c_str());
+  }
   if (banner && domain) print_decomposition(*domain);
   if (banner && settle) print_preparation(scene, *settle, setup.dt);
   LoopStart start;

@@ -281,6 +281,8 @@ class MeshWalls {
                     image_centre_.data()};
   }
   State* history() { return history_.data(); }
+  /// Number of candidate-list entries (history records).
+  std::size_t entry_count() const { return history_.size(); }
   const State* history() const { return history_.data(); }
   std::size_t memory_bytes() const {
     return initial_.bytes() + vertices_.bytes() + at_build_.bytes() + corners_.bytes() +

@@ -190,7 +190,8 @@ class NeighborList {
     candidates_per_particle_.resize(n_);
     parallel_for(Space{}, n_,
                  neighbor_list_kernels::CountNeighbors{search, layout, offsets_.data(),
-                                                       candidates_per_particle_.data()});
+                                                       candidates_per_particle_.data()},
+                 LaunchSlot::neighbor_list);
     pairs_kept_ = exclusive_scan(Space{}, offsets_.data(), offsets_.data(), n_);
     if (pairs_kept_ > std::numeric_limits<std::uint32_t>::max())
       throw std::overflow_error("NeighborList: more than 2^32 - 1 neighbour entries");
@@ -200,7 +201,8 @@ class NeighborList {
     neighbors_.resize(pairs_kept_);
     parallel_for(
         Space{}, n_,
-        neighbor_list_kernels::WriteNeighbors{search, layout, offsets_.data(), neighbors_.data()});
+        neighbor_list_kernels::WriteNeighbors{search, layout, offsets_.data(), neighbors_.data()},
+        LaunchSlot::neighbor_list);
     candidates_examined_ = static_cast<std::uint64_t>(
         reduce_sum(Space{}, n_, neighbor_list_kernels::ValueOf{candidates_per_particle_.data()}));
   }

@@ -28,8 +28,8 @@ struct EngineSetup {
   Real dt = 0;
   IntegratorKind integrator = IntegratorKind::VelocityVerlet;
   Precision precision = Precision::Double;  ///< selects the law's scalar (EngineFactory.hpp)
-  Real skin = 0;               ///< Verlet skin [m]
-  ContactModel contact_model;  ///< must be one of valid_contact_models()
+  Real skin = 0;                            ///< Verlet skin [m]
+  ContactModel contact_model;               ///< must be one of valid_contact_models()
   std::uint32_t material_count = 0;
   std::vector<ContactPairParams> pair_params;  ///< material_count² entries, row-major
   std::vector<PlaneWall> walls;
@@ -185,6 +185,9 @@ class StepEngine {
     return total;
   }
   virtual std::string backend_name() const = 0;
+  /// Chooses the block size of the tunable launches once per run, the same on every rank, and
+  /// returns the --verbose line that reports it (LaunchTuning.hpp). Collective.
+  virtual std::string tune_launches() = 0;
 };
 
 std::unique_ptr<StepEngine> make_host_engine(const EngineSetup& setup);

@@ -20,6 +20,7 @@
 #include "kernels/DomainLink.hpp"
 #include "kernels/GhostExchange.hpp"
 #include "kernels/Integrators.hpp"
+#include "kernels/LaunchTuning.hpp"
 #include "kernels/MeshWalls.hpp"
 #include "kernels/NeighborList.hpp"
 #include "kernels/ParticleMigration.hpp"
@@ -260,7 +261,7 @@ class StepEngineImpl final : public StepEngine {
     const Real dt = setup_.dt;
     const bool verlet = setup_.integrator == IntegratorKind::VelocityVerlet;
     kick(verlet ? Real(0.5) * dt : dt);
-    parallel_for(Space{}, owned_, Drift{position_radius_.data(), velocity_inv_mass_.data(), dt});
+    drift(dt);
     ++steps_;
     if (!meshes_.empty()) meshes_.set_time(steps_ * dt);
     const bool rebuild_now = needs_rebuild();
@@ -317,6 +318,33 @@ class StepEngineImpl final : public StepEngine {
       for (std::size_t k = 0; k < surface.triangles.size(); ++k, ++t)
         surface.triangle_force.push_back(Vec3{load[3 * t], load[3 * t + 1], load[3 * t + 2]});
     return surfaces;
+  }
+
+  /// Times the force, neighbour-list and integration launches at each candidate block size and
+  /// keeps, for each, the one the slowest rank runs fastest (LaunchTuning.hpp); leaves the state
+  /// as it was: the forces are timed on scratch outputs and history, the list is built into a
+  /// scratch list, the kick and drift run with a zero step. Collective; nothing to tune on the
+  /// host.
+  std::string tune_launches() override {
+    if constexpr (has_block_sizes(Space{})) {
+      const MaxOverRanks max_all = max_over_ranks(domain_);
+      const auto timed = [](auto&& work) {
+        return [&work](unsigned) { return seconds_to_run(Space{}, work); };
+      };
+      ForceScratch scratch(owned_, pair_history_.size(), wall_history_.size(),
+                           meshes_.entry_count());
+      tune_block_size(launch_tuning(), LaunchSlot::forces,
+                      timed([&] { compute_forces_into(scratch); }), max_all);
+      NeighborList<Space> list;
+      tune_block_size(launch_tuning(), LaunchSlot::neighbor_list,
+                      timed([&] { build_list_into(list, ghosts_.ghosts()); }), max_all);
+      tune_block_size(launch_tuning(), LaunchSlot::integrate, timed([&] {
+                        kick(0);
+                        drift(0);
+                      }),
+                      max_all);
+    }
+    return launch_tuning_report(launch_tuning(), has_block_sizes(Space{}));
   }
 
   std::uint64_t removed_count() const override { return removed_; }
@@ -580,21 +608,49 @@ class StepEngineImpl final : public StepEngine {
     parallel_for(Space{}, owned_,
                  Kick<Law::needs_spin, typename Law::Scalar>{
                      velocity_inv_mass_.data(), angular_velocity_.data(), force_.data(),
-                     torque_.data(), position_radius_.data(), h});
+                     torque_.data(), position_radius_.data(), h},
+                 LaunchSlot::integrate);
   }
+
+  void drift(Real dt) {
+    parallel_for(Space{}, owned_, Drift{position_radius_.data(), velocity_inv_mass_.data(), dt},
+                 LaunchSlot::integrate);
+  }
+
+  /// Outputs and history of a force evaluation whose results are thrown away (launch tuning).
+  struct ForceScratch {
+    ForceScratch(std::size_t owned, std::size_t pairs, std::size_t wall_slots, std::size_t mesh)
+        : force(owned),
+          torque(owned),
+          overlap_ratio(owned),
+          pair(pairs),
+          wall(wall_slots),
+          mesh(mesh) {}
+    DeviceArray<ForceVec, Space> force, torque;
+    DeviceArray<Real, Space> overlap_ratio;
+    DeviceArray<State, Space> pair, wall, mesh;
+  };
 
   std::uint32_t wall_count() const { return static_cast<std::uint32_t>(setup_.walls.size()); }
 
   void compute_forces() {
+    launch_forces({pair_history_.data(), wall_history_.data(), meshes_.history()}, force_.data(),
+                  torque_.data(), overlap_ratio_.data());
+  }
+
+  /// The forces of the current state written to `scratch`, the engine's state untouched.
+  void compute_forces_into(ForceScratch& scratch) {
+    launch_forces({scratch.pair.data(), scratch.wall.data(), scratch.mesh.data()},
+                  scratch.force.data(), scratch.torque.data(), scratch.overlap_ratio.data());
+  }
+
+  /// ComputeForces over the owned particles, advancing the contact history into `history`.
+  void launch_forces(const HistoryArrays<Law>& history, ForceVec* force, ForceVec* torque,
+                     Real* overlap_ratio) {
     parallel_for(Space{}, owned_,
-                 ComputeForces<Law>{particle_view(),
-                                    contact_scene(),
-                                    setup_.gravity,
-                                    setup_.dt,
-                                    {pair_history_.data(), wall_history_.data(), meshes_.history()},
-                                    force_.data(),
-                                    torque_.data(),
-                                    overlap_ratio_.data()});
+                 ComputeForces<Law>{particle_view(), contact_scene(), setup_.gravity, setup_.dt,
+                                    history, force, torque, overlap_ratio},
+                 LaunchSlot::forces);
   }
 
   bool find_unhealthy_here(double limit, HealthFailure& failure) const {
@@ -832,11 +888,14 @@ class StepEngineImpl final : public StepEngine {
 
   /// Builds the owned particles' neighbour rows over owned particles and `ghosts` ghosts,
   /// each row ordered by partner id so that no sum depends on particle order or rank count.
-  void build_list(std::size_t ghosts) {
+  void build_list(std::size_t ghosts) { build_list_into(neighbors_, ghosts); }
+
+  /// build_list into `list`.
+  void build_list_into(NeighborList<Space>& list, std::size_t ghosts) {
     if (ghosts == 0) {  // the storage order is the cell order of the last binning
       iota(identity_, owned_);
       const NeighborRows rows{identity_.data(), owned_, identity_.data(), id_.data()};
-      neighbors_.build(cells_, position_radius_.data(), owned_, setup_.box, setup_.skin, &rows);
+      list.build(cells_, position_radius_.data(), owned_, setup_.box, setup_.skin, &rows);
       return;
     }
     const std::size_t total = owned_ + ghosts;
@@ -846,7 +905,7 @@ class StepEngineImpl final : public StepEngine {
     slot_of_owned_.resize(owned_);
     parallel_for(Space{}, total, SlotOfOwned{cells_.order(), owned_, slot_of_owned_.data()});
     const NeighborRows rows{slot_of_owned_.data(), owned_, cells_.order(), id_.data()};
-    neighbors_.build(cells_, sorted_position_.data(), total, setup_.box, setup_.skin, &rows);
+    list.build(cells_, sorted_position_.data(), total, setup_.box, setup_.skin, &rows);
   }
 
   /// The owned particles' mesh candidates, with the kept rows' history when `carry`.
