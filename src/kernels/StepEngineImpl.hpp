@@ -571,6 +571,7 @@ class StepEngineImpl final : public StepEngine {
     parallel_for(Space{}, count, AtIndices<ComputeForces<Law>>{list, force_kernel()});
   }
 
+  /// The per-particle force functor over this engine's arrays.
   ComputeForces<Law> force_kernel() {
     return ComputeForces<Law>{particle_view(),
                               contact_scene(),
