@@ -2,8 +2,10 @@
 
 #include <climits>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 namespace gpudem {
 
@@ -14,6 +16,14 @@ int message_size(std::size_t bytes) {
     throw std::overflow_error("MpiDomain: a message of more than 2^31 - 1 bytes");
   return static_cast<int>(bytes);
 }
+
+/// Requests of a start_exchange: one per message, sent or received.
+struct MpiPendingExchange final : PendingExchange {
+  std::vector<MPI_Request> requests;
+};
+
+constexpr int kBuffersTag = 7;     ///< exchange of RankBuffers
+constexpr int kContiguousTag = 8;  ///< start_exchange
 
 }  // namespace
 
@@ -84,7 +94,6 @@ void MpiDomain::exchange(const RankBuffers& outgoing, RankBuffers& incoming) con
 }
 
 void MpiDomain::exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const {
-  constexpr int kTag = 7;
   std::vector<MPI_Request> requests;
   requests.reserve(2 * static_cast<std::size_t>(size_));
   for (int q = 0; q < size_; ++q) {
@@ -94,16 +103,53 @@ void MpiDomain::exchange_known(const RankBuffers& outgoing, RankBuffers& incomin
     }
     if (incoming[q].empty()) continue;
     requests.emplace_back();
-    MPI_Irecv(incoming[q].data(), message_size(incoming[q].size()), MPI_BYTE, q, kTag, comm_,
+    MPI_Irecv(incoming[q].data(), message_size(incoming[q].size()), MPI_BYTE, q, kBuffersTag, comm_,
               &requests.back());
   }
   for (int q = 0; q < size_; ++q) {
     if (q == rank_ || outgoing[q].empty()) continue;
     requests.emplace_back();
-    MPI_Isend(outgoing[q].data(), message_size(outgoing[q].size()), MPI_BYTE, q, kTag, comm_,
+    MPI_Isend(outgoing[q].data(), message_size(outgoing[q].size()), MPI_BYTE, q, kBuffersTag, comm_,
               &requests.back());
   }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+}
+
+std::unique_ptr<PendingExchange> MpiDomain::start_exchange(
+    const char* send, const std::vector<std::size_t>& send_bytes, char* receive,
+    const std::vector<std::size_t>& receive_bytes) const {
+  const auto ranks = static_cast<std::size_t>(size_);
+  if (send_bytes.size() != ranks || receive_bytes.size() != ranks)
+    throw std::invalid_argument("MpiDomain: byte counts for another rank count");
+  auto pending = std::make_unique<MpiPendingExchange>();
+  std::vector<MPI_Request>& requests = pending->requests;
+  requests.reserve(2 * ranks);
+  std::size_t offset = 0;
+  for (int q = 0; q < size_; ++q) {
+    if (receive_bytes[q] > 0) {
+      requests.emplace_back();
+      MPI_Irecv(receive + offset, message_size(receive_bytes[q]), MPI_BYTE, q, kContiguousTag,
+                comm_, &requests.back());
+    }
+    offset += receive_bytes[q];
+  }
+  offset = 0;
+  for (int q = 0; q < size_; ++q) {
+    if (send_bytes[q] > 0) {
+      requests.emplace_back();
+      MPI_Isend(send + offset, message_size(send_bytes[q]), MPI_BYTE, q, kContiguousTag, comm_,
+                &requests.back());
+    }
+    offset += send_bytes[q];
+  }
+  return pending;
+}
+
+void MpiDomain::finish_exchange(std::unique_ptr<PendingExchange> exchange) const {
+  auto* pending = dynamic_cast<MpiPendingExchange*>(exchange.get());
+  if (!pending) throw std::invalid_argument("MpiDomain: not an exchange this domain started");
+  MPI_Waitall(static_cast<int>(pending->requests.size()), pending->requests.data(),
+              MPI_STATUSES_IGNORE);
 }
 
 }  // namespace gpudem

@@ -1,10 +1,13 @@
 #pragma once
 /// The engine's DomainLink over MPI (DESIGN §5): ownership, ghost destinations and bin region
 /// from a Decomposition, reductions by MPI_Allreduce, byte exchanges by point-to-point
-/// messages (sizes first by MPI_Alltoall where the receiver cannot know them).
+/// messages (sizes first by MPI_Alltoall where the receiver cannot know them), non-blocking
+/// where the caller overlaps them with work.
 #include <mpi.h>
 
+#include <memory>
 #include <optional>
+#include <vector>
 
 #include "comm/Decomposition.hpp"
 #include "kernels/DomainLink.hpp"
@@ -32,7 +35,11 @@ class MpiDomain final : public DomainLink {
   int first_rank_with(bool flag) const override;
   void broadcast(std::vector<char>& bytes, int root) const override;
   void exchange(const RankBuffers& outgoing, RankBuffers& incoming) const override;
-  void exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const override;
+  std::unique_ptr<PendingExchange> start_exchange(
+      const char* send, const std::vector<std::size_t>& send_bytes, char* receive,
+      const std::vector<std::size_t>& receive_bytes) const override;
+  void finish_exchange(std::unique_ptr<PendingExchange> exchange) const override;
+  bool device_buffers() const override { return gpu_aware_; }
 
   /// Hands over a decomposition (a rebalance) that takes over at the next rebuild step;
   /// every rank must propose the same one.
@@ -45,6 +52,9 @@ class MpiDomain final : public DomainLink {
   bool gpu_aware() const { return gpu_aware_; }
 
  private:
+  /// exchange once the receiver knows the sizes: incoming[q] sized by the caller.
+  void exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const;
+
   MPI_Comm comm_;
   int rank_ = 0;
   int size_ = 1;

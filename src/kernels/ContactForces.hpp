@@ -83,4 +83,12 @@ struct ComputeForces {
   }
 };
 
+/// A per-particle functor run over a list of particle indices: k -> per_particle(list[k]).
+template <class F>
+struct AtIndices {
+  const std::uint32_t* list;
+  F per_particle;
+  GPUDEM_HD void operator()(std::size_t k) const { per_particle(list[k]); }
+};
+
 }  // namespace gpudem

@@ -62,4 +62,36 @@ void copy_on_device(void* dst, const void* src, std::size_t bytes) {
   check(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToDevice), "copy_on_device");
 }
 
+void* allocate_pinned(std::size_t bytes) {
+  void* p = nullptr;
+  if (bytes > 0) check(cudaMallocHost(&p, bytes), "cudaMallocHost");
+  return p;
+}
+
+void release_pinned(void* ptr) {
+  if (ptr) cudaFreeHost(ptr);
+}
+
+Stream create_stream() {
+  cudaStream_t stream = nullptr;
+  check(cudaStreamCreate(&stream), "cudaStreamCreate");
+  return stream;
+}
+
+void destroy_stream(Stream stream) {
+  if (stream) cudaStreamDestroy(stream);
+}
+
+void copy_to_host_async(void* dst, const void* src, std::size_t bytes, Stream stream) {
+  check(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyDeviceToHost, stream), "copy_to_host_async");
+}
+
+void copy_to_device_async(void* dst, const void* src, std::size_t bytes, Stream stream) {
+  check(cudaMemcpyAsync(dst, src, bytes, cudaMemcpyHostToDevice, stream), "copy_to_device_async");
+}
+
+void synchronize(Stream stream) { check(cudaStreamSynchronize(stream), "cudaStreamSynchronize"); }
+
+void synchronize_device() { check(cudaDeviceSynchronize(), "cudaDeviceSynchronize"); }
+
 }  // namespace gpudem::cuda

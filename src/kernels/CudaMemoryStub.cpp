@@ -24,5 +24,17 @@ void release(void* ptr) {
 void copy_to_device(void*, const void*, std::size_t) { unavailable(); }
 void copy_to_host(void*, const void*, std::size_t) { unavailable(); }
 void copy_on_device(void*, const void*, std::size_t) { unavailable(); }
+void* allocate_pinned(std::size_t) { unavailable(); }
+void release_pinned(void* ptr) {
+  if (ptr) unavailable();
+}
+Stream create_stream() { unavailable(); }
+void destroy_stream(Stream stream) {
+  if (stream) unavailable();
+}
+void copy_to_host_async(void*, const void*, std::size_t, Stream) { unavailable(); }
+void copy_to_device_async(void*, const void*, std::size_t, Stream) { unavailable(); }
+void synchronize(Stream) { unavailable(); }
+void synchronize_device() { unavailable(); }
 
 }  // namespace gpudem::cuda

@@ -84,4 +84,72 @@ class DeviceArray<T, CudaSpace> {
   std::size_t capacity_ = 0;
 };
 
+/// Page-locked host buffer, the host end of asynchronous copies (`copy_async`) that stage device
+/// buffers for a library that reads host memory only. Grows geometrically; unlike DeviceArray it
+/// does not keep its contents when it grows.
+template <class T>
+class PinnedBuffer {
+ public:
+  PinnedBuffer() = default;
+  PinnedBuffer(const PinnedBuffer&) = delete;
+  PinnedBuffer& operator=(const PinnedBuffer&) = delete;
+  ~PinnedBuffer() { cuda::release_pinned(ptr_); }
+
+  T* data() { return ptr_; }
+  const T* data() const { return ptr_; }
+  std::size_t size() const { return size_; }
+  void resize(std::size_t n) {
+    if (n > capacity_) {
+      const std::size_t cap = n + n / 4;
+      cuda::release_pinned(ptr_);
+      ptr_ = nullptr;
+      ptr_ = static_cast<T*>(cuda::allocate_pinned(cap * sizeof(T)));
+      capacity_ = cap;
+    }
+    size_ = n;
+  }
+  std::size_t bytes() const { return capacity_ * sizeof(T); }
+
+ private:
+  T* ptr_ = nullptr;
+  std::size_t size_ = 0;
+  std::size_t capacity_ = 0;
+};
+
+/// A CUDA stream of its owner's, created on first use. Its work runs after the kernels launched
+/// before it and before those launched after it (a blocking stream, CudaMemory.hpp).
+class CudaStream {
+ public:
+  CudaStream() = default;
+  CudaStream(const CudaStream&) = delete;
+  CudaStream& operator=(const CudaStream&) = delete;
+  ~CudaStream() { cuda::destroy_stream(stream_); }
+
+  cuda::Stream get() {
+    if (!stream_) stream_ = cuda::create_stream();
+    return stream_;
+  }
+  /// Waits until the work queued on the stream has finished.
+  void synchronize() {
+    if (stream_) cuda::synchronize(stream_);
+  }
+
+ private:
+  cuda::Stream stream_ = nullptr;
+};
+
+/// Queues on `stream` the copy of the first n elements of `from` into `to` (sized for them).
+template <class T>
+void copy_async(const DeviceArray<T, CudaSpace>& from, PinnedBuffer<T>& to, std::size_t n,
+                CudaStream& stream) {
+  if (n > 0) cuda::copy_to_host_async(to.data(), from.data(), n * sizeof(T), stream.get());
+}
+
+/// Queues on `stream` the copy of the first n elements of `from` into `to` (sized for them).
+template <class T>
+void copy_async(const PinnedBuffer<T>& from, DeviceArray<T, CudaSpace>& to, std::size_t n,
+                CudaStream& stream) {
+  if (n > 0) cuda::copy_to_device_async(to.data(), from.data(), n * sizeof(T), stream.get());
+}
+
 }  // namespace gpudem

@@ -3,7 +3,11 @@
 /// who owns a position, which ranks need a particle as a ghost, reductions over all ranks and
 /// the exchange of byte buffers between ranks. The engine knows nothing of MPI: comm/MpiDomain
 /// implements this over MPI, OneRankDomain for a run on one rank (nothing to exchange).
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "core/Config.hpp"
@@ -15,6 +19,12 @@ namespace gpudem {
 
 /// Bytes for or from each rank, indexed by rank.
 using RankBuffers = std::vector<std::vector<char>>;
+
+/// The messages of one DomainLink::start_exchange, until finish_exchange completes them.
+class PendingExchange {
+ public:
+  virtual ~PendingExchange() = default;
+};
 
 class DomainLink {
  public:
@@ -50,9 +60,19 @@ class DomainLink {
   /// Sends outgoing[q] to each rank q and returns what each rank sent here in incoming[q]
   /// (outgoing has ranks() entries; empty ones send nothing). Collective.
   virtual void exchange(const RankBuffers& outgoing, RankBuffers& incoming) const = 0;
-  /// Like exchange when the receiver already knows how many bytes come from each rank:
-  /// incoming[q] must be sized by the caller. Collective over the ranks that exchange.
-  virtual void exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const = 0;
+
+  /// Starts sending send_bytes[q] bytes to each rank q and receiving receive_bytes[q] bytes
+  /// from each rank q (both known to both sides beforehand; ranks() entries each, zero for no
+  /// message). `send` and `receive` hold the messages back to back in rank order; both stay
+  /// untouched until finish_exchange. They are host memory, or device memory when
+  /// device_buffers(). Collective over the ranks that exchange.
+  virtual std::unique_ptr<PendingExchange> start_exchange(
+      const char* send, const std::vector<std::size_t>& send_bytes, char* receive,
+      const std::vector<std::size_t>& receive_bytes) const = 0;
+  /// Waits until the messages of `exchange` have been sent and received.
+  virtual void finish_exchange(std::unique_ptr<PendingExchange> exchange) const = 0;
+  /// Whether start_exchange takes device memory (GPU-aware MPI).
+  virtual bool device_buffers() const { return false; }
 };
 
 /// A run on one rank: the region is the whole box, every particle is owned, nothing travels.
@@ -72,9 +92,16 @@ class OneRankDomain final : public DomainLink {
   void exchange(const RankBuffers& outgoing, RankBuffers& incoming) const override {
     incoming = outgoing;
   }
-  void exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const override {
-    incoming = outgoing;
+  /// Copies the message to this rank; nothing stays pending.
+  std::unique_ptr<PendingExchange> start_exchange(
+      const char* send, const std::vector<std::size_t>& send_bytes, char* receive,
+      const std::vector<std::size_t>& receive_bytes) const override {
+    if (send_bytes.size() != 1 || receive_bytes != send_bytes)
+      throw std::invalid_argument("OneRankDomain: byte counts differ from the one message");
+    if (send_bytes[0] > 0) std::memcpy(receive, send, send_bytes[0]);
+    return nullptr;
   }
+  void finish_exchange(std::unique_ptr<PendingExchange>) const override {}
 
  private:
   BinRegion region_;

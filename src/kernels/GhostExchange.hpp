@@ -2,13 +2,17 @@
 /// Ghost particles (DESIGN §4, plan then execute): on a rebuild step `plan` decides which owned
 /// particles each other rank needs (those within the ghost width of its cells, asked of the
 /// DomainLink), sends their full records once and keeps the plan; every other step `update`
-/// sends only the fields a contact evaluation reads (position and radius, velocity and inverse
-/// mass, and the spin when the law uses it), packed in the engine's memory space, one message
-/// per rank. Ghosts occupy the slots after the owned particles, in the order of the ranks that
-/// sent them.
+/// (or `begin_update`, work, `finish_update`) sends only the fields a contact evaluation reads
+/// (position and radius, velocity and inverse mass, and the spin when the law uses it), packed
+/// in the engine's memory space, one non-blocking message per rank. Ghosts occupy the slots
+/// after the owned particles, in the order of the ranks that sent them.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/Config.hpp"
@@ -107,7 +111,84 @@ struct UnpackFields {
   }
 };
 
+/// flag[r] = 1 when row r of an owned particles' CSR neighbour list holds a ghost (an index
+/// >= owned), else 0, for r < owned; flag[owned] = 0.
+struct ReadsGhost {
+  const std::uint32_t* offsets;
+  const std::uint32_t* neighbors;
+  std::uint32_t owned;
+  std::uint32_t* flag;
+  GPUDEM_HD void operator()(std::size_t r) const {
+    std::uint32_t reads = 0;
+    if (r < owned)
+      for (std::uint32_t e = offsets[r]; e < offsets[r + 1]; ++e)
+        if (neighbors[e] >= owned) reads = 1;
+    flag[r] = reads;
+  }
+};
+
+/// Row r to its place in the boundary rows (before[r] boundary rows precede it) or the interior
+/// rows, from the exclusive scan `before` of ReadsGhost's flags.
+struct ScatterRows {
+  const std::uint32_t* before;
+  std::uint32_t* interior;
+  std::uint32_t* boundary;
+  GPUDEM_HD void operator()(std::size_t r) const {
+    const auto row = static_cast<std::uint32_t>(r);
+    if (before[r + 1] != before[r])
+      boundary[before[r]] = row;
+    else
+      interior[r - before[r]] = row;
+  }
+};
+
 }  // namespace ghost_kernels
+
+/// The owned particles split by whether their neighbour-list row reads a ghost: the interior
+/// ones' forces can be computed while the ghosts' fields are in flight, the boundary ones'
+/// after they arrived. Both lists ascending, in Space memory.
+template <class Space>
+class GhostRowSplit {
+ public:
+  /// Splits rows [0, owned) of the CSR list (offsets, neighbors) over owned particles
+  /// [0, owned) and ghosts from `owned` on.
+  void build(const std::uint32_t* offsets, const std::uint32_t* neighbors, std::size_t owned) {
+    before_.resize(owned + 1);
+    parallel_for(Space{}, owned + 1,
+                 ghost_kernels::ReadsGhost{offsets, neighbors, static_cast<std::uint32_t>(owned),
+                                           before_.data()});
+    const std::size_t boundary = exclusive_scan(Space{}, before_.data(), before_.data(), owned + 1);
+    interior_.resize(owned - boundary);
+    boundary_.resize(boundary);
+    parallel_for(Space{}, owned,
+                 ghost_kernels::ScatterRows{before_.data(), interior_.data(), boundary_.data()});
+  }
+
+  const std::uint32_t* interior() const { return interior_.data(); }
+  std::size_t interior_count() const { return interior_.size(); }
+  const std::uint32_t* boundary() const { return boundary_.data(); }
+  std::size_t boundary_count() const { return boundary_.size(); }
+  std::size_t memory_bytes() const {
+    return before_.bytes() + interior_.bytes() + boundary_.bytes();
+  }
+
+ private:
+  DeviceArray<std::uint32_t, Space> before_;  ///< boundary rows before each row
+  DeviceArray<std::uint32_t, Space> interior_;
+  DeviceArray<std::uint32_t, Space> boundary_;
+};
+
+/// Pinned host copies of the refresh buffers, for a DomainLink that takes host memory only:
+/// none for host memory.
+template <class Space>
+struct HaloStaging {};
+
+template <>
+struct HaloStaging<CudaSpace> {
+  PinnedBuffer<Real> send;
+  PinnedBuffer<Real> receive;
+  CudaStream stream;
+};
 
 template <class Space, bool kSpin>
 class GhostExchange {
@@ -139,9 +220,13 @@ class GhostExchange {
     RankBuffers outgoing;
     split(packed, sizeof(GhostRecord), outgoing);
     domain.exchange(outgoing, incoming);
-    receive_count_.assign(domain.ranks(), 0);
-    for (int q = 0; q < domain.ranks(); ++q)
-      receive_count_[q] = incoming[q].size() / sizeof(GhostRecord);
+    const std::size_t row_bytes = Fields::width * sizeof(Real);
+    send_bytes_.assign(domain.ranks(), 0);
+    receive_bytes_.assign(domain.ranks(), 0);
+    for (int q = 0; q < domain.ranks(); ++q) {
+      send_bytes_[q] = send_count_[q] * row_bytes;
+      receive_bytes_[q] = incoming[q].size() / sizeof(GhostRecord) * row_bytes;
+    }
     join(incoming, received_);
     return received_.size();
   }
@@ -155,17 +240,40 @@ class GhostExchange {
   /// Sends the planned particles' per-step fields and writes those received into the ghost
   /// slots. Collective.
   void update(const DomainLink& domain, const ParticleArrays& particles, std::size_t owned) {
-    const int width = Fields::width;
-    packed_fields_.resize(send_index_.size() * width);
+    begin_update(domain, particles);
+    finish_update(domain, particles, owned);
+  }
+
+  /// First half of `update`: packs the planned particles' per-step fields and posts the
+  /// messages; the ghost slots keep their values until finish_update. Device buffers go to
+  /// the DomainLink as they are when it takes them, else through pinned host copies.
+  void begin_update(const DomainLink& domain, const ParticleArrays& particles) {
+    if (in_flight_) throw std::logic_error("GhostExchange: a refresh is already in flight");
+    in_flight_ = true;
+    packed_fields_.resize(send_index_.size() * Fields::width);
+    fields_.resize(ghosts() * Fields::width);
     parallel_for(
         Space{}, send_index_.size(),
         ghost_kernels::PackFields<kSpin>{particles, send_index_.data(), packed_fields_.data()});
-    split(packed_fields_, width * sizeof(Real), outgoing_);
-    incoming_.resize(domain.ranks());
-    for (int q = 0; q < domain.ranks(); ++q)
-      incoming_[q].resize(receive_count_[q] * width * sizeof(Real));
-    domain.exchange_known(outgoing_, incoming_);
-    join(incoming_, fields_);
+    staged_ = kDeviceMemory && !domain.device_buffers();
+    if constexpr (kDeviceMemory) {
+      if (staged_) return post_staged(domain);
+      cuda::synchronize_device();  // the packing kernel has written what MPI reads
+    }
+    pending_ = domain.start_exchange(bytes_of(packed_fields_.data()), send_bytes_,
+                                     bytes_of(fields_.data()), receive_bytes_);
+  }
+
+  /// Second half of `update`: waits for the messages and writes the received fields into the
+  /// slots [owned, owned + ghosts()).
+  void finish_update(const DomainLink& domain, const ParticleArrays& particles, std::size_t owned) {
+    if (!in_flight_) throw std::logic_error("GhostExchange: finish_update without begin_update");
+    in_flight_ = false;
+    domain.finish_exchange(std::move(pending_));
+    if constexpr (kDeviceMemory) {
+      // Queued on a blocking stream: the unpacking kernel below waits for it.
+      if (staged_) copy_async(staging_.receive, fields_, fields_.size(), staging_.stream);
+    }
     parallel_for(Space{}, ghosts(),
                  ghost_kernels::UnpackFields<kSpin>{fields_.data(), particles, owned});
   }
@@ -178,6 +286,22 @@ class GhostExchange {
   }
 
  private:
+  static constexpr bool kDeviceMemory = std::is_same_v<Space, CudaSpace>;
+
+  /// The packed fields copied to pinned memory (waiting for the copy), then the messages
+  /// posted from and into pinned memory.
+  void post_staged(const DomainLink& domain) {
+    staging_.send.resize(packed_fields_.size());
+    staging_.receive.resize(fields_.size());
+    copy_async(packed_fields_, staging_.send, packed_fields_.size(), staging_.stream);
+    staging_.stream.synchronize();
+    pending_ = domain.start_exchange(bytes_of(staging_.send.data()), send_bytes_,
+                                     bytes_of(staging_.receive.data()), receive_bytes_);
+  }
+
+  static const char* bytes_of(const Real* values) { return reinterpret_cast<const char*>(values); }
+  static char* bytes_of(Real* values) { return reinterpret_cast<char*>(values); }
+
   /// The packed rows as one byte buffer per rank, `row_bytes` per row, in the plan's order.
   template <class T>
   void split(const DeviceArray<T, Space>& packed, std::size_t row_bytes, RankBuffers& out) const {
@@ -208,13 +332,16 @@ class GhostExchange {
 
   DeviceArray<std::uint32_t, Space> send_index_;  ///< owned particles to send, rank by rank
   std::vector<std::size_t> send_count_;           ///< per rank
-  std::vector<std::size_t> receive_count_;        ///< ghosts from each rank
   DeviceArray<GhostRecord, Space> received_;      ///< records of the last plan, rank by rank
   // Per-step buffers, kept so that a step allocates nothing once they have grown.
+  std::vector<std::size_t> send_bytes_;     ///< per rank, per refresh
+  std::vector<std::size_t> receive_bytes_;  ///< per rank, per refresh
   DeviceArray<Real, Space> packed_fields_;
   DeviceArray<Real, Space> fields_;
-  RankBuffers outgoing_;
-  RankBuffers incoming_;
+  HaloStaging<Space> staging_;
+  bool in_flight_ = false;  ///< between begin_update and finish_update
+  bool staged_ = false;     ///< the refresh in flight goes through staging_
+  std::unique_ptr<PendingExchange> pending_;
 };
 
 }  // namespace gpudem

@@ -268,14 +268,13 @@ class StepEngineImpl final : public StepEngine {
     times_.forces += watch.lap();
     if (rebuild_now) {
       rebuild();  // charges its own parts
+      watch.lap();
+      compute_forces();
     } else if (domain_.ranks() > 1) {
-      ghosts_.update(domain_, arrays(), owned_);
-      times_.ghosts += watch.lap();
-      times_.halo_bytes += ghosts_.refresh_bytes();
-      ++times_.refreshes;
+      refresh_ghosts_computing_interior(watch);
+    } else {
+      compute_forces();
     }
-    watch.lap();
-    compute_forces();
     if (verlet) kick(Real(0.5) * dt);
     times_.forces += watch.lap();
   }
@@ -364,7 +363,7 @@ class StepEngineImpl final : public StepEngine {
             {"wall history", wall_history_.bytes()},
             {"cell list", cells_.memory_bytes()},
             {"rebuild scratch", scratch_bytes()},
-            {"ghost buffers", ghosts_.memory_bytes()},
+            {"ghost buffers", ghosts_.memory_bytes() + ghost_rows_.memory_bytes()},
             {"meshes", meshes_.memory_bytes()}};
   }
 
@@ -495,6 +494,7 @@ class StepEngineImpl final : public StepEngine {
     permute_array(cells_.order(), owned_, force);
     permute_array(cells_.order(), owned_, torque);
     build_list(receive_ghosts());
+    split_ghost_rows();
     if (!meshes_.empty()) meshes_.set_time(list_build_step_ * setup_.dt);
     rebuild_mesh_candidates(false);
     if (!meshes_.empty()) meshes_.set_time(steps_ * setup_.dt);
@@ -633,24 +633,51 @@ class StepEngineImpl final : public StepEngine {
 
   std::uint32_t wall_count() const { return static_cast<std::uint32_t>(setup_.walls.size()); }
 
-  void compute_forces() {
-    launch_forces({pair_history_.data(), wall_history_.data(), meshes_.history()}, force_.data(),
-                  torque_.data(), overlap_ratio_.data());
+  /// The forces of every owned particle.
+  void compute_forces() { parallel_for(Space{}, owned_, force_kernel(), LaunchSlot::forces); }
+
+  /// The forces of the owned particles list[0, count).
+  void compute_forces(const std::uint32_t* list, std::size_t count) {
+    parallel_for(Space{}, count, AtIndices<ComputeForces<Law>>{list, force_kernel()},
+                 LaunchSlot::forces);
   }
 
   /// The forces of the current state written to `scratch`, the engine's state untouched.
   void compute_forces_into(ForceScratch& scratch) {
-    launch_forces({scratch.pair.data(), scratch.wall.data(), scratch.mesh.data()},
-                  scratch.force.data(), scratch.torque.data(), scratch.overlap_ratio.data());
+    parallel_for(Space{}, owned_,
+                 force_kernel({scratch.pair.data(), scratch.wall.data(), scratch.mesh.data()},
+                              scratch.force.data(), scratch.torque.data(),
+                              scratch.overlap_ratio.data()),
+                 LaunchSlot::forces);
   }
 
-  /// ComputeForces over the owned particles, advancing the contact history into `history`.
-  void launch_forces(const HistoryArrays<Law>& history, ForceVec* force, ForceVec* torque,
-                     Real* overlap_ratio) {
-    parallel_for(Space{}, owned_,
-                 ComputeForces<Law>{particle_view(), contact_scene(), setup_.gravity, setup_.dt,
-                                    history, force, torque, overlap_ratio},
-                 LaunchSlot::forces);
+  /// The per-particle force functor over this engine's arrays.
+  ComputeForces<Law> force_kernel() {
+    return force_kernel({pair_history_.data(), wall_history_.data(), meshes_.history()},
+                        force_.data(), torque_.data(), overlap_ratio_.data());
+  }
+
+  /// The per-particle force functor reading this engine's state, advancing the contact history
+  /// into `history` and writing its results to the given arrays.
+  ComputeForces<Law> force_kernel(const HistoryArrays<Law>& history, ForceVec* force,
+                                  ForceVec* torque, Real* overlap_ratio) {
+    return ComputeForces<Law>{particle_view(), contact_scene(), setup_.gravity, setup_.dt,
+                              history,         force,           torque,         overlap_ratio};
+  }
+
+  /// Refreshes the ghosts' per-step fields while the forces of the owned particles whose rows
+  /// read no ghost are computed, then computes the others' forces. Each particle's force is
+  /// the same sum as in compute_forces(); only the particles' order differs.
+  void refresh_ghosts_computing_interior(Stopwatch& watch) {
+    ghosts_.begin_update(domain_, arrays());
+    times_.ghosts += watch.lap();
+    compute_forces(ghost_rows_.interior(), ghost_rows_.interior_count());
+    times_.forces += watch.lap();
+    ghosts_.finish_update(domain_, arrays(), owned_);
+    times_.ghosts += watch.lap();
+    times_.halo_bytes += ghosts_.refresh_bytes();
+    ++times_.refreshes;
+    compute_forces(ghost_rows_.boundary(), ghost_rows_.boundary_count());
   }
 
   bool find_unhealthy_here(double limit, HealthFailure& failure) const {
@@ -783,6 +810,7 @@ class StepEngineImpl final : public StepEngine {
     const std::size_t ghosts = receive_ghosts();
     times_.ghosts += watch.lap();
     build_list(ghosts);
+    split_ghost_rows();
     rebuild_mesh_candidates(has_list_);
     remap_pair_history();
     list_build_step_ = steps_;
@@ -906,6 +934,12 @@ class StepEngineImpl final : public StepEngine {
     parallel_for(Space{}, total, SlotOfOwned{cells_.order(), owned_, slot_of_owned_.data()});
     const NeighborRows rows{slot_of_owned_.data(), owned_, cells_.order(), id_.data()};
     list.build(cells_, sorted_position_.data(), total, setup_.box, setup_.skin, &rows);
+  }
+
+  /// On several ranks, splits the new list's rows by whether they read a ghost.
+  void split_ghost_rows() {
+    if (domain_.ranks() > 1)
+      ghost_rows_.build(neighbors_.offsets(), neighbors_.neighbors(), owned_);
   }
 
   /// The owned particles' mesh candidates, with the kept rows' history when `carry`.
@@ -1041,6 +1075,7 @@ class StepEngineImpl final : public StepEngine {
   NeighborList<Space> neighbors_;
   MeshWalls<Space, Law> meshes_;
   GhostExchange<Space, Law::needs_spin> ghosts_;
+  GhostRowSplit<Space> ghost_rows_;  ///< owned particles by whether their rows read ghosts
   std::size_t owned_ = 0;
   std::uint64_t global_count_ = 0;     ///< particles on all ranks
   std::uint64_t expected_id_sum_ = 0;  ///< id_checksum of the particles on all ranks
