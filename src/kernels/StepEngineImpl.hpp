@@ -362,6 +362,7 @@ class StepEngineImpl final : public StepEngine {
             {"pair history", pair_history_.bytes()},
             {"wall history", wall_history_.bytes()},
             {"cell list", cells_.memory_bytes()},
+            {"history carry-over", carry_over_bytes()},
             {"rebuild scratch", scratch_bytes()},
             {"ghost buffers", ghosts_.memory_bytes() + ghost_rows_.memory_bytes()},
             {"meshes", meshes_.memory_bytes()}};
@@ -644,11 +645,11 @@ class StepEngineImpl final : public StepEngine {
 
   /// The forces of the current state written to `scratch`, the engine's state untouched.
   void compute_forces_into(ForceScratch& scratch) {
-    parallel_for(Space{}, owned_,
-                 force_kernel({scratch.pair.data(), scratch.wall.data(), scratch.mesh.data()},
-                              scratch.force.data(), scratch.torque.data(),
-                              scratch.overlap_ratio.data()),
-                 LaunchSlot::forces);
+    parallel_for(
+        Space{}, owned_,
+        force_kernel({scratch.pair.data(), scratch.wall.data(), scratch.mesh.data()},
+                     scratch.force.data(), scratch.torque.data(), scratch.overlap_ratio.data()),
+        LaunchSlot::forces);
   }
 
   /// The per-particle force functor over this engine's arrays.
@@ -1039,9 +1040,25 @@ class StepEngineImpl final : public StepEngine {
   }
 
   std::size_t scratch_bytes() const {
-    return sort_key_.bytes() + sort_index_.bytes() + previous_index_.bytes() +
-           previous_offsets_.bytes() + previous_partner_.bytes() + previous_history_.bytes() +
-           identity_.bytes() + slot_of_owned_.bytes() + sorted_position_.bytes();
+    return sort_key_.bytes() + sort_index_.bytes() + previous_index_.bytes() + identity_.bytes() +
+           slot_of_owned_.bytes() + sorted_position_.bytes();
+  }
+
+  /// Bytes of the previous list's offsets, partner ids and history that a rebuild keeps for the
+  /// carry-over (keep_previous_rows). They stay allocated from the first rebuild on, so they are
+  /// counted at the size the current list needs from the start: the report before any rebuild
+  /// shows what the run will hold.
+  std::size_t carry_over_bytes() const {
+    if constexpr (kHistoryWidth > 0) {
+      const std::size_t needed =
+          has_list_ ? (owned_ + 1) * sizeof(std::uint32_t) +
+                          neighbors_.pairs_kept() * (sizeof(ParticleId) + sizeof(State))
+                    : 0;
+      return std::max(needed, previous_offsets_.bytes() + previous_partner_.bytes() +
+                                  previous_history_.bytes());
+    } else {
+      return 0;
+    }
   }
 
   EngineSetup setup_;
