@@ -102,7 +102,8 @@ class PinnedBuffer {
     if (n > capacity_) {
       const std::size_t cap = n + n / 4;
       cuda::release_pinned(ptr_);
-      ptr_ = nullptr;
+      ptr_ = nullptr;  // empty, not dangling, if the allocation below throws
+      capacity_ = 0;
       ptr_ = static_cast<T*>(cuda::allocate_pinned(cap * sizeof(T)));
       capacity_ = cap;
     }
