@@ -8,10 +8,6 @@
 // compared one by one. Skipped where no CUDA device is visible.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
-#include <vector>
-
 #include "core/ParticleSources.hpp"
 #include "core/SceneSetup.hpp"
 #include "kernels/CudaMemory.hpp"
@@ -27,16 +23,9 @@ bool cuda_device_visible() { return cuda::compiled_in() && cuda::device_count() 
 
 /// Forces and torques of host and CUDA engines, compared by particle id.
 void expect_same_loads(const StepEngine& host, const StepEngine& device, const char* when) {
-  ParticleStore h, d;
-  host.get_particles(h);
-  device.get_particles(d);
-  ASSERT_EQ(h.size(), d.size());
-  const double force = relative_spread(h, d, &ParticleStore::force);
-  const double torque = relative_spread(h, d, &ParticleStore::torque);
-  ::testing::Test::RecordProperty(std::string("force_spread_") + when, significant(force));
-  ::testing::Test::RecordProperty(std::string("torque_spread_") + when, significant(torque));
-  EXPECT_LE(force, kForceAgreement) << when;
-  EXPECT_LE(torque, kForceAgreement) << when;
+  const LoadSpread spread = recorded_load_spread(host, device, when);
+  EXPECT_LE(spread.force, kForceAgreement) << when;
+  EXPECT_LE(spread.torque, kForceAgreement) << when;
 }
 
 TEST(BackendAgreement, ForcesOfARandomBedAgreeBeforeAndAfterOneStep) {
@@ -67,24 +56,7 @@ TEST(BackendAgreement, FallingBedIsTheSameInTheMean) {
   auto device = make_cuda_engine(setup);
   host->set_particles(particles);
   device->set_particles(particles);
-  const double start = host->diagnostics().potential_gravity;
-  for (int n = 0; n < 10000; ++n) {
-    host->step();
-    device->step();
-  }
-  const Diagnostics h = host->diagnostics(), d = device->diagnostics();
-  const double fall = start - h.potential_gravity;  // energy the bed released settling
-  RecordProperty("potential_difference_over_fall",
-                 significant(std::abs(h.potential_gravity - d.potential_gravity) / fall));
-  RecordProperty("contacts_host", significant(double(h.contact_count)));
-  RecordProperty("contacts_cuda", significant(double(d.contact_count)));
-  ASSERT_GT(fall, 0);
-  EXPECT_LT(std::abs(h.potential_gravity - d.potential_gravity), 0.01 * fall);
-  EXPECT_NEAR(double(d.contact_count), double(h.contact_count), 0.05 * h.contact_count);
-  const double host_kinetic = h.kinetic_translational + h.kinetic_rotational;
-  const double cuda_kinetic = d.kinetic_translational + d.kinetic_rotational;
-  EXPECT_LT(std::abs(host_kinetic - cuda_kinetic), 0.01 * fall);
-  EXPECT_EQ(host->removed_count(), device->removed_count());
+  expect_same_in_the_mean(*host, *device, 10000, "host", "cuda");
 }
 
 }  // namespace
