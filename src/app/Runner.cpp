@@ -14,7 +14,7 @@
 #include "app/Progress.hpp"
 #include "comm/Checkpoint.hpp"
 #include "comm/OutputDirectory.hpp"
-#include "comm/SnapshotWriter.hpp"
+#include "comm/SnapshotQueue.hpp"
 #include "comm/TimeSeriesWriter.hpp"
 #include "core/ExactDecimal.hpp"
 #include "core/InputError.hpp"
@@ -121,6 +121,16 @@ SnapshotOptions snapshot_options(const Scene& scene, const EngineSetup& setup) {
   return options;
 }
 
+/// Whether snapshots are written on a writer thread while the run steps on, and if not why.
+void print_output_mode(const Scene& scene) {
+  if (!scene.output.asynchronous)
+    std::printf("snapshots: written in the time loop (output.asynchronous = false)\n");
+  else if (!mpi_thread_multiple())
+    std::printf("snapshots: written in the time loop (MPI offers no MPI_THREAD_MULTIPLE)\n");
+  else
+    std::printf("snapshots: written on a writer thread while the run steps on\n");
+}
+
 /// The start-up summary; engine_bytes < 0 when no engine was made (--check).
 void print_summary(const Scene& scene, const ParticleStore& particles, const EngineSetup& setup,
                    const StepEngine* engine, double engine_bytes, std::uint64_t steps) {
@@ -188,7 +198,8 @@ class TimeLoop {
                           : std::max<std::uint64_t>(1, total_steps_ / 200)),
         checkpoint_every_(scene.checkpoint.every > 0 ? steps_between(scene.checkpoint.every, dt_)
                                                      : 0),
-        snapshots_(mpi.comm(), scene.output.dir, snapshot_options(scene, setup)),
+        snapshots_(mpi.comm(), scene.output.dir, snapshot_options(scene, setup),
+                   scene.output.asynchronous),
         series_(scene.output.dir + "/timeseries.csv", timeseries_columns(scene), mpi.is_root(),
                 series_resume(start)),
         progress_(!quiet && mpi.is_root(), kProgressInterval, total_steps_, start.step),
@@ -231,7 +242,7 @@ class TimeLoop {
     engine_.get_list_positions(c.list_position_radius);
     c.list_build_step = engine_.list_build_step();
     engine_.get_contact_history(c.history);
-    c.snapshots = snapshots_.table();
+    c.snapshots = snapshots_.writer().table();
     c.time = step * dt_;
     c.step = step;
     c.removed = engine_.removed_count();
@@ -243,6 +254,7 @@ class TimeLoop {
 
  private:
   int finish(std::uint64_t step) {
+    wait_for_snapshots();
     report_times();
     if (mpi_.is_root())
       std::printf(
@@ -250,24 +262,34 @@ class TimeLoop {
           "in %s (open %s in ParaView)\n",
           static_cast<unsigned long long>(step - first_step_), progress_.elapsed(),
           static_cast<unsigned long long>(engine_.removed_count()), scene_.output.dir.c_str(),
-          snapshots_.xmf_path().c_str());
+          snapshots_.writer().xmf_path().c_str());
     return kExitOk;
   }
 
   /// The time split of the run, slowest rank per part, and the mean halo bytes a rank sent
-  /// per ghost refresh (printed by rank 0 unless quiet). Collective.
+  /// per ghost refresh (printed by rank 0 unless quiet); the snapshot writes count in output
+  /// when the time loop made them and apart when a writer thread did. Collective.
   void report_times() const {
     const StepTimes t = engine_.step_times();
-    double slowest[5] = {t.forces, t.neighbors, t.ghosts, t.migration, output_seconds_};
-    MPI_Allreduce(MPI_IN_PLACE, slowest, 5, MPI_DOUBLE, MPI_MAX, mpi_.comm());
+    double slowest[6] = {t.forces,    t.neighbors,     t.ghosts,
+                         t.migration, output_seconds_, snapshots_.write_seconds()};
+    MPI_Allreduce(MPI_IN_PLACE, slowest, 6, MPI_DOUBLE, MPI_MAX, mpi_.comm());
     double halo[2] = {static_cast<double>(t.halo_bytes), static_cast<double>(t.refreshes)};
     MPI_Allreduce(MPI_IN_PLACE, halo, 2, MPI_DOUBLE, MPI_SUM, mpi_.comm());
     if (quiet_ || !mpi_.is_root()) return;
     std::printf(
         "time split (slowest rank): forces %.3g s, neighbour lists %.3g s, ghost exchange %.3g s, "
-        "migration %.3g s, output %.3g s; halo %.4g bytes per rank per step\n",
+        "migration %.3g s, output %.3g s%s; halo %.4g bytes per rank per step\n",
         slowest[0], slowest[1], slowest[2], slowest[3], slowest[4],
-        halo[1] > 0 ? halo[0] / halo[1] : 0.0);
+        writer_thread_note(slowest[5]).c_str(), halo[1] > 0 ? halo[0] / halo[1] : 0.0);
+  }
+
+  /// The time the writer thread spent on snapshots while the run stepped on, for the time split.
+  std::string writer_thread_note(double seconds) const {
+    if (!snapshots_.asynchronous()) return {};
+    char note[64];
+    std::snprintf(note, sizeof(note), " (snapshots %.3g s on the writer thread)", seconds);
+    return note;
   }
 
   /// Writes the step's time-series row when one is due (returning its diagnostics) and its
@@ -298,15 +320,20 @@ class TimeLoop {
     return row;
   }
 
-  /// Writes a snapshot after checking that no particle was lost or duplicated between ranks.
-  void write_snapshot(double time, std::uint64_t step) {
-    engine_.check_particles_conserved();
-    engine_.get_particles(host_);
-    snapshots_.write(host_, engine_.mesh_surfaces(), time, step);
+  /// Stages a snapshot of the particles, written (after checking that no particle was lost or
+  /// duplicated between ranks) while the next steps run (SnapshotQueue.hpp).
+  void write_snapshot(double time, std::uint64_t step) { snapshots_.write(engine_, time, step); }
+
+  /// Waits until the snapshots are written; the wait counts as output.
+  void wait_for_snapshots() {
+    Stopwatch watch;
+    snapshots_.wait();
+    output_seconds_ += watch.lap();
   }
 
   /// Written after the step's snapshot so that the snapshot table includes it.
   void checkpoint(std::uint64_t step) {
+    wait_for_snapshots();
     Stopwatch watch;
     write_checkpoint(mpi_.comm(), scene_.output.dir, capture(step));
     output_seconds_ += watch.lap();
@@ -314,6 +341,7 @@ class TimeLoop {
 
   int stop_unstable(std::uint64_t step, const HealthFailure& f) {
     write_snapshot(step * dt_, step);
+    wait_for_snapshots();
     if (mpi_.is_root())
       std::fprintf(stderr,
                    "gpudem-mpi: error: unstable at step %llu (t = %.6g s): particle id %llu at "
@@ -321,7 +349,7 @@ class TimeLoop {
                    "stiffness and initial overlaps.\n",
                    static_cast<unsigned long long>(step), step * dt_,
                    static_cast<unsigned long long>(f.id), f.position.x, f.position.y, f.position.z,
-                   describe(f).c_str(), snapshots_.files().back().c_str());
+                   describe(f).c_str(), snapshots_.writer().files().back().c_str());
     return kExitUnstable;
   }
 
@@ -342,14 +370,13 @@ class TimeLoop {
   std::uint64_t snapshot_every_;
   std::uint64_t series_every_;
   std::uint64_t checkpoint_every_;  ///< 0: no checkpoints
-  SnapshotWriter snapshots_;
+  SnapshotQueue snapshots_;
   TimeSeriesWriter series_;
   Progress progress_;
   bool quiet_;
   bool resumed_;
   const SettleCheck* settle_;  ///< null: run to end_time
   std::optional<std::uint64_t> settled_step_;
-  ParticleStore host_;
   std::uint64_t reported_removed_ = 0;
   double imbalance_ = 1;       ///< at the last time-series row
   double output_seconds_ = 0;  ///< time series, snapshots and checkpoints [s]
@@ -463,6 +490,7 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
     print_memory_report(memory, engine->particle_count());
     std::printf("%s\n", tuning.c_str());
   }
+  if (banner) print_output_mode(scene);
   if (banner && domain) print_decomposition(*domain);
   if (banner && settle) print_preparation(scene, *settle, setup.dt);
   LoopStart start;

@@ -1,5 +1,6 @@
 #pragma once
-/// MPI for the lifetime of the program: initialised on construction, finalised on destruction.
+/// MPI for the lifetime of the program: initialised on construction, at the thread level
+/// MPI_THREAD_MULTIPLE where the library offers it (SnapshotQueue.hpp), finalised on destruction.
 #include <mpi.h>
 
 namespace gpudem {

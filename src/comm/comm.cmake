@@ -5,6 +5,7 @@ add_library(gpudem_comm STATIC
   comm/GpuAwareMpi.cpp
   comm/MpiDomain.cpp
   comm/OutputDirectory.cpp
+  comm/SnapshotQueue.cpp
   comm/SnapshotWriter.cpp
   comm/TimeSeriesWriter.cpp)
 target_include_directories(gpudem_comm PUBLIC ${HDF5_INCLUDE_DIRS})

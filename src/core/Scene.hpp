@@ -124,6 +124,7 @@ struct OutputSettings {
   double every = 0;             ///< [s] snapshot interval; 0 = first and last only
   double timeseries_every = 0;  ///< [s] time-series interval; 0 = about 200 rows per run
   bool rank_field = false;      ///< snapshots hold each particle's owning MPI rank
+  bool asynchronous = true;     ///< snapshots written on a writer thread while the run steps on
 };
 
 struct CheckpointSettings {

@@ -13,6 +13,7 @@
 #include "core/ContactModel.hpp"
 #include "core/ContactParams.hpp"
 #include "core/ParticleStore.hpp"
+#include "core/ParticleTally.hpp"
 #include "core/Scene.hpp"
 #include "kernels/DomainLink.hpp"
 #include "kernels/MeshWallSetup.hpp"
@@ -106,10 +107,34 @@ struct HealthFailure {
   bool mesh_overflow = false;  ///< more mesh triangles in contact than one particle can hold
 };
 
-class StepEngine {
+/// The owned particles of one step, copied aside so that a snapshot of that step can be written
+/// while the engine steps on (SnapshotSource::stage_particles).
+class StagedParticles {
  public:
-  virtual ~StepEngine() = default;
+  virtual ~StagedParticles() = default;
+  /// Waits until the copies are complete and gives the particles as get_particles gave them at
+  /// the staging step. Callable from any thread; once per staging.
+  virtual void collect(ParticleStore& particles) = 0;
 
+  /// The particle count and id checksum over all ranks at the staging step, against which the
+  /// collected particles of all ranks are checked (ParticleTally.hpp).
+  ParticleTally expected_tally;
+};
+
+/// What a snapshot is taken from (SnapshotQueue.hpp): a step engine, or a stand-in in tests.
+class SnapshotSource {
+ public:
+  virtual ~SnapshotSource() = default;
+  /// Queues copies of the owned particles as get_particles gives them, ordered after the work
+  /// already queued, into a buffer of the source's that later steps leave alone, and returns it.
+  /// The buffer is reused: stage again only after the last staging's collect() has returned.
+  virtual StagedParticles& stage_particles() = 0;
+  /// Each mesh with the load on each of its triangles (StepEngine::mesh_surfaces). Collective.
+  virtual std::vector<MeshSurface> mesh_surfaces() const = 0;
+};
+
+class StepEngine : public SnapshotSource {
+ public:
   /// Replaces the engine's particles with those of `particles` this rank owns (copied into the
   /// engine's space) and evaluates the initial forces. Collective, like every call below that
   /// changes or reduces the state: all ranks make it at the same point.
@@ -151,10 +176,9 @@ class StepEngine {
   /// Neighbour-list entries of each owned particle, in the order of get_particles.
   virtual void get_list_lengths(std::vector<std::uint32_t>& lengths) const = 0;
 
-  /// Checks that no particle was lost or duplicated between ranks: the particle count and a
-  /// checksum of the ids over all ranks equal those of the particles given, less the removed
-  /// ones. Throws std::runtime_error saying what differs. Collective.
-  virtual void check_particles_conserved() const = 0;
+  /// SnapshotSource::stage_particles. The copies are host memory (pinned on the CUDA backend),
+  /// not counted in memory_use().
+  StagedParticles& stage_particles() override = 0;
 
   /// Advances one time step dt.
   virtual void step() = 0;
@@ -170,7 +194,7 @@ class StepEngine {
   virtual Diagnostics diagnostics() const = 0;
   /// Each mesh (in the order of EngineSetup::meshes) with the load on each of its triangles;
   /// the triangle forces of a mesh add up to its Diagnostics::mesh_force. Collective.
-  virtual std::vector<MeshSurface> mesh_surfaces() const = 0;
+  std::vector<MeshSurface> mesh_surfaces() const override = 0;
 
   /// Particles removed so far for leaving the non-periodic domain.
   virtual std::uint64_t removed_count() const = 0;

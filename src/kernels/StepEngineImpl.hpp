@@ -24,6 +24,7 @@
 #include "kernels/MeshWalls.hpp"
 #include "kernels/NeighborList.hpp"
 #include "kernels/ParticleMigration.hpp"
+#include "kernels/ParticleStaging.hpp"
 #include "kernels/Permute.hpp"
 #include "kernels/StepEngine.hpp"
 
@@ -242,18 +243,11 @@ class StepEngineImpl final : public StepEngine {
     for (std::size_t i = 0; i + 1 < offsets.size(); ++i) lengths[i] = offsets[i + 1] - offsets[i];
   }
 
-  void check_particles_conserved() const override {
-    std::vector<ParticleId> ids;
-    id_.download(ids);
-    ids.resize(owned_);
-    const std::uint64_t count = domain_.wrapping_sum(owned_);
-    const std::uint64_t checksum = domain_.wrapping_sum(id_checksum(ids));
-    if (count != global_count_ || checksum != expected_id_sum_)
-      throw std::runtime_error(
-          "particles were lost or duplicated between ranks: " + std::to_string(count) +
-          " particles on " + std::to_string(domain_.ranks()) + " ranks where there should be " +
-          std::to_string(global_count_) +
-          (checksum != expected_id_sum_ ? " and their ids differ from the expected set" : ""));
+  StagedParticles& stage_particles() override {
+    staging_.stage({position_radius_, velocity_inv_mass_, angular_velocity_, force_, torque_, id_,
+                    material_, owned_});
+    staging_.expected_tally = {global_count_, expected_id_sum_};
+    return staging_;
   }
 
   void step() override {
@@ -428,19 +422,20 @@ class StepEngineImpl final : public StepEngine {
   /// rank holds them all when the particles are set).
   void count_particles(const std::vector<ParticleId>& all_ids) {
     global_count_ = all_ids.size();
-    expected_id_sum_ = id_checksum(all_ids);
+    expected_id_sum_ = tally_of(all_ids).id_sum;
   }
 
-  /// Σ splitmix64(id) modulo 2^64: equal for equal id sets, whatever their order.
-  static std::uint64_t id_checksum(const std::vector<ParticleId>& ids) {
-    std::uint64_t sum = 0;
-    for (const ParticleId id : ids) {
-      std::uint64_t z = id + 0x9e3779b97f4a7c15ULL;
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-      sum += z ^ (z >> 31);
-    }
-    return sum;
+  /// Checks that no particle was lost or duplicated between ranks against the expected tally;
+  /// throws std::runtime_error saying what differs. Collective.
+  void check_particles_conserved() const {
+    std::vector<ParticleId> ids;
+    id_.download(ids);
+    ids.resize(owned_);
+    const ParticleTally found{domain_.wrapping_sum(owned_),
+                              domain_.wrapping_sum(tally_of(ids).id_sum)};
+    const std::string problem =
+        conservation_problem(found, {global_count_, expected_id_sum_}, domain_.ranks());
+    if (!problem.empty()) throw std::runtime_error(problem);
   }
 
   /// restore_particles for this rank's particles `p` and their list positions.
@@ -984,7 +979,7 @@ class StepEngineImpl final : public StepEngine {
           LeaverKey{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
       sort_by_key(Space{}, sort_key_.data(), sort_index_.data(), n, bits_for(1));  // keys 0, 1
       reorder(sort_index_.data(), n);
-      leaver_ids = id_checksum(download_values<Space>(id_.data() + (n - leavers), leavers));
+      leaver_ids = tally_of(download_values<Space>(id_.data() + (n - leavers), leavers)).id_sum;
       resize_owned(n - leavers);
     }
     if (all_leavers > 0) expected_id_sum_ -= domain_.wrapping_sum(leaver_ids);
@@ -1091,6 +1086,7 @@ class StepEngineImpl final : public StepEngine {
   CellList<Space> cells_;
   NeighborList<Space> neighbors_;
   MeshWalls<Space, Law> meshes_;
+  ParticleStaging<Space, typename Law::Scalar> staging_;  ///< snapshot copies (host memory)
   GhostExchange<Space, Law::needs_spin> ghosts_;
   GhostRowSplit<Space> ghost_rows_;  ///< owned particles by whether their rows read ghosts
   std::size_t owned_ = 0;

@@ -299,6 +299,7 @@ TEST_F(SceneLoaderTest, MinimalSceneTakesDefaults) {
   EXPECT_DOUBLE_EQ(s.output.every, 0);
   EXPECT_DOUBLE_EQ(s.output.timeseries_every, 0);
   EXPECT_FALSE(s.output.rank_field);
+  EXPECT_TRUE(s.output.asynchronous);
   EXPECT_DOUBLE_EQ(s.checkpoint.every, 0);
 }
 
@@ -865,6 +866,15 @@ TEST_F(SceneLoaderTest, OutputRankFieldMustBeABoolean) {
                "unknown key 'rank_fields' in [output]; did you mean 'rank_field'?");
   expect_error(load_error(kBaseScene, {"output.rank_field=\"on\""}), 0, "output.rank_field",
                "expected true or false, got the string \"on\"");
+}
+
+TEST_F(SceneLoaderTest, OutputAsynchronousRead) {
+  EXPECT_FALSE(load_text(with_tables("[output]\nasynchronous = false\n")).output.asynchronous);
+  EXPECT_TRUE(load_text(with_tables("[output]\nasynchronous = true\n")).output.asynchronous);
+  EXPECT_FALSE(load_text(kBaseScene, {"output.asynchronous=false"}).output.asynchronous);
+  expect_error(load_error(with_tables("[output]\nasynchronous = \"no\"")),
+               first_appended_line() + 1, "output.asynchronous",
+               "expected true or false, got the string \"no\"");
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-# Particle snapshots (HDF5 + XDMF): the C++ read-back test, which also leaves an output folder
+# Particle snapshots (HDF5 + XDMF): the C++ read-back test (of the writer and of the queue that
+# writes on a thread of its own), which also leaves an output folder
 # behind, then tests/scripts/check_snapshot.py on that folder (and its own check that it
 # catches broken documents). Python is Debian's, which has h5py and numpy.
 set(GPUDEM_SNAPSHOT_FIXTURE_DIR ${CMAKE_CURRENT_BINARY_DIR}/snapshot_fixture)
@@ -6,6 +7,7 @@ set(GPUDEM_CHECK_SNAPSHOT ${CMAKE_CURRENT_LIST_DIR}/../scripts/check_snapshot.py
 
 gpudem_add_test(test_snapshot_writer
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/SnapshotWriterTest.cpp
+          ${CMAKE_CURRENT_LIST_DIR}/SnapshotQueueTest.cpp
   LIBS gpudem_comm
   LABELS unit
   TIMEOUT 60)
@@ -23,7 +25,7 @@ set_tests_properties(check_snapshot_xdmf check_snapshot_xdmf_catches_errors PROP
   LABELS unit
   TIMEOUT 60)
 
-# The same read-back checks at 2 and 4 ranks (rank 1 holds no particle). Open MPI runs as root
+# The same read-back checks, and the snapshot queue's, at 2 and 4 ranks (rank 1 holds no particle). Open MPI runs as root
 # and past the core count only when told so; these variables do that and other MPIs ignore them.
 set(GPUDEM_OPEN_MPI_TEST_ENV
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1)
@@ -31,7 +33,7 @@ foreach(ranks 2 4)
   add_test(NAME test_snapshot_writer_np${ranks}
     COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${ranks} ${MPIEXEC_PREFLAGS}
             $<TARGET_FILE:test_snapshot_writer> ${MPIEXEC_POSTFLAGS}
-            --gtest_filter=SnapshotWriterTest.*)
+            --gtest_filter=SnapshotWriterTest.*:SnapshotQueueTest.*)
   set_tests_properties(test_snapshot_writer_np${ranks} PROPERTIES
     LABELS mpi
     TIMEOUT 120

@@ -27,7 +27,9 @@ CASE is one of:
                 from the left slab to more than skin/2 into the right one (so the neighbour
                 list, and with it the migration, is rebuilt mid-contact), the friction force is
                 above 10 % of the normal force and the two forces are opposite (the contact is
-                each grain's only force) to 1e-9 of the force.
+                each grain's only force) to 1e-9 of the force. The N = 2 run writes its
+                snapshots on a writer thread (its banner says so); again with
+                output.asynchronous = false, every snapshot and particles.xmf are the same.
   killed-checkpoint
                 tests/mpi/scenes/periodic_gas.toml checkpointed every step, alternately on 2
                 and 3 ranks; each round is killed (SIGKILL to every process group of its
@@ -320,8 +322,16 @@ def sliding_pair(runner):
     if "grid 2 x 1 x 1 blocks over 2 x " not in runner.banner:
         runner.fail("pair_n2: expected 2 slabs over 2 coarse cells along x; banner:\n" +
                     runner.banner)
+    if "snapshots: written on a writer thread while the run steps on" not in runner.banner:
+        runner.fail("pair_n2: snapshots are not written on a writer thread; banner:\n" +
+                    runner.banner)
     check_sliding_window(runner, scene, reference)
     compare_every_snapshot(runner, "pair_n2", reference, out)
+    synchronous = runner.run("pair_n2_synchronous", scene, 2, "decomposition.dims=[2,1,1]",
+                             "output.asynchronous=false")
+    compare_every_snapshot(runner, "pair_n2_synchronous", out, synchronous)
+    if (out / "particles.xmf").read_text() != (synchronous / "particles.xmf").read_text():
+        runner.fail("pair_n2_synchronous: particles.xmf differs from the writer thread's")
 
 
 # ---- killed-checkpoint ------------------------------------------------------------------------
