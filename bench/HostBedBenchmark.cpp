@@ -17,7 +17,15 @@ namespace gpudem {
 namespace {
 
 const char* precision_name(Precision precision) {
-  return precision == Precision::Mixed ? "mixed" : "double";
+  switch (precision) {
+    case Precision::Double:
+      return "double";
+    case Precision::Mixed:
+      return "mixed";
+    case Precision::Float:
+      return "float";
+  }
+  return "?";
 }
 
 /// Largest |F_a − F_b| over the largest |F_b| of two engines holding the same particles in the
@@ -123,7 +131,7 @@ int main(int argc, char** argv) {
   for (int e = 4; e <= max_exponent && e <= 6; ++e) {
     const ParticleStore bed = tile(seed, tiles[e - 4][0], tiles[e - 4][1]);
     if (e == 5 && !lammps_data.empty()) write_lammps_bed(bed, 5, 2, lammps_data);
-    for (Precision precision : {Precision::Double, Precision::Mixed})
+    for (Precision precision : {Precision::Double, Precision::Mixed, Precision::Float})
       for (int threads : {1, 2}) measure(bed, tiles[e - 4][0], tiles[e - 4][1], threads, precision);
   }
   return 0;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The tillage quickstart (inputs/tillage/quickstart_*.toml) in double and in mixed precision:
-# a bed settled in each precision, and the sweep pass in each precision from the double bed and
+# The tillage quickstart (inputs/tillage/quickstart_*.toml) in the double, mixed and float
+# precision policies: a bed settled in each, and the sweep pass in each from the double bed and
 # from its own bed. Prints the wall time of every stage and each pass's draft (mean and standard
 # deviation over 0.45-0.84 s, plot_draft.py); writes precision.csv and each pass's draft.png.
 # Usage: scripts/precision_draft.sh [OUT]   (NP=ranks, default 1)
@@ -21,12 +21,13 @@ run() {  # PRECISION SCENE DIR [--set ...]: one stage, timed
 }
 mkdir -p "$OUT"
 echo "precision,bed,draft_mean_N,draft_std_N" > "$OUT/precision.csv"
-for precision in double mixed; do
+for precision in double mixed float; do
   run "$precision" inputs/tillage/quickstart_bed.toml "$OUT/bed-$precision"
 done
-for precision in double mixed; do
-  for bed in double mixed; do
-    [[ $precision = double && $bed = mixed ]] && continue
+for precision in double mixed float; do
+  beds=double
+  [[ $precision = double ]] || beds="double $precision"
+  for bed in $beds; do
     dir="$OUT/pass-$precision-bed-$bed"
     run "$precision" inputs/tillage/quickstart_till.toml "$dir" \
       --set "insert.0.bed=\"$OUT/bed-$bed/bed.h5\""

@@ -17,10 +17,11 @@ namespace gpudem {
 
 enum class IntegratorKind { VelocityVerlet, SymplecticEuler };
 
-/// Precision policy of the contact computation (DESIGN §3): Double everywhere, or Mixed —
-/// positions, velocities and the distance that forms each overlap in Real, the contact laws,
-/// their history and the force and torque sums in float.
-enum class Precision { Double, Mixed };
+/// Precision policy (DESIGN §3): Double everywhere; Mixed — positions, velocities and the
+/// distance that forms each overlap in Real, the contact laws, their history and the force and
+/// torque sums in float; Float — as Mixed with the particle state (positions, velocities,
+/// spins) held in float too, converted to Real where it is read.
+enum class Precision { Double, Mixed, Float };
 
 struct SimulationSettings {
   bool dt_auto = true;       ///< dt = "auto": dt_fraction of the critical time step

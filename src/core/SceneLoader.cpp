@@ -72,9 +72,10 @@ SimulationSettings read_simulation(const TableReader& root) {
       table.choice("integrator", {"velocity_verlet", "symplectic_euler"}, "velocity_verlet");
   s.integrator = integrator == "velocity_verlet" ? IntegratorKind::VelocityVerlet
                                                  : IntegratorKind::SymplecticEuler;
-  s.precision = table.choice("precision", {"double", "mixed"}, "double") == "mixed"
-                    ? Precision::Mixed
-                    : Precision::Double;
+  const std::string precision = table.choice("precision", {"double", "mixed", "float"}, "double");
+  s.precision = precision == "mixed"   ? Precision::Mixed
+                : precision == "float" ? Precision::Float
+                                       : Precision::Double;
   s.seed = static_cast<std::uint64_t>(table.integer("seed", non_negative(), 1));
   s.gravity = table.vec3("gravity", "m/s^2", s.gravity);
   s.impact_speed = auto_or_positive(table, "impact_speed", "m/s");

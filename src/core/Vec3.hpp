@@ -1,7 +1,8 @@
 #pragma once
 /// Small fixed-size vectors used by host and device code alike, in the precision of their
-/// scalar: Vec3 holds Real (particle state), Vec3T<float> the forces and contact geometry of
-/// the mixed precision policy (ContactLaw.hpp).
+/// scalar: Vec3 and Real4 hold Real (host particle state, and the engine's in the double and
+/// mixed policies), Vec3T<float> the forces and contact geometry of the mixed and float
+/// policies (ContactLaw.hpp) and Vec4T<float> the engine's particle state in the float policy.
 #include <cmath>
 
 #include "core/Config.hpp"
@@ -15,10 +16,15 @@ struct Vec3T {
 
 using Vec3 = Vec3T<Real>;
 
-/// Position and radius, or velocity and inverse mass, packed for one 32-byte load.
-struct Real4 {
-  Real x = 0, y = 0, z = 0, w = 0;
+/// Position and radius, or velocity and inverse mass, packed for one load: Real4 (32 bytes) in
+/// the particle state of the double and mixed policies, Vec4T<float> (16 bytes) in the float
+/// policy's (Scene.hpp, Precision).
+template <class S>
+struct Vec4T {
+  S x = 0, y = 0, z = 0, w = 0;
 };
+
+using Real4 = Vec4T<Real>;
 
 /// T as written, excluded from template argument deduction: in `s * v` the vector's scalar
 /// type decides, and a literal or a wider scalar is converted to it.
@@ -33,14 +39,27 @@ using NonDeducedT = typename NonDeduced<T>::type;
 GPUDEM_HD inline double square_root(double x) { return sqrt(x); }
 GPUDEM_HD inline float square_root(float x) { return sqrtf(x); }
 
+/// The next representable value after x in the direction of `toward`, in the precision of x.
+GPUDEM_HD inline double next_toward(double x, double toward) { return nextafter(x, toward); }
+GPUDEM_HD inline float next_toward(float x, float toward) { return nextafterf(x, toward); }
+
 /// `a` with its components converted to scalar To.
 template <class To, class From>
 GPUDEM_HD Vec3T<To> vec_cast(Vec3T<From> a) {
   return {static_cast<To>(a.x), static_cast<To>(a.y), static_cast<To>(a.z)};
 }
 
+/// `a` with its components converted to scalar To.
+template <class To, class From>
+GPUDEM_HD Vec4T<To> vec4_cast(Vec4T<From> a) {
+  return {static_cast<To>(a.x), static_cast<To>(a.y), static_cast<To>(a.z), static_cast<To>(a.w)};
+}
+
 GPUDEM_HD inline Vec3 make_vec3(Real x, Real y, Real z) { return Vec3{x, y, z}; }
-GPUDEM_HD inline Vec3 xyz(const Real4& a) { return Vec3{a.x, a.y, a.z}; }
+template <class S>
+GPUDEM_HD Vec3T<S> xyz(const Vec4T<S>& a) {
+  return {a.x, a.y, a.z};
+}
 template <class S>
 GPUDEM_HD Vec3T<S> operator+(Vec3T<S> a, Vec3T<S> b) {
   return {a.x + b.x, a.y + b.y, a.z + b.z};

@@ -29,8 +29,7 @@ inline BinRegion whole_box_region(const PeriodicBox& box) {
 /// Coordinate x along axis k of its periodic image nearest the region, for an axis periodic in
 /// the box but not in the region (unchanged on any other axis): the image in
 /// [lo − g/2, lo + length + g/2) with g = L − length the gap the region leaves on the axis.
-GPUDEM_HD inline Real region_image(const PeriodicBox& box, const BinRegion& region, int k,
-                                   Real x) {
+GPUDEM_HD inline Real region_image(const PeriodicBox& box, const BinRegion& region, int k, Real x) {
   if (!box.periodic[k] || region.periodic[k]) return x;
   const Real L = axis(box.length, k);
   const Real start = axis(region.lo, k) - Real(0.5) * (L - axis(region.length, k));

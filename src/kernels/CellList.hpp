@@ -29,19 +29,24 @@ namespace gpudem {
 
 namespace cell_list_kernels {
 
+// The kernels read positions and radii held in scalar P (the engine's state) and work in Real.
+
+template <class P>
 struct Radius {
-  const Real4* position_radius;
+  const Vec4T<P>* position_radius;
   GPUDEM_HD Real operator()(std::size_t i) const { return position_radius[i].w; }
 };
 
+template <class P>
 struct NegativeRadius {
-  const Real4* position_radius;
-  GPUDEM_HD Real operator()(std::size_t i) const { return -position_radius[i].w; }
+  const Vec4T<P>* position_radius;
+  GPUDEM_HD Real operator()(std::size_t i) const { return -Real(position_radius[i].w); }
 };
 
 /// 1 for a particle of class `wanted`, else 0.
+template <class P>
 struct InClass {
-  const Real4* position_radius;
+  const Vec4T<P>* position_radius;
   Real radius_top;
   int class_count;
   int wanted;
@@ -51,21 +56,23 @@ struct InClass {
 };
 
 /// Radius of a particle of class `wanted`, else 0.
+template <class P>
 struct RadiusInClass {
-  InClass member;
+  InClass<P> member;
   GPUDEM_HD Real operator()(std::size_t i) const {
-    return member(i) > 0 ? member.position_radius[i].w : Real(0);
+    return member(i) > 0 ? Real(member.position_radius[i].w) : Real(0);
   }
 };
 
 /// cell[i] = the cell holding particle i; order[i] = i.
+template <class P>
 struct AssignCell {
   SizeClassGrids grids;
-  const Real4* position_radius;
+  const Vec4T<P>* position_radius;
   std::uint64_t* cell;
   std::uint32_t* order;
   GPUDEM_HD void operator()(std::size_t i) const {
-    cell[i] = grids.cell_of(position_radius[i]);
+    cell[i] = grids.cell_of(vec4_cast<Real>(position_radius[i]));
     order[i] = static_cast<std::uint32_t>(i);
   }
 };
@@ -100,21 +107,24 @@ class CellList {
                                   std::to_string(kMaxSizeClasses) + "]");
   }
 
-  /// Bins n particles (x, y, z, radius in Space memory, global box coordinates) into grids over
+  /// Bins n particles (x, y, z, radius in Space memory, in scalar P, global box coordinates)
+  /// into grids over
   /// `region` and sorts them by (class, cell). On a periodic axis of the box any image of a
   /// position is accepted; on the others, positions outside the region belong to its edge cells.
   /// skin [m] >= 0 is the neighbour list's skin. Throws std::invalid_argument when a radius is
   /// not finite and > 0, when the skin is negative, or when the region does not fit the box
   /// (check_region).
-  void bin(const Real4* position_radius, std::size_t n, const PeriodicBox& box, Real skin,
+  template <class P>
+  void bin(const Vec4T<P>* position_radius, std::size_t n, const PeriodicBox& box, Real skin,
            const BinRegion& region) {
     if (n > std::numeric_limits<std::uint32_t>::max() / (kMaxCellsPerParticle + 1))
       throw std::invalid_argument("CellList: too many particles for 32-bit cell indices");
     n_ = n;
     Real r_min = 0, r_max = 0;
     if (n > 0) {
-      r_max = reduce_max(Space{}, n, Real(0), cell_list_kernels::Radius{position_radius});
-      r_min = -reduce_max(Space{}, n, -r_max, cell_list_kernels::NegativeRadius{position_radius});
+      r_max = reduce_max(Space{}, n, Real(0), cell_list_kernels::Radius<P>{position_radius});
+      r_min =
+          -reduce_max(Space{}, n, -r_max, cell_list_kernels::NegativeRadius<P>{position_radius});
     }
     if (n > 0) check_radii(r_min, r_max);
     check_skin(skin);
@@ -125,7 +135,8 @@ class CellList {
   }
 
   /// Bins into grids over the whole box (a run on one rank).
-  void bin(const Real4* position_radius, std::size_t n, const PeriodicBox& box, Real skin) {
+  template <class P>
+  void bin(const Vec4T<P>* position_radius, std::size_t n, const PeriodicBox& box, Real skin) {
     bin(position_radius, n, box, skin, whole_box_region(box));
   }
 
@@ -177,7 +188,8 @@ class CellList {
     throw std::invalid_argument(what.str());
   }
 
-  void make_grids(const Real4* position_radius, const PeriodicBox& box, const BinRegion& region,
+  template <class P>
+  void make_grids(const Vec4T<P>* position_radius, const PeriodicBox& box, const BinRegion& region,
                   Real skin, Real r_min, Real r_max) {
     grids_ = SizeClassGrids{};
     grids_.box = box;
@@ -188,11 +200,11 @@ class CellList {
     std::uint64_t total = 0;
     for (int c = 0; c < grids_.class_count; ++c) {
       CellGrid& g = grids_.grid[c];
-      const cell_list_kernels::InClass member{position_radius, r_max, grids_.class_count, c};
+      const cell_list_kernels::InClass<P> member{position_radius, r_max, grids_.class_count, c};
       const auto particles = static_cast<std::uint32_t>(reduce_sum(Space{}, n_, member));
       if (particles > 0) {
         const Real radius =
-            reduce_max(Space{}, n_, Real(0), cell_list_kernels::RadiusInClass{member});
+            reduce_max(Space{}, n_, Real(0), cell_list_kernels::RadiusInClass<P>{member});
         const std::size_t max_cells = std::min<std::size_t>(
             kMaxCellsPerParticle * particles, std::numeric_limits<int>::max());  // int per axis
         g = make_cell_grid(region, 2 * radius + skin, Real(max_cells));
@@ -207,12 +219,13 @@ class CellList {
     grids_.total_cells = static_cast<std::uint32_t>(total);
   }
 
-  void sort_into_cells(const Real4* position_radius) {
+  template <class P>
+  void sort_into_cells(const Vec4T<P>* position_radius) {
     cell_.resize(n_);
     order_.resize(n_);
     parallel_for(
         Space{}, n_,
-        cell_list_kernels::AssignCell{grids_, position_radius, cell_.data(), order_.data()});
+        cell_list_kernels::AssignCell<P>{grids_, position_radius, cell_.data(), order_.data()});
     const std::uint32_t largest_cell = std::max<std::uint32_t>(grids_.total_cells, 1) - 1;
     sort_by_key(Space{}, cell_.data(), order_.data(), n_, bits_for(largest_cell));
   }

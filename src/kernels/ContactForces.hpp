@@ -62,11 +62,12 @@ struct ForceSum {
   GPUDEM_HD void mesh_overflow_seen() { mesh_overflow = true; }
 };
 
-/// F_i = m_i g + Σ contacts, T_i = Σ (arm × F + rolling torque) (one thread per particle).
-template <class Law>
+/// F_i = m_i g + Σ contacts, T_i = Σ (arm × F + rolling torque) (one thread per particle), from
+/// a state held in scalar P.
+template <class Law, class P>
 struct ComputeForces {
   using S = typename Law::Scalar;
-  ParticleView particles;
+  ParticleView<P> particles;
   ContactScene<Law> scene;
   Vec3 gravity;
   Real dt;
@@ -77,7 +78,7 @@ struct ComputeForces {
   GPUDEM_HD void operator()(std::size_t i) const {
     ForceSum<Law> sum{history, dt, Vec3T<S>{}, Vec3T<S>{}, Real(0)};
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, sum);
-    force[i] = sum.force + vec_cast<S>((Real(1) / particles.velocity_inv_mass[i].w) * gravity);
+    force[i] = sum.force + vec_cast<S>((Real(1) / particles.velocity(i).w) * gravity);
     if constexpr (Law::needs_spin) torque[i] = sum.torque;
     overlap_ratio[i] = sum.mesh_overflow ? kMeshOverflowScore : sum.worst_overlap_ratio;
   }

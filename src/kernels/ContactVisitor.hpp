@@ -18,13 +18,19 @@
 
 namespace gpudem {
 
-/// Read-only particle arrays a contact evaluation needs (pointers into one memory space).
-/// angular_velocity may be null for a law that does not need spin.
+/// Read-only particle arrays a contact evaluation needs (pointers into one memory space), held
+/// in the engine's state scalar P and read in Real. angular_velocity may be null for a law
+/// that does not need spin.
+template <class P>
 struct ParticleView {
-  const Real4* position_radius;
-  const Real4* velocity_inv_mass;
-  const Vec3* angular_velocity;
+  const Vec4T<P>* position_radius;
+  const Vec4T<P>* velocity_inv_mass;
+  const Vec3T<P>* angular_velocity;
   const MaterialId* material;
+
+  GPUDEM_HD Real4 position(std::size_t i) const { return vec4_cast<Real>(position_radius[i]); }
+  GPUDEM_HD Real4 velocity(std::size_t i) const { return vec4_cast<Real>(velocity_inv_mass[i]); }
+  GPUDEM_HD Vec3 spin(std::size_t i) const { return vec_cast<Real>(angular_velocity[i]); }
 };
 
 /// Everything besides particles that a contact sweep needs; the history arrays hold
@@ -226,17 +232,17 @@ GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi,
 }
 
 /// Calls visit(sample) for each contact of particle i with positive overlap.
-template <class Law, class Visitor>
-GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p, const ContactScene<Law>& s,
-                                Visitor& visit) {
-  const Real4 xi = p.position_radius[i];
-  const Real4 vi = p.velocity_inv_mass[i];
+template <class Law, class P, class Visitor>
+GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
+                                const ContactScene<Law>& s, Visitor& visit) {
+  const Real4 xi = p.position(i);
+  const Real4 vi = p.velocity(i);
   Vec3 wi{};
-  if constexpr (Law::needs_spin) wi = p.angular_velocity[i];
+  if constexpr (Law::needs_spin) wi = p.spin(i);
   const MaterialId mi = p.material[i];
   for (std::uint32_t k = s.neighbor_offsets[i]; k < s.neighbor_offsets[i + 1]; ++k) {
     const std::uint32_t j = s.neighbor_index[k];
-    const Real4 xj = p.position_radius[j];
+    const Real4 xj = p.position(j);
     const Vec3 d = s.box.minimum_image(xyz(xj) - xyz(xi));
     const Real dist2 = norm2(d);
     const Real reach = xi.w + xj.w;
@@ -250,8 +256,8 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView& p, const Co
     c.point.overlap = reach - dist;
     c.arm = xi.w - Real(0.5) * c.point.overlap;
     Vec3 wj{};
-    if constexpr (Law::needs_spin) wj = p.angular_velocity[j];
-    describe_pair(c, xi, vi, wi, xj, p.velocity_inv_mass[j], wj);
+    if constexpr (Law::needs_spin) wj = p.spin(j);
+    describe_pair(c, xi, vi, wi, xj, p.velocity(j), wj);
     c.min_radius = xi.w < xj.w ? xi.w : xj.w;
     c.params = &s.pair_params[mi * s.material_count + p.material[j]];
     c.wall = -1;

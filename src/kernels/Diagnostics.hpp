@@ -7,33 +7,35 @@
 
 namespace gpudem {
 
+// The terms read a state held in scalar P and are formed in Real.
+
 /// ½ m v² of particle i [J].
+template <class P>
 struct TranslationalEnergy {
-  const Real4* velocity_inv_mass;
+  ParticleView<P> particles;
   GPUDEM_HD Real operator()(std::size_t i) const {
-    const Real4 v = velocity_inv_mass[i];
+    const Real4 v = particles.velocity(i);
     return Real(0.5) * (v.x * v.x + v.y * v.y + v.z * v.z) / v.w;
   }
 };
 
 /// ½ I ω² of sphere i, I = 2/5 m r² [J].
+template <class P>
 struct RotationalEnergy {
-  const Real4* velocity_inv_mass;
-  const Real4* position_radius;
-  const Vec3* angular_velocity;
+  ParticleView<P> particles;
   GPUDEM_HD Real operator()(std::size_t i) const {
-    const Real inertia = sphere_inertia(position_radius[i].w, velocity_inv_mass[i].w);
-    return Real(0.5) * inertia * norm2(angular_velocity[i]);
+    const Real inertia = sphere_inertia(particles.position(i).w, particles.velocity(i).w);
+    return Real(0.5) * inertia * norm2(particles.spin(i));
   }
 };
 
 /// −m g·x of particle i [J] (zero at the origin).
+template <class P>
 struct GravityEnergy {
-  const Real4* velocity_inv_mass;
-  const Real4* position_radius;
+  ParticleView<P> particles;
   Vec3 gravity;
   GPUDEM_HD Real operator()(std::size_t i) const {
-    return -dot(gravity, xyz(position_radius[i])) / velocity_inv_mass[i].w;
+    return -dot(gravity, xyz(particles.position(i))) / particles.velocity(i).w;
   }
 };
 
@@ -43,9 +45,9 @@ struct GravityEnergy {
 /// w, then meshes wall_count + m) and its torque on each mesh about the mesh's centre, its
 /// lever from the periodic image of the particle that the mesh meets. The stored history is
 /// read, not advanced (dt = 0).
-template <class Law>
+template <class Law, class P>
 struct ContactTerms {
-  ParticleView particles;
+  ParticleView<P> particles;
   ContactScene<Law> scene;
   Real* contacts;     ///< per particle
   Real* energy;       ///< per particle [J]
@@ -84,7 +86,7 @@ struct ContactTerms {
     t.mesh_torque = mesh_torque + i * scene.mesh.mesh_count;
     for (std::uint32_t b = 0; b < bodies; ++b) t.body_force[b] = Vec3{};
     for (std::uint32_t m = 0; m < scene.mesh.mesh_count; ++m) t.mesh_torque[m] = Vec3{};
-    t.centre = xyz(particles.position_radius[i]);
+    t.centre = xyz(particles.position(i));
     t.box = scene.box;
     t.mesh = scene.mesh;
     t.wall_count = scene.wall_count;
@@ -110,9 +112,9 @@ struct LoadComponent {
 /// force the particle exerts on the triangle of its entry e, −F with F the law's force on the
 /// particle as in ContactTerms [N], and zero for an entry not in contact. The stored history is
 /// read, not advanced (dt = 0).
-template <class Law>
+template <class Law, class P>
 struct MeshEntryLoads {
-  ParticleView particles;
+  ParticleView<P> particles;
   ContactScene<Law> scene;
   Vec3* entry_load;  ///< per mesh candidate-list entry
   struct Record : IgnoreSeparated {
@@ -135,13 +137,13 @@ constexpr Real kNonFiniteScore = Real(1e300);
 
 /// A number that flags particle i for the health check: its worst overlap ratio, or
 /// kNonFiniteScore when its position or velocity is not finite.
+template <class P>
 struct HealthScore {
-  const Real4* position_radius;
-  const Real4* velocity_inv_mass;
+  ParticleView<P> particles;
   const Real* overlap_ratio;
   GPUDEM_HD Real operator()(std::size_t i) const {
-    const Real4 x = position_radius[i];
-    const Real4 v = velocity_inv_mass[i];
+    const Real4 x = particles.position(i);
+    const Real4 v = particles.velocity(i);
     using std::isfinite;
     const bool finite = isfinite(x.x) && isfinite(x.y) && isfinite(x.z) && isfinite(v.x) &&
                         isfinite(v.y) && isfinite(v.z) && isfinite(overlap_ratio[i]);

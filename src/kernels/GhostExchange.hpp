@@ -24,43 +24,48 @@
 
 namespace gpudem {
 
-/// Pointers to the engine's per-particle arrays (owned particles, then ghosts), in Space memory.
+/// Pointers to the engine's per-particle arrays (owned particles, then ghosts), in Space memory,
+/// with the state in scalar P.
+template <class P>
 struct ParticleArrays {
-  Real4* position_radius;
-  Real4* velocity_inv_mass;
-  Vec3* angular_velocity;
+  Vec4T<P>* position_radius;
+  Vec4T<P>* velocity_inv_mass;
+  Vec3T<P>* angular_velocity;
   ParticleId* id;
   MaterialId* material;
 };
 
 /// Everything a ghost holds, as sent on a rebuild step.
+template <class P>
 struct GhostRecord {
-  Real4 position_radius;
-  Real4 velocity_inv_mass;
-  Vec3 angular_velocity;
+  Vec4T<P> position_radius;
+  Vec4T<P> velocity_inv_mass;
+  Vec3T<P> angular_velocity;
   ParticleId id;
   MaterialId material;
 };
 
 namespace ghost_kernels {
 
+template <class P>
 struct PackRecords {
-  ParticleArrays from;
+  ParticleArrays<P> from;
   const std::uint32_t* index;
-  GhostRecord* out;
+  GhostRecord<P>* out;
   GPUDEM_HD void operator()(std::size_t k) const {
     const std::uint32_t i = index[k];
-    out[k] = GhostRecord{from.position_radius[i], from.velocity_inv_mass[i],
-                         from.angular_velocity[i], from.id[i], from.material[i]};
+    out[k] = GhostRecord<P>{from.position_radius[i], from.velocity_inv_mass[i],
+                            from.angular_velocity[i], from.id[i], from.material[i]};
   }
 };
 
+template <class P>
 struct UnpackRecords {
-  const GhostRecord* in;
-  ParticleArrays to;
+  const GhostRecord<P>* in;
+  ParticleArrays<P> to;
   std::size_t first;  ///< slot of the first ghost
   GPUDEM_HD void operator()(std::size_t k) const {
-    const GhostRecord& r = in[k];
+    const GhostRecord<P>& r = in[k];
     to.position_radius[first + k] = r.position_radius;
     to.velocity_inv_mass[first + k] = r.velocity_inv_mass;
     to.angular_velocity[first + k] = r.angular_velocity;
@@ -69,45 +74,45 @@ struct UnpackRecords {
   }
 };
 
-/// Per-step fields of one ghost: 8 values, or 11 with the spin.
-template <bool kSpin>
+/// Per-step fields of one ghost: 8 values of the state scalar P, or 11 with the spin.
+template <bool kSpin, class P>
 struct StepFields {
   static constexpr int width = kSpin ? 11 : 8;
-  GPUDEM_HD static void write(const ParticleArrays& a, std::uint32_t i, Real* out) {
-    const Real4 x = a.position_radius[i], v = a.velocity_inv_mass[i];
-    const Real values[8] = {x.x, x.y, x.z, x.w, v.x, v.y, v.z, v.w};
+  GPUDEM_HD static void write(const ParticleArrays<P>& a, std::uint32_t i, P* out) {
+    const Vec4T<P> x = a.position_radius[i], v = a.velocity_inv_mass[i];
+    const P values[8] = {x.x, x.y, x.z, x.w, v.x, v.y, v.z, v.w};
     for (int c = 0; c < 8; ++c) out[c] = values[c];
     if constexpr (kSpin) {
-      const Vec3 w = a.angular_velocity[i];
+      const Vec3T<P> w = a.angular_velocity[i];
       out[8] = w.x;
       out[9] = w.y;
       out[10] = w.z;
     }
   }
-  GPUDEM_HD static void read(const Real* in, const ParticleArrays& a, std::size_t slot) {
-    a.position_radius[slot] = Real4{in[0], in[1], in[2], in[3]};
-    a.velocity_inv_mass[slot] = Real4{in[4], in[5], in[6], in[7]};
-    if constexpr (kSpin) a.angular_velocity[slot] = Vec3{in[8], in[9], in[10]};
+  GPUDEM_HD static void read(const P* in, const ParticleArrays<P>& a, std::size_t slot) {
+    a.position_radius[slot] = Vec4T<P>{in[0], in[1], in[2], in[3]};
+    a.velocity_inv_mass[slot] = Vec4T<P>{in[4], in[5], in[6], in[7]};
+    if constexpr (kSpin) a.angular_velocity[slot] = Vec3T<P>{in[8], in[9], in[10]};
   }
 };
 
-template <bool kSpin>
+template <bool kSpin, class P>
 struct PackFields {
-  ParticleArrays from;
+  ParticleArrays<P> from;
   const std::uint32_t* index;
-  Real* out;
+  P* out;
   GPUDEM_HD void operator()(std::size_t k) const {
-    StepFields<kSpin>::write(from, index[k], out + k * StepFields<kSpin>::width);
+    StepFields<kSpin, P>::write(from, index[k], out + k * StepFields<kSpin, P>::width);
   }
 };
 
-template <bool kSpin>
+template <bool kSpin, class P>
 struct UnpackFields {
-  const Real* in;
-  ParticleArrays to;
+  const P* in;
+  ParticleArrays<P> to;
   std::size_t first;
   GPUDEM_HD void operator()(std::size_t k) const {
-    StepFields<kSpin>::read(in + k * StepFields<kSpin>::width, to, first + k);
+    StepFields<kSpin, P>::read(in + k * StepFields<kSpin, P>::width, to, first + k);
   }
 };
 
@@ -178,32 +183,35 @@ class GhostRowSplit {
   DeviceArray<std::uint32_t, Space> boundary_;
 };
 
-/// Pinned host copies of the refresh buffers, for a DomainLink that takes host memory only:
-/// none for host memory.
-template <class Space>
+/// Pinned host copies of the refresh buffers (values of the state scalar P), for a DomainLink
+/// that takes host memory only: none for host memory.
+template <class Space, class P>
 struct HaloStaging {};
 
-template <>
-struct HaloStaging<CudaSpace> {
-  PinnedBuffer<Real> send;
-  PinnedBuffer<Real> receive;
+template <class P>
+struct HaloStaging<CudaSpace, P> {
+  PinnedBuffer<P> send;
+  PinnedBuffer<P> receive;
   CudaStream stream;
 };
 
-template <class Space, bool kSpin>
+/// The ghosts of an engine whose state is in scalar P, with the spin when kSpin.
+template <class Space, bool kSpin, class P>
 class GhostExchange {
-  using Fields = ghost_kernels::StepFields<kSpin>;
+  using Fields = ghost_kernels::StepFields<kSpin, P>;
+  using Arrays = ParticleArrays<P>;
+  using Record = GhostRecord<P>;
 
  public:
   /// Plans the exchange from the owned particles' positions and sends their records; returns
   /// the number of ghosts received, to be written by `fill` once the caller has made room for
   /// them after its `owned` particles. Collective.
-  std::size_t plan(const DomainLink& domain, const ParticleArrays& particles, std::size_t owned) {
-    const std::vector<Real4> position = download_values<Space>(particles.position_radius, owned);
+  std::size_t plan(const DomainLink& domain, const Arrays& particles, std::size_t owned) {
+    const std::vector<Vec4T<P>> position = download_values<Space>(particles.position_radius, owned);
     std::vector<std::vector<std::uint32_t>> to_rank(domain.ranks());
     std::vector<int> ranks;
     for (std::size_t i = 0; i < owned; ++i) {
-      domain.ghost_ranks(xyz(position[i]), ranks);
+      domain.ghost_ranks(vec_cast<Real>(xyz(position[i])), ranks);
       for (const int q : ranks) to_rank[q].push_back(static_cast<std::uint32_t>(i));
     }
     std::vector<std::uint32_t> index;
@@ -213,33 +221,33 @@ class GhostExchange {
       index.insert(index.end(), to_rank[q].begin(), to_rank[q].end());
     }
     send_index_.upload(index);
-    DeviceArray<GhostRecord, Space> packed(index.size());
+    DeviceArray<Record, Space> packed(index.size());
     parallel_for(Space{}, index.size(),
-                 ghost_kernels::PackRecords{particles, send_index_.data(), packed.data()});
+                 ghost_kernels::PackRecords<P>{particles, send_index_.data(), packed.data()});
     RankBuffers incoming;
     RankBuffers outgoing;
-    split(packed, sizeof(GhostRecord), outgoing);
+    split(packed, sizeof(Record), outgoing);
     domain.exchange(outgoing, incoming);
-    const std::size_t row_bytes = Fields::width * sizeof(Real);
+    const std::size_t row_bytes = Fields::width * sizeof(P);
     send_bytes_.assign(domain.ranks(), 0);
     receive_bytes_.assign(domain.ranks(), 0);
     for (int q = 0; q < domain.ranks(); ++q) {
       send_bytes_[q] = send_count_[q] * row_bytes;
-      receive_bytes_[q] = incoming[q].size() / sizeof(GhostRecord) * row_bytes;
+      receive_bytes_[q] = incoming[q].size() / sizeof(Record) * row_bytes;
     }
     join(incoming, received_);
     return received_.size();
   }
 
   /// Writes the records received by `plan` into slots [owned, owned + ghosts()).
-  void fill(const ParticleArrays& particles, std::size_t owned) const {
+  void fill(const Arrays& particles, std::size_t owned) const {
     parallel_for(Space{}, received_.size(),
-                 ghost_kernels::UnpackRecords{received_.data(), particles, owned});
+                 ghost_kernels::UnpackRecords<P>{received_.data(), particles, owned});
   }
 
   /// Sends the planned particles' per-step fields and writes those received into the ghost
   /// slots. Collective.
-  void update(const DomainLink& domain, const ParticleArrays& particles, std::size_t owned) {
+  void update(const DomainLink& domain, const Arrays& particles, std::size_t owned) {
     begin_update(domain, particles);
     finish_update(domain, particles, owned);
   }
@@ -247,14 +255,14 @@ class GhostExchange {
   /// First half of `update`: packs the planned particles' per-step fields and posts the
   /// messages; the ghost slots keep their values until finish_update. Device buffers go to
   /// the DomainLink as they are when it takes them, else through pinned host copies.
-  void begin_update(const DomainLink& domain, const ParticleArrays& particles) {
+  void begin_update(const DomainLink& domain, const Arrays& particles) {
     if (in_flight_) throw std::logic_error("GhostExchange: a refresh is already in flight");
     in_flight_ = true;
     packed_fields_.resize(send_index_.size() * Fields::width);
     fields_.resize(ghosts() * Fields::width);
     parallel_for(
         Space{}, send_index_.size(),
-        ghost_kernels::PackFields<kSpin>{particles, send_index_.data(), packed_fields_.data()});
+        ghost_kernels::PackFields<kSpin, P>{particles, send_index_.data(), packed_fields_.data()});
     staged_ = kDeviceMemory && !domain.device_buffers();
     if constexpr (kDeviceMemory) {
       if (staged_) return post_staged(domain);
@@ -266,7 +274,7 @@ class GhostExchange {
 
   /// Second half of `update`: waits for the messages and writes the received fields into the
   /// slots [owned, owned + ghosts()).
-  void finish_update(const DomainLink& domain, const ParticleArrays& particles, std::size_t owned) {
+  void finish_update(const DomainLink& domain, const Arrays& particles, std::size_t owned) {
     if (!in_flight_) throw std::logic_error("GhostExchange: finish_update without begin_update");
     in_flight_ = false;
     domain.finish_exchange(std::move(pending_));
@@ -275,12 +283,12 @@ class GhostExchange {
       if (staged_) copy_async(staging_.receive, fields_, fields_.size(), staging_.stream);
     }
     parallel_for(Space{}, ghosts(),
-                 ghost_kernels::UnpackFields<kSpin>{fields_.data(), particles, owned});
+                 ghost_kernels::UnpackFields<kSpin, P>{fields_.data(), particles, owned});
   }
 
   std::size_t ghosts() const { return received_.size(); }
   /// Bytes one refresh sends (the halo volume of this rank per step).
-  std::size_t refresh_bytes() const { return send_index_.size() * Fields::width * sizeof(Real); }
+  std::size_t refresh_bytes() const { return send_index_.size() * Fields::width * sizeof(P); }
   std::size_t memory_bytes() const {
     return send_index_.bytes() + received_.bytes() + packed_fields_.bytes() + fields_.bytes();
   }
@@ -299,8 +307,8 @@ class GhostExchange {
                                      bytes_of(staging_.receive.data()), receive_bytes_);
   }
 
-  static const char* bytes_of(const Real* values) { return reinterpret_cast<const char*>(values); }
-  static char* bytes_of(Real* values) { return reinterpret_cast<char*>(values); }
+  static const char* bytes_of(const P* values) { return reinterpret_cast<const char*>(values); }
+  static char* bytes_of(P* values) { return reinterpret_cast<char*>(values); }
 
   /// The packed rows as one byte buffer per rank, `row_bytes` per row, in the plan's order.
   template <class T>
@@ -332,13 +340,13 @@ class GhostExchange {
 
   DeviceArray<std::uint32_t, Space> send_index_;  ///< owned particles to send, rank by rank
   std::vector<std::size_t> send_count_;           ///< per rank
-  DeviceArray<GhostRecord, Space> received_;      ///< records of the last plan, rank by rank
+  DeviceArray<Record, Space> received_;           ///< records of the last plan, rank by rank
   // Per-step buffers, kept so that a step allocates nothing once they have grown.
   std::vector<std::size_t> send_bytes_;     ///< per rank, per refresh
   std::vector<std::size_t> receive_bytes_;  ///< per rank, per refresh
-  DeviceArray<Real, Space> packed_fields_;
-  DeviceArray<Real, Space> fields_;
-  HaloStaging<Space> staging_;
+  DeviceArray<P, Space> packed_fields_;
+  DeviceArray<P, Space> fields_;
+  HaloStaging<Space, P> staging_;
   bool in_flight_ = false;  ///< between begin_update and finish_update
   bool staged_ = false;     ///< the refresh in flight goes through staging_
   std::unique_ptr<PendingExchange> pending_;

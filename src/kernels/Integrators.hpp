@@ -13,47 +13,55 @@
 namespace gpudem {
 
 /// v += h·F/m and, when the contact law exerts torques (kRotate), ω += h·T/I, in Real from
-/// forces and torques held in scalar S.
-template <bool kRotate, class S>
+/// a state held in scalar P and forces and torques held in scalar S.
+template <bool kRotate, class S, class P>
 struct Kick {
-  Real4* velocity_inv_mass;
-  Vec3* angular_velocity;
+  Vec4T<P>* velocity_inv_mass;
+  Vec3T<P>* angular_velocity;
   const Vec3T<S>* force;
   const Vec3T<S>* torque;
-  const Real4* position_radius;
+  const Vec4T<P>* position_radius;
   Real h;
   GPUDEM_HD void operator()(std::size_t i) const {
-    Real4& v = velocity_inv_mass[i];
+    Real4 v = vec4_cast<Real>(velocity_inv_mass[i]);
     const Vec3 f = vec_cast<Real>(force[i]);
     v.x += h * v.w * f.x;
     v.y += h * v.w * f.y;
     v.z += h * v.w * f.z;
-    if constexpr (kRotate)
-      angular_velocity[i] +=
-          (h / sphere_inertia(position_radius[i].w, v.w)) * vec_cast<Real>(torque[i]);
+    velocity_inv_mass[i] = vec4_cast<P>(v);
+    if constexpr (kRotate) {
+      const Real inertia = sphere_inertia(position_radius[i].w, v.w);
+      const Vec3 w =
+          vec_cast<Real>(angular_velocity[i]) + (h / inertia) * vec_cast<Real>(torque[i]);
+      angular_velocity[i] = vec_cast<P>(w);
+    }
   }
 };
 
-/// x += dt·v.
+/// x += dt·v, in Real from a state held in scalar P.
+template <class P>
 struct Drift {
-  Real4* position_radius;
-  const Real4* velocity_inv_mass;
+  Vec4T<P>* position_radius;
+  const Vec4T<P>* velocity_inv_mass;
   Real dt;
   GPUDEM_HD void operator()(std::size_t i) const {
-    const Real4 v = velocity_inv_mass[i];
-    Real4& x = position_radius[i];
+    const Real4 v = vec4_cast<Real>(velocity_inv_mass[i]);
+    Real4 x = vec4_cast<Real>(position_radius[i]);
     x.x += dt * v.x;
     x.y += dt * v.y;
     x.z += dt * v.z;
+    position_radius[i] = vec4_cast<P>(x);
   }
 };
 
 /// |x − x_at_build|², the squared distance moved since the last neighbour build.
+template <class P>
 struct DisplacementSquared {
-  const Real4* position_radius;
-  const Real4* position_at_build;
+  const Vec4T<P>* position_radius;
+  const Vec4T<P>* position_at_build;
   GPUDEM_HD Real operator()(std::size_t i) const {
-    return norm2(xyz(position_radius[i]) - xyz(position_at_build[i]));
+    return norm2(vec_cast<Real>(xyz(position_radius[i])) -
+                 vec_cast<Real>(xyz(position_at_build[i])));
   }
 };
 

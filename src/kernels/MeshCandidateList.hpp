@@ -233,11 +233,11 @@ GPUDEM_HD inline void sort_short(std::uint32_t* first, std::uint32_t count) {
 
 /// Triangles within r_i + skin of particle i (of each mesh, of i's image nearest the mesh's
 /// image centre): counted, or written from offsets[i] on in increasing index.
-template <bool kWrite>
+template <bool kWrite, class P>
 struct ParticleTriangles {
   TriangleBins bins;
   MeshImages images;
-  const Real4* position_radius;
+  const Vec4T<P>* position_radius;  ///< in the engine's state scalar P
   Real skin;
   std::uint32_t* offsets;
   std::uint32_t* triangles;
@@ -252,7 +252,7 @@ struct ParticleTriangles {
                          TrianglesOfMesh{images.triangle_mesh, m}, visit);
   }
   GPUDEM_HD void operator()(std::size_t i) const {
-    const Real4 p = position_radius[i];
+    const Real4 p = vec4_cast<Real>(position_radius[i]);
     if constexpr (kWrite) {
       WriteVisitor write{triangles + offsets[i]};
       visit_near(xyz(p), p.w + skin, write);
@@ -278,9 +278,10 @@ class MeshCandidateList {
   /// the triangles within r_i + skin, each mesh seen from the particle's image that `images`
   /// gives. `max_radius` is the largest particle radius: cells are at least
   /// 2 (max_radius + skin) wide, and no wider than needed to keep the grid under `max_cells`.
+  template <class P>
   void build(const Vec3* vertices, std::size_t vertex_count, const TriangleCorners* corners,
              std::size_t triangle_count, const BinRegion& region, const MeshImages& images,
-             const Real4* position_radius, std::size_t n, Real max_radius, Real skin,
+             const Vec4T<P>* position_radius, std::size_t n, Real max_radius, Real skin,
              std::size_t max_cells = std::size_t(1) << 22) {
     n_ = n;
     offsets_.resize(n + 1);
@@ -289,9 +290,9 @@ class MeshCandidateList {
     bins_.corners = corners;
     bin_triangles(triangle_count, grown(region, max_radius + skin), images.box);
     using namespace mesh_candidate_kernels;
-    parallel_for(
-        Space{}, n,
-        ParticleTriangles<false>{bins_, images, position_radius, skin, offsets_.data(), nullptr});
+    parallel_for(Space{}, n,
+                 ParticleTriangles<false, P>{bins_, images, position_radius, skin, offsets_.data(),
+                                             nullptr});
     const std::uint64_t total = exclusive_scan(Space{}, offsets_.data(), offsets_.data(), n);
     if (total > std::numeric_limits<std::uint32_t>::max())
       throw std::overflow_error("MeshCandidateList: more than 2^32 - 1 particle-triangle pairs");
@@ -299,8 +300,8 @@ class MeshCandidateList {
                  Fill<std::uint32_t>{offsets_.data() + n, static_cast<std::uint32_t>(total)});
     triangles_.resize(total);
     parallel_for(Space{}, n,
-                 ParticleTriangles<true>{bins_, images, position_radius, skin, offsets_.data(),
-                                         triangles_.data()});
+                 ParticleTriangles<true, P>{bins_, images, position_radius, skin, offsets_.data(),
+                                            triangles_.data()});
     pairs_ = total;
   }
 

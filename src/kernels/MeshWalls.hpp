@@ -211,7 +211,8 @@ class MeshWalls {
   /// this rank), with the history carried over from the kept rows: previous_index[k] is
   /// particle k's row there (`had_lists` false: no rows kept, history starts at zero).
   /// `max_radius` is the largest radius on all ranks.
-  void rebuild(const Real4* position_radius, std::size_t n, Real max_radius, Real skin,
+  template <class P>
+  void rebuild(const Vec4T<P>* position_radius, std::size_t n, Real max_radius, Real skin,
                const BinRegion& region, const std::uint32_t* previous_index, bool had_lists) {
     if (empty()) return;
     const MeshImages images{box_, count(), triangle_mesh_.data(), image_centre_.data()};

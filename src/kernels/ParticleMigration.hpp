@@ -16,14 +16,15 @@
 
 namespace gpudem {
 
-/// A rank's owned particles as host copies, with their pair history as rows keyed by partner
-/// id: particle i's records are row_partner / row_history [row_offsets[i], row_offsets[i + 1]),
-/// and its mesh history as rows keyed by triangle index in mesh_offsets the same way.
-template <class State>
+/// A rank's owned particles as host copies (state in scalar P), with their pair history as rows
+/// keyed by partner id: particle i's records are row_partner / row_history [row_offsets[i],
+/// row_offsets[i + 1]), and its mesh history as rows keyed by triangle index in mesh_offsets the
+/// same way.
+template <class State, class P>
 struct MigratingParticles {
-  std::vector<Real4> position_radius;
-  std::vector<Real4> velocity_inv_mass;
-  std::vector<Vec3> angular_velocity;
+  std::vector<Vec4T<P>> position_radius;
+  std::vector<Vec4T<P>> velocity_inv_mass;
+  std::vector<Vec3T<P>> angular_velocity;
   std::vector<ParticleId> id;
   std::vector<MaterialId> material;
   std::vector<State> wall_history;  ///< wall_count records per particle
@@ -76,8 +77,8 @@ T take(const std::vector<char>& in, std::size_t& at) {
 
 /// Particle i of `p` as bytes: its state, its wall records, then its row count and rows, then
 /// its mesh row count and mesh rows.
-template <class State>
-void pack(const MigratingParticles<State>& p, std::size_t i, std::uint32_t walls,
+template <class State, class P>
+void pack(const MigratingParticles<State, P>& p, std::size_t i, std::uint32_t walls,
           std::vector<char>& out) {
   put(out, p.position_radius[i]);
   put(out, p.velocity_inv_mass[i]);
@@ -98,13 +99,13 @@ void pack(const MigratingParticles<State>& p, std::size_t i, std::uint32_t walls
 }
 
 /// Appends the particles packed in `in` to `p`.
-template <class State>
-void unpack(const std::vector<char>& in, std::uint32_t walls, MigratingParticles<State>& p) {
+template <class State, class P>
+void unpack(const std::vector<char>& in, std::uint32_t walls, MigratingParticles<State, P>& p) {
   std::size_t at = 0;
   while (at < in.size()) {
-    p.position_radius.push_back(take<Real4>(in, at));
-    p.velocity_inv_mass.push_back(take<Real4>(in, at));
-    p.angular_velocity.push_back(take<Vec3>(in, at));
+    p.position_radius.push_back(take<Vec4T<P>>(in, at));
+    p.velocity_inv_mass.push_back(take<Vec4T<P>>(in, at));
+    p.angular_velocity.push_back(take<Vec3T<P>>(in, at));
     p.id.push_back(take<ParticleId>(in, at));
     p.material.push_back(take<MaterialId>(in, at));
     for (std::uint32_t w = 0; w < walls; ++w) p.wall_history.push_back(take<State>(in, at));
@@ -128,13 +129,13 @@ void unpack(const std::vector<char>& in, std::uint32_t walls, MigratingParticles
 /// Sends every particle of `local` that another rank owns to that rank and returns the
 /// particles this rank keeps followed by those it received (in the order of the sending
 /// ranks). Collective.
-template <class State>
-MigratingParticles<State> migrate(const MigratingParticles<State>& local, std::uint32_t walls,
-                                  const DomainLink& domain) {
-  MigratingParticles<State> kept;
+template <class State, class P>
+MigratingParticles<State, P> migrate(const MigratingParticles<State, P>& local, std::uint32_t walls,
+                                     const DomainLink& domain) {
+  MigratingParticles<State, P> kept;
   RankBuffers outgoing(domain.ranks());
   for (std::size_t i = 0; i < local.size(); ++i) {
-    const int owner = domain.owner_of(xyz(local.position_radius[i]));
+    const int owner = domain.owner_of(vec_cast<Real>(xyz(local.position_radius[i])));
     if (owner == domain.rank())
       kept.append(local, i, walls);
     else

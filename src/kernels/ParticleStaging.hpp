@@ -13,12 +13,12 @@
 namespace gpudem {
 
 /// The engine's per-particle arrays a snapshot holds; the first `owned` rows are the owned
-/// particles. Forces and torques are in the law's scalar S.
-template <class Space, class S>
+/// particles. The state is in scalar P, forces and torques in the law's scalar S.
+template <class Space, class P, class S>
 struct OwnedParticleArrays {
-  const DeviceArray<Real4, Space>& position_radius;
-  const DeviceArray<Real4, Space>& velocity_inv_mass;
-  const DeviceArray<Vec3, Space>& angular_velocity;
+  const DeviceArray<Vec4T<P>, Space>& position_radius;
+  const DeviceArray<Vec4T<P>, Space>& velocity_inv_mass;
+  const DeviceArray<Vec3T<P>, Space>& angular_velocity;
   const DeviceArray<Vec3T<S>, Space>& force;
   const DeviceArray<Vec3T<S>, Space>& torque;
   const DeviceArray<ParticleId, Space>& id;
@@ -26,50 +26,56 @@ struct OwnedParticleArrays {
   std::size_t owned;
 };
 
-/// The first n values of `from`, converted to Real.
+/// The first n values of `from`, converted to Real, into `to`.
 template <class S>
-std::vector<Vec3> vec3_in_real(const Vec3T<S>* from, std::size_t n) {
-  std::vector<Vec3> out(n);
-  for (std::size_t k = 0; k < n; ++k) out[k] = vec_cast<Real>(from[k]);
-  return out;
+void assign_in_real(const Vec3T<S>* from, std::size_t n, std::vector<Vec3>& to) {
+  to.resize(n);
+  for (std::size_t k = 0; k < n; ++k) to[k] = vec_cast<Real>(from[k]);
 }
 
-template <class Space, class S>
+template <class S>
+void assign_in_real(const Vec4T<S>* from, std::size_t n, std::vector<Real4>& to) {
+  to.resize(n);
+  for (std::size_t k = 0; k < n; ++k) to[k] = vec4_cast<Real>(from[k]);
+}
+
+/// The first n values of `from` into `to` (ids and materials).
+template <class T>
+void assign_first(const T* from, std::size_t n, std::vector<T>& to) {
+  to.assign(from, from + n);
+}
+
+template <class Space, class P, class S>
 class ParticleStaging;
 
 /// Host backend: stage() copies the particles; collect() hands the copy over.
-template <class S>
-class ParticleStaging<HostSpace, S> final : public StagedParticles {
+template <class P, class S>
+class ParticleStaging<HostSpace, P, S> final : public StagedParticles {
  public:
-  void stage(const OwnedParticleArrays<HostSpace, S>& a) {
+  void stage(const OwnedParticleArrays<HostSpace, P, S>& a) {
     const std::size_t n = a.owned;
-    copy_first(a.position_radius, n, copy_.position_radius);
-    copy_first(a.velocity_inv_mass, n, copy_.velocity_inv_mass);
-    copy_first(a.angular_velocity, n, copy_.angular_velocity);
-    copy_first(a.id, n, copy_.id);
-    copy_first(a.material, n, copy_.material);
-    copy_.force = vec3_in_real(a.force.data(), n);
-    copy_.torque = vec3_in_real(a.torque.data(), n);
+    assign_in_real(a.position_radius.data(), n, copy_.position_radius);
+    assign_in_real(a.velocity_inv_mass.data(), n, copy_.velocity_inv_mass);
+    assign_in_real(a.angular_velocity.data(), n, copy_.angular_velocity);
+    assign_first(a.id.data(), n, copy_.id);
+    assign_first(a.material.data(), n, copy_.material);
+    assign_in_real(a.force.data(), n, copy_.force);
+    assign_in_real(a.torque.data(), n, copy_.torque);
   }
 
   /// Swaps the copy into `particles`: their old buffers are reused by the next stage().
   void collect(ParticleStore& particles) override { std::swap(particles, copy_); }
 
  private:
-  template <class T>
-  static void copy_first(const DeviceArray<T, HostSpace>& from, std::size_t n, std::vector<T>& to) {
-    to.assign(from.data(), from.data() + n);
-  }
-
   ParticleStore copy_;
 };
 
 /// CUDA backend: stage() queues the copies into pinned buffers; collect() waits for them and
 /// fills the particle store on the calling thread.
-template <class S>
-class ParticleStaging<CudaSpace, S> final : public StagedParticles {
+template <class P, class S>
+class ParticleStaging<CudaSpace, P, S> final : public StagedParticles {
  public:
-  void stage(const OwnedParticleArrays<CudaSpace, S>& a) {
+  void stage(const OwnedParticleArrays<CudaSpace, P, S>& a) {
     owned_ = a.owned;
     device_ = cuda::current_device();
     queue_copy(a.position_radius, position_radius_);
@@ -84,13 +90,13 @@ class ParticleStaging<CudaSpace, S> final : public StagedParticles {
   void collect(ParticleStore& particles) override {
     cuda::select_device(device_);  // the calling thread may not have chosen the engine's device
     stream_.synchronize();
-    assign(position_radius_, particles.position_radius);
-    assign(velocity_inv_mass_, particles.velocity_inv_mass);
-    assign(angular_velocity_, particles.angular_velocity);
-    assign(id_, particles.id);
-    assign(material_, particles.material);
-    particles.force = vec3_in_real(force_.data(), owned_);
-    particles.torque = vec3_in_real(torque_.data(), owned_);
+    assign_in_real(position_radius_.data(), owned_, particles.position_radius);
+    assign_in_real(velocity_inv_mass_.data(), owned_, particles.velocity_inv_mass);
+    assign_in_real(angular_velocity_.data(), owned_, particles.angular_velocity);
+    assign_first(id_.data(), owned_, particles.id);
+    assign_first(material_.data(), owned_, particles.material);
+    assign_in_real(force_.data(), owned_, particles.force);
+    assign_in_real(torque_.data(), owned_, particles.torque);
   }
 
  private:
@@ -100,16 +106,11 @@ class ParticleStaging<CudaSpace, S> final : public StagedParticles {
     copy_async(from, to, owned_, stream_);
   }
 
-  template <class T>
-  void assign(const PinnedBuffer<T>& from, std::vector<T>& to) const {
-    to.assign(from.data(), from.data() + owned_);
-  }
-
   std::size_t owned_ = 0;
   int device_ = 0;
   CudaStream stream_;
-  PinnedBuffer<Real4> position_radius_, velocity_inv_mass_;
-  PinnedBuffer<Vec3> angular_velocity_;
+  PinnedBuffer<Vec4T<P>> position_radius_, velocity_inv_mass_;
+  PinnedBuffer<Vec3T<P>> angular_velocity_;
   PinnedBuffer<Vec3T<S>> force_, torque_;
   PinnedBuffer<ParticleId> id_;
   PinnedBuffer<MaterialId> material_;

@@ -50,6 +50,22 @@ struct PeriodicBox {
     return p;
   }
 
+  /// wrap(p) rounded to scalar P, still inside [lo, lo + length) on each periodic axis: a
+  /// coordinate that rounding carries onto the upper edge (or below lo) is moved to the nearest
+  /// value of P inside. Equal to wrap(p) when P is Real.
+  template <class P>
+  GPUDEM_HD Vec3T<P> wrap_rounded(Vec3 p) const {
+    Vec3T<P> r = vec_cast<P>(wrap(p));
+    for (int k = 0; k < 3; ++k)
+      if (periodic[k]) {
+        const Real low = axis(lo, k), high = low + axis(length, k);
+        P& x = axis(r, k);
+        while (Real(x) >= high) x = next_toward(x, static_cast<P>(low));
+        while (Real(x) < low) x = next_toward(x, static_cast<P>(high));
+      }
+    return r;
+  }
+
   /// True when p lies outside the box along a non-periodic axis.
   GPUDEM_HD bool outside(Vec3 p) const {
     for (int k = 0; k < 3; ++k)

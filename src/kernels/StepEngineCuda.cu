@@ -10,8 +10,8 @@ std::unique_ptr<StepEngine> make_cuda_engine(const EngineSetup& setup) {
   if (cuda::device_count() == 0)
     throw std::runtime_error("--backend cuda: no CUDA device is visible on this node");
   require_valid_contact_model(setup);
-  return make_for_law_and_precision(setup, [&setup](auto law, auto scalar) {
-    return make_cuda_engine_for<decltype(law)::value, decltype(scalar)>(setup);
+  return make_for_law_and_precision(setup, [&setup](auto law, auto policy) {
+    return make_cuda_engine_for<decltype(law)::value, decltype(policy)::value>(setup);
   });
 }
 

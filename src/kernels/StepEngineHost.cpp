@@ -13,8 +13,8 @@ void require_valid_contact_model(const EngineSetup& setup) {
 
 std::unique_ptr<StepEngine> make_host_engine(const EngineSetup& setup) {
   require_valid_contact_model(setup);
-  return make_for_law_and_precision(setup, [&setup](auto law, auto scalar) {
-    return make_host_engine_for<decltype(law)::value, decltype(scalar)>(setup);
+  return make_for_law_and_precision(setup, [&setup](auto law, auto policy) {
+    return make_host_engine_for<decltype(law)::value, decltype(policy)::value>(setup);
   });
 }
 

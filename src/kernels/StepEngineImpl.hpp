@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 #include <unordered_set>
 
 #include "core/Stopwatch.hpp"
@@ -30,40 +31,46 @@
 
 namespace gpudem {
 
+// The per-particle kernels below read positions held in the engine's state scalar P.
+
 /// 1 for particles outside the non-periodic box, else 0 (sort key that moves leavers last).
+template <class P>
 struct LeaverKey {
-  const Real4* position_radius;
+  const Vec4T<P>* position_radius;
   PeriodicBox box;
   std::uint64_t* key;
   std::uint32_t* index;
   GPUDEM_HD void operator()(std::size_t i) const {
-    key[i] = box.outside(xyz(position_radius[i])) ? 1 : 0;
+    key[i] = box.outside(vec_cast<Real>(xyz(position_radius[i]))) ? 1 : 0;
     index[i] = static_cast<std::uint32_t>(i);
   }
 };
 
+template <class P>
 struct IsLeaver {
-  const Real4* position_radius;
+  const Vec4T<P>* position_radius;
   PeriodicBox box;
   GPUDEM_HD Real operator()(std::size_t i) const {
-    return box.outside(xyz(position_radius[i])) ? Real(1) : Real(0);
+    return box.outside(vec_cast<Real>(xyz(position_radius[i]))) ? Real(1) : Real(0);
   }
 };
 
 /// Maps positions into the box along periodic axes.
+template <class P>
 struct WrapPositions {
-  Real4* position_radius;
+  Vec4T<P>* position_radius;
   PeriodicBox box;
   GPUDEM_HD void operator()(std::size_t i) const {
-    const Vec3 p = box.wrap(xyz(position_radius[i]));
+    const Vec3T<P> p = box.wrap_rounded<P>(vec_cast<Real>(xyz(position_radius[i])));
     position_radius[i].x = p.x;
     position_radius[i].y = p.y;
     position_radius[i].z = p.z;
   }
 };
 
+template <class P>
 struct Radius {
-  const Real4* position_radius;
+  const Vec4T<P>* position_radius;
   GPUDEM_HD Real operator()(std::size_t i) const { return position_radius[i].w; }
 };
 
@@ -149,10 +156,15 @@ struct SwapValues {
   }
 };
 
-template <class Space, class Law>
+/// The engine of one backend (Space) and contact law, with the particle state (positions,
+/// velocities, spins) held in scalar P: Real in the double and mixed policies, float in the
+/// float policy, converted to Real wherever it is read and rounded to P where it is written.
+template <class Space, class Law, class P = Real>
 class StepEngineImpl final : public StepEngine {
   using State = typename Law::State;
   using ForceVec = Vec3T<typename Law::Scalar>;  ///< forces and torques, in the law's scalar
+  using State4 = Vec4T<P>;                       ///< position and radius, velocity and 1/m
+  using StateVec = Vec3T<P>;                     ///< angular velocity
   static constexpr std::uint32_t kHistoryWidth = Law::history_size;
 
  public:
@@ -195,9 +207,9 @@ class StepEngineImpl final : public StepEngine {
   }
 
   void get_particles(ParticleStore& p) const override {
-    position_radius_.download(p.position_radius);
-    velocity_inv_mass_.download(p.velocity_inv_mass);
-    angular_velocity_.download(p.angular_velocity);
+    p.position_radius = download_in_real(position_radius_);
+    p.velocity_inv_mass = download_in_real(velocity_inv_mass_);
+    p.angular_velocity = download_in_real(angular_velocity_);
     id_.download(p.id);
     material_.download(p.material);
     p.position_radius.resize(owned_);  // the ghosts belong to other ranks
@@ -229,7 +241,7 @@ class StepEngineImpl final : public StepEngine {
   }
 
   void get_list_positions(std::vector<Real4>& position_radius) const override {
-    position_at_build_.download(position_radius);
+    position_radius = download_in_real(position_at_build_);
   }
   std::uint64_t list_build_step() const override { return list_build_step_; }
 
@@ -365,9 +377,9 @@ class StepEngineImpl final : public StepEngine {
   std::string backend_name() const override { return Space::name; }
 
  private:
-  ParticleArrays arrays() {
-    return ParticleArrays{position_radius_.data(), velocity_inv_mass_.data(),
-                          angular_velocity_.data(), id_.data(), material_.data()};
+  ParticleArrays<P> arrays() {
+    return ParticleArrays<P>{position_radius_.data(), velocity_inv_mass_.data(),
+                             angular_velocity_.data(), id_.data(), material_.data()};
   }
 
   /// Indices of the particles at `where` that this rank owns.
@@ -441,7 +453,7 @@ class StepEngineImpl final : public StepEngine {
   /// restore_particles for this rank's particles `p` and their list positions.
   void restore_owned(const ParticleStore& p, const std::vector<Real4>& list_positions) {
     upload_particles(p);
-    position_at_build_.upload(list_positions);
+    upload_in_state_scalar(list_positions, position_at_build_);
     DeviceArray<ForceVec, Space> saved_force, saved_torque;
     upload_vec3(p.force, saved_force);
     upload_vec3(p.torque, saved_torque);
@@ -456,9 +468,9 @@ class StepEngineImpl final : public StepEngine {
   /// and sizes the owned particles' work arrays.
   template <class Host>
   void upload_state(const Host& p) {
-    position_radius_.upload(p.position_radius);
-    velocity_inv_mass_.upload(p.velocity_inv_mass);
-    angular_velocity_.upload(p.angular_velocity);
+    upload_in_state_scalar(p.position_radius, position_radius_);
+    upload_in_state_scalar(p.velocity_inv_mass, velocity_inv_mass_);
+    upload_in_state_scalar(p.angular_velocity, angular_velocity_);
     id_.upload(p.id);
     material_.upload(p.material);
     owned_ = p.size();
@@ -495,7 +507,7 @@ class StepEngineImpl final : public StepEngine {
     rebuild_mesh_candidates(false);
     if (!meshes_.empty()) meshes_.set_time(steps_ * setup_.dt);
     parallel_for(Space{}, owned_,
-                 SwapValues<Real4>{position_radius_.data(), position_at_build_.data()});
+                 SwapValues<State4>{position_radius_.data(), position_at_build_.data()});
     if (domain_.ranks() > 1) ghosts_.update(domain_, arrays(), owned_);
     if constexpr (kHistoryWidth > 0) pair_history_.resize(neighbors_.pairs_kept());
     zero_history();
@@ -512,7 +524,7 @@ class StepEngineImpl final : public StepEngine {
   }
 
   Real largest_radius() const {
-    return reduce_max(Space{}, owned_, Real(0), Radius{position_radius_.data()});
+    return reduce_max(Space{}, owned_, Real(0), Radius<P>{position_radius_.data()});
   }
 
   void zero_history() {
@@ -588,9 +600,15 @@ class StepEngineImpl final : public StepEngine {
   }
 
   /// The particle arrays the law reads; spins only when it needs them.
-  ParticleView particle_view() const {
-    return ParticleView{position_radius_.data(), velocity_inv_mass_.data(),
-                        Law::needs_spin ? angular_velocity_.data() : nullptr, material_.data()};
+  ParticleView<P> particle_view() const {
+    return ParticleView<P>{position_radius_.data(), velocity_inv_mass_.data(),
+                           Law::needs_spin ? angular_velocity_.data() : nullptr, material_.data()};
+  }
+
+  /// Every particle array, spins included (diagnostics).
+  ParticleView<P> state_view() const {
+    return ParticleView<P>{position_radius_.data(), velocity_inv_mass_.data(),
+                           angular_velocity_.data(), material_.data()};
   }
 
   ContactScene<Law> contact_scene() const {
@@ -602,14 +620,14 @@ class StepEngineImpl final : public StepEngine {
 
   void kick(Real h) {
     parallel_for(Space{}, owned_,
-                 Kick<Law::needs_spin, typename Law::Scalar>{
+                 Kick<Law::needs_spin, typename Law::Scalar, P>{
                      velocity_inv_mass_.data(), angular_velocity_.data(), force_.data(),
                      torque_.data(), position_radius_.data(), h},
                  LaunchSlot::integrate);
   }
 
   void drift(Real dt) {
-    parallel_for(Space{}, owned_, Drift{position_radius_.data(), velocity_inv_mass_.data(), dt},
+    parallel_for(Space{}, owned_, Drift<P>{position_radius_.data(), velocity_inv_mass_.data(), dt},
                  LaunchSlot::integrate);
   }
 
@@ -634,7 +652,7 @@ class StepEngineImpl final : public StepEngine {
 
   /// The forces of the owned particles list[0, count).
   void compute_forces(const std::uint32_t* list, std::size_t count) {
-    parallel_for(Space{}, count, AtIndices<ComputeForces<Law>>{list, force_kernel()},
+    parallel_for(Space{}, count, AtIndices<ComputeForces<Law, P>>{list, force_kernel()},
                  LaunchSlot::forces);
   }
 
@@ -648,17 +666,17 @@ class StepEngineImpl final : public StepEngine {
   }
 
   /// The per-particle force functor over this engine's arrays.
-  ComputeForces<Law> force_kernel() {
+  ComputeForces<Law, P> force_kernel() {
     return force_kernel({pair_history_.data(), wall_history_.data(), meshes_.history()},
                         force_.data(), torque_.data(), overlap_ratio_.data());
   }
 
   /// The per-particle force functor reading this engine's state, advancing the contact history
   /// into `history` and writing its results to the given arrays.
-  ComputeForces<Law> force_kernel(const HistoryArrays<Law>& history, ForceVec* force,
-                                  ForceVec* torque, Real* overlap_ratio) {
-    return ComputeForces<Law>{particle_view(), contact_scene(), setup_.gravity, setup_.dt,
-                              history,         force,           torque,         overlap_ratio};
+  ComputeForces<Law, P> force_kernel(const HistoryArrays<Law>& history, ForceVec* force,
+                                     ForceVec* torque, Real* overlap_ratio) {
+    return ComputeForces<Law, P>{particle_view(), contact_scene(), setup_.gravity, setup_.dt,
+                                 history,         force,           torque,         overlap_ratio};
   }
 
   /// Refreshes the ghosts' per-step fields while the forces of the owned particles whose rows
@@ -677,15 +695,15 @@ class StepEngineImpl final : public StepEngine {
   }
 
   bool find_unhealthy_here(double limit, HealthFailure& failure) const {
-    const HealthScore score{position_radius_.data(), velocity_inv_mass_.data(),
-                            overlap_ratio_.data()};
+    const HealthScore<P> score{state_view(), overlap_ratio_.data()};
     if (reduce_max(Space{}, owned_, Real(0), score) <= limit) return false;
     ParticleStore host;
     get_particles(host);
     std::vector<Real> ratio;
     overlap_ratio_.download(ratio);
-    const HealthScore host_score{host.position_radius.data(), host.velocity_inv_mass.data(),
-                                 ratio.data()};
+    const HealthScore<Real> host_score{
+        {host.position_radius.data(), host.velocity_inv_mass.data(), nullptr, nullptr},
+        ratio.data()};
     for (std::size_t i = 0; i < host.size(); ++i) {
       const Real s = host_score(i);
       if (s <= limit) continue;
@@ -701,22 +719,16 @@ class StepEngineImpl final : public StepEngine {
   Diagnostics local_diagnostics(double& contact_share) const {
     Diagnostics d;
     const std::size_t n = owned_;
-    const ParticleView view = particle_view();
-    d.kinetic_translational =
-        reduce_sum(Space{}, n, TranslationalEnergy{velocity_inv_mass_.data()});
-    d.kinetic_rotational =
-        reduce_sum(Space{}, n,
-                   RotationalEnergy{velocity_inv_mass_.data(), position_radius_.data(),
-                                    angular_velocity_.data()});
-    d.potential_gravity = reduce_sum(
-        Space{}, n,
-        GravityEnergy{velocity_inv_mass_.data(), position_radius_.data(), setup_.gravity});
+    const ParticleView<P> view = particle_view();
+    d.kinetic_translational = reduce_sum(Space{}, n, TranslationalEnergy<P>{state_view()});
+    d.kinetic_rotational = reduce_sum(Space{}, n, RotationalEnergy<P>{state_view()});
+    d.potential_gravity = reduce_sum(Space{}, n, GravityEnergy<P>{state_view(), setup_.gravity});
     DeviceArray<Real, Space> contacts(n), energy(n);
     const std::uint32_t bodies = wall_count() + meshes_.count();
     DeviceArray<Vec3, Space> body_force(n * bodies), mesh_torque(n * meshes_.count());
     parallel_for(Space{}, n,
-                 ContactTerms<Law>{view, contact_scene(), contacts.data(), energy.data(),
-                                   body_force.data(), mesh_torque.data()});
+                 ContactTerms<Law, P>{view, contact_scene(), contacts.data(), energy.data(),
+                                      body_force.data(), mesh_torque.data()});
     d.potential_elastic = reduce_sum(Space{}, n, ReadValue{energy.data()});
     contact_share = reduce_sum(Space{}, n, ReadValue{contacts.data()});
     d.contact_count = static_cast<std::uint64_t>(std::llround(contact_share));
@@ -740,7 +752,7 @@ class StepEngineImpl final : public StepEngine {
     const std::vector<std::uint32_t> triangle_of_entry = meshes_.entry_triangles();
     DeviceArray<Vec3, Space> entry_load(triangle_of_entry.size());
     parallel_for(Space{}, owned_,
-                 MeshEntryLoads<Law>{particle_view(), contact_scene(), entry_load.data()});
+                 MeshEntryLoads<Law, P>{particle_view(), contact_scene(), entry_load.data()});
     std::vector<Vec3> entry_host;
     entry_load.download(entry_host);
     std::vector<double> load(3 * triangles, 0.0);
@@ -780,7 +792,7 @@ class StepEngineImpl final : public StepEngine {
   bool needs_rebuild() const {
     const Real moved2 =
         reduce_max(Space{}, owned_, Real(0),
-                   DisplacementSquared{position_radius_.data(), position_at_build_.data()});
+                   DisplacementSquared<P>{position_radius_.data(), position_at_build_.data()});
     const Real half_skin = Real(0.5) * setup_.skin;
     return domain_.max(moved2) > half_skin * half_skin || meshes_.moved_beyond(half_skin);
   }
@@ -794,7 +806,7 @@ class StepEngineImpl final : public StepEngine {
     keep_previous_rows();
     times_.neighbors += watch.lap();
     resize_shared(owned_);  // the ghosts are planned anew
-    parallel_for(Space{}, owned_, WrapPositions{position_radius_.data(), setup_.box});
+    parallel_for(Space{}, owned_, WrapPositions<P>{position_radius_.data(), setup_.box});
     remove_leavers();
     if (domain_.ranks() > 1) migrate_particles();
 #ifndef NDEBUG
@@ -812,7 +824,7 @@ class StepEngineImpl final : public StepEngine {
     list_build_step_ = steps_;
     position_at_build_.resize(owned_);
     parallel_for(Space{}, owned_,
-                 CopyArray<Real4>{position_radius_.data(), position_at_build_.data()});
+                 CopyArray<State4>{position_radius_.data(), position_at_build_.data()});
     times_.neighbors += watch.lap();
     ++rebuilds_;
   }
@@ -837,7 +849,7 @@ class StepEngineImpl final : public StepEngine {
   /// Particles that another rank owns go there with their state and history (host-staged).
   void migrate_particles() {
     const std::uint32_t walls = kHistoryWidth > 0 ? wall_count() : 0;
-    const MigratingParticles<State> moved = migrate(migrating_particles(walls), walls, domain_);
+    const MigratingParticles<State, P> moved = migrate(migrating_particles(walls), walls, domain_);
     upload_state(moved);
     iota(previous_index_, owned_);
     if constexpr (kHistoryWidth > 0) {
@@ -850,8 +862,8 @@ class StepEngineImpl final : public StepEngine {
   }
 
   /// Host copies of the owned particles with their history rows (in their current order).
-  MigratingParticles<State> migrating_particles(std::uint32_t walls) const {
-    MigratingParticles<State> p;
+  MigratingParticles<State, P> migrating_particles(std::uint32_t walls) const {
+    MigratingParticles<State, P> p;
     position_radius_.download(p.position_radius);
     velocity_inv_mass_.download(p.velocity_inv_mass);
     angular_velocity_.download(p.angular_velocity);
@@ -919,13 +931,14 @@ class StepEngineImpl final : public StepEngine {
     if (ghosts == 0) {  // the storage order is the cell order of the last binning
       iota(identity_, owned_);
       const NeighborRows rows{identity_.data(), owned_, identity_.data(), id_.data()};
-      list.build(cells_, position_radius_.data(), owned_, setup_.box, setup_.skin, &rows);
+      list.build(cells_, positions_in_real(), owned_, setup_.box, setup_.skin, &rows);
       return;
     }
     const std::size_t total = owned_ + ghosts;
     cells_.bin(position_radius_.data(), total, setup_.box, setup_.skin, domain_.region());
     sorted_position_.resize(total);
-    permute(Space{}, cells_.order(), position_radius_.data(), sorted_position_.data(), total);
+    permute_into_real(Space{}, cells_.order(), position_radius_.data(), sorted_position_.data(),
+                      total);
     slot_of_owned_.resize(owned_);
     parallel_for(Space{}, total, SlotOfOwned{cells_.order(), owned_, slot_of_owned_.data()});
     const NeighborRows rows{slot_of_owned_.data(), owned_, cells_.order(), id_.data()};
@@ -966,7 +979,7 @@ class StepEngineImpl final : public StepEngine {
   void remove_leavers() {
     const std::size_t n = owned_;
     const auto leavers = static_cast<std::size_t>(
-        std::llround(reduce_sum(Space{}, n, IsLeaver{position_radius_.data(), setup_.box})));
+        std::llround(reduce_sum(Space{}, n, IsLeaver<P>{position_radius_.data(), setup_.box})));
     const std::uint64_t all_leavers = domain_.wrapping_sum(leavers);
     removed_ += all_leavers;
     global_count_ -= all_leavers;
@@ -976,7 +989,7 @@ class StepEngineImpl final : public StepEngine {
       sort_index_.resize(n);
       parallel_for(
           Space{}, n,
-          LeaverKey{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
+          LeaverKey<P>{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
       sort_by_key(Space{}, sort_key_.data(), sort_index_.data(), n, bits_for(1));  // keys 0, 1
       reorder(sort_index_.data(), n);
       leaver_ids = tally_of(download_values<Space>(id_.data() + (n - leavers), leavers)).id_sum;
@@ -1008,6 +1021,42 @@ class StepEngineImpl final : public StepEngine {
     DeviceArray<T, Space> out(n);
     permute(Space{}, order, a.data(), out.data(), n);
     a.swap(out);
+  }
+
+  /// The owned particles' positions in Real for the neighbour search, in their storage order:
+  /// the state itself when P is Real, else a converted copy in sorted_position_ (which needs
+  /// identity_ to hold 0 .. owned_ − 1).
+  const Real4* positions_in_real() {
+    if constexpr (std::is_same_v<P, Real>) {
+      return position_radius_.data();
+    } else {
+      sorted_position_.resize(owned_);
+      permute_into_real(Space{}, identity_.data(), position_radius_.data(), sorted_position_.data(),
+                        owned_);
+      return sorted_position_.data();
+    }
+  }
+
+  /// Host copy of a state array, in Real.
+  template <class T>
+  static auto download_in_real(const DeviceArray<T, Space>& a) {
+    std::vector<T> host;
+    a.download(host);
+    if constexpr (std::is_same_v<T, State4>)
+      return converted(host, vec4_cast<Real, P>);
+    else
+      return converted(host, vec_cast<Real, P>);
+  }
+
+  /// Uploads host values in Real (Real4 or Vec3) into a state array, rounded to P.
+  template <class T, class Q>
+  static void upload_in_state_scalar(const std::vector<T>& host, DeviceArray<Q, Space>& a) {
+    if constexpr (std::is_same_v<T, Q>)
+      a.upload(host);
+    else if constexpr (std::is_same_v<Q, State4>)
+      a.upload(converted(host, vec4_cast<P, Real>));
+    else
+      a.upload(converted(host, vec_cast<P, Real>));
   }
 
   static void iota(DeviceArray<std::uint32_t, Space>& a, std::size_t n) {
@@ -1062,15 +1111,15 @@ class StepEngineImpl final : public StepEngine {
   DeviceArray<typename Law::Params, Space> pair_params_;
   DeviceArray<PlaneWall, Space> walls_;
   // Per particle: the owned_ owned particles, then (the first five) the ghosts.
-  DeviceArray<Real4, Space> position_radius_;
-  DeviceArray<Real4, Space> velocity_inv_mass_;
-  DeviceArray<Vec3, Space> angular_velocity_;
+  DeviceArray<State4, Space> position_radius_;
+  DeviceArray<State4, Space> velocity_inv_mass_;
+  DeviceArray<StateVec, Space> angular_velocity_;
   DeviceArray<ParticleId, Space> id_;
   DeviceArray<MaterialId, Space> material_;
   DeviceArray<ForceVec, Space> force_;
   DeviceArray<ForceVec, Space> torque_;
   DeviceArray<Real, Space> overlap_ratio_;
-  DeviceArray<Real4, Space> position_at_build_;
+  DeviceArray<State4, Space> position_at_build_;
   DeviceArray<State, Space> pair_history_;  ///< per neighbour-list entry (empty: no history)
   DeviceArray<State, Space> wall_history_;  ///< per (particle, wall) (empty: no history)
   // Rebuild scratch.
@@ -1082,12 +1131,12 @@ class StepEngineImpl final : public StepEngine {
   DeviceArray<State, Space> previous_history_;
   DeviceArray<std::uint32_t, Space> identity_;
   DeviceArray<std::uint32_t, Space> slot_of_owned_;
-  DeviceArray<Real4, Space> sorted_position_;  ///< owned and ghosts in cell order
+  DeviceArray<Real4, Space> sorted_position_;  ///< owned and ghosts in cell order, in Real
   CellList<Space> cells_;
   NeighborList<Space> neighbors_;
   MeshWalls<Space, Law> meshes_;
-  ParticleStaging<Space, typename Law::Scalar> staging_;  ///< snapshot copies (host memory)
-  GhostExchange<Space, Law::needs_spin> ghosts_;
+  ParticleStaging<Space, P, typename Law::Scalar> staging_;  ///< snapshot copies (host memory)
+  GhostExchange<Space, Law::needs_spin, P> ghosts_;
   GhostRowSplit<Space> ghost_rows_;  ///< owned particles by whether their rows read ghosts
   std::size_t owned_ = 0;
   std::uint64_t global_count_ = 0;     ///< particles on all ranks

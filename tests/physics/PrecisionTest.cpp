@@ -2,9 +2,14 @@
 // double, the contact laws, their history and the force sums run in float. Its forces on a
 // random polydisperse Hertz–Mindlin bed are those of double to float rounding, it holds the
 // history and the forces in half the bytes, and a falling bed ends in the same state in the
-// mean (the flow is chaotic, so particles are not compared one by one).
+// mean (the flow is chaotic, so particles are not compared one by one). The float policy also
+// stores the particle state in float: given a state that float represents exactly, its forces
+// are those of mixed bit for bit (the storage is its only difference), it holds the state in
+// half the bytes, and a falling bed ends as in double in the mean.
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -21,17 +26,18 @@ constexpr double kFloatAgreement = 1e-5;
 
 class MixedPrecision : public BackendTest {
  protected:
-  /// Engines for `scene` in double and in mixed precision, both holding `particles`.
+  /// Engines for `scene` in precision `a` and in precision `b`, both holding `particles`.
   std::pair<std::unique_ptr<StepEngine>, std::unique_ptr<StepEngine>> started_engines(
-      const Scene& scene, const ParticleStore& particles) const {
+      const Scene& scene, const ParticleStore& particles, Precision a = Precision::Double,
+      Precision b = Precision::Mixed) const {
     EngineSetup setup = make_engine_setup(scene, particles);
-    setup.precision = Precision::Double;
-    auto exact = make_engine(setup);
-    setup.precision = Precision::Mixed;
-    auto mixed = make_engine(setup);
-    exact->set_particles(particles);
-    mixed->set_particles(particles);
-    return {std::move(exact), std::move(mixed)};
+    setup.precision = a;
+    auto first = make_engine(setup);
+    setup.precision = b;
+    auto second = make_engine(setup);
+    first->set_particles(particles);
+    second->set_particles(particles);
+    return {std::move(first), std::move(second)};
   }
 };
 
@@ -82,6 +88,57 @@ TEST_P(MixedPrecision, FallingBedIsTheSameInTheMean) {
   create_particles(scene, particles);
   auto [exact, mixed] = started_engines(scene, particles);
   const Diagnostics landed = expect_same_in_the_mean(*exact, *mixed, 10000, "double", "mixed");
+  EXPECT_GT(landed.contact_count, particles.size());  // the bed has landed
+}
+
+/// `particles` with every state value rounded to float, so that each policy holds it exactly.
+ParticleStore rounded_to_float(ParticleStore particles) {
+  const auto round4 = [](Real4& v) { v = vec4_cast<Real>(vec4_cast<float>(v)); };
+  for (Real4& v : particles.position_radius) round4(v);
+  for (Real4& v : particles.velocity_inv_mass) round4(v);
+  for (Vec3& w : particles.angular_velocity) w = vec_cast<Real>(vec_cast<float>(w));
+  return particles;
+}
+
+TEST_P(MixedPrecision, FloatForcesAreMixedForcesOfTheSameFloatState) {
+  const Scene scene = hertz_mindlin_box({0.08, 0.08, 0.08}, 1200, 2.5e-3);
+  const ParticleStore particles = rounded_to_float(overlapping_bed(scene));
+  auto [mixed, single] = started_engines(scene, particles, Precision::Mixed, Precision::Float);
+  ASSERT_GT(mixed->diagnostics().contact_count, particles.size() / 2);
+  const LoadSpread spread = recorded_load_spread(*mixed, *single, "initial");
+  EXPECT_EQ(spread.force, 0);
+  EXPECT_EQ(spread.torque, 0);
+  ParticleStore held;
+  single->get_particles(held);
+  std::map<ParticleId, std::size_t> given;
+  for (std::size_t i = 0; i < particles.size(); ++i) given[particles.id[i]] = i;
+  ASSERT_EQ(held.size(), particles.size());
+  for (std::size_t i = 0; i < held.size(); ++i)
+    ASSERT_EQ(0, std::memcmp(&held.position_radius[i],
+                             &particles.position_radius[given.at(held.id[i])], sizeof(Real4)))
+        << "the float engine changed the position of particle " << held.id[i]
+        << ", which float represents exactly";
+}
+
+TEST_P(MixedPrecision, FloatHoldsTheParticleStateInHalfTheBytes) {
+  const Scene scene = hertz_mindlin_box({0.08, 0.08, 0.08}, 1200, 2.5e-3);
+  const ParticleStore particles = overlapping_bed(scene);
+  auto [mixed, single] = started_engines(scene, particles, Precision::Mixed, Precision::Float);
+  for (const char* name : {"position, radius", "velocity, inverse mass", "angular velocity",
+                           "position at list build"}) {
+    SCOPED_TRACE(name);
+    ASSERT_GT(bytes_of(*mixed, name), 0u);
+    EXPECT_EQ(2 * bytes_of(*single, name), bytes_of(*mixed, name));
+  }
+  EXPECT_EQ(bytes_of(*single, "pair history"), bytes_of(*mixed, "pair history"));
+}
+
+TEST_P(MixedPrecision, FloatFallingBedIsTheSameInTheMean) {
+  const Scene scene = hertz_mindlin_box({0.06, 0.06, 0.12}, 2000, 2e-3);
+  ParticleStore particles;
+  create_particles(scene, particles);
+  auto [exact, single] = started_engines(scene, particles, Precision::Double, Precision::Float);
+  const Diagnostics landed = expect_same_in_the_mean(*exact, *single, 10000, "double", "float");
   EXPECT_GT(landed.contact_count, particles.size());  // the bed has landed
 }
 

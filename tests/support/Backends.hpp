@@ -1,8 +1,9 @@
 #pragma once
 // Runs a physics test once per backend: "host" always, "cuda" when compiled in and a device is
 // visible (otherwise the test is skipped, not passed silently). Suites instantiated with
-// GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS also run each backend in mixed precision
-// ("host-mixed", "cuda-mixed"), to the same tolerances.
+// GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS also run each backend in the mixed and float
+// precision policies ("host-mixed", "cuda-mixed", "host-float", "cuda-float"), to the same
+// tolerances.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -15,11 +16,13 @@ namespace gpudem::test {
 
 inline bool is_cuda(const std::string& backend) { return backend.rfind("cuda", 0) == 0; }
 
+inline bool ends_with(const std::string& text, const std::string& end) {
+  return text.size() > end.size() && text.compare(text.size() - end.size(), end.size(), end) == 0;
+}
+
 inline std::unique_ptr<StepEngine> engine_for(const std::string& backend, EngineSetup s) {
-  const std::string mixed = "-mixed";
-  if (backend.size() > mixed.size() &&
-      backend.compare(backend.size() - mixed.size(), mixed.size(), mixed) == 0)
-    s.precision = Precision::Mixed;
+  if (ends_with(backend, "-mixed")) s.precision = Precision::Mixed;
+  if (ends_with(backend, "-float")) s.precision = Precision::Float;
   return is_cuda(backend) ? make_cuda_engine(s) : make_host_engine(s);
 }
 
@@ -41,7 +44,8 @@ class BackendTest : public ::testing::TestWithParam<std::string> {
   INSTANTIATE_TEST_SUITE_P(Backends, Suite, ::testing::Values("host", "cuda"))
 
 #define GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(Suite) \
-  INSTANTIATE_TEST_SUITE_P(Backends, Suite,               \
-                           ::testing::Values("host", "cuda", "host-mixed", "cuda-mixed"))
+  INSTANTIATE_TEST_SUITE_P(                               \
+      Backends, Suite,                                    \
+      ::testing::Values("host", "cuda", "host-mixed", "cuda-mixed", "host-float", "cuda-float"))
 
 }  // namespace gpudem::test

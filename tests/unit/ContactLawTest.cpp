@@ -107,21 +107,21 @@ TEST(ContactLawCost, HookeOnlyKernelReadsNoSpinTorqueOrHistory) {
   PeriodicBox box;
   box.lo = {-1, -1, -1};
   box.length = {2, 2, 2};
-  const ParticleView view{x.data(), v.data(), nullptr, material.data()};
+  const ParticleView<Real> view{x.data(), v.data(), nullptr, material.data()};
   const ContactScene<HookeOnly> scene{
       offsets.data(), neighbors.data(), &params,    1,      nullptr, 0, box,
       nullptr,        nullptr,          MeshView{}, nullptr};
   std::vector<Vec3> force(2);
   std::vector<Real> ratio(2);
   parallel_for(HostSpace{}, 2,
-               ComputeForces<HookeOnly>{view,
-                                        scene,
-                                        Vec3{},
-                                        Real(1e-6),
-                                        {nullptr, nullptr, nullptr},
-                                        force.data(),
-                                        nullptr,
-                                        ratio.data()});
+               ComputeForces<HookeOnly, Real>{view,
+                                              scene,
+                                              Vec3{},
+                                              Real(1e-6),
+                                              {nullptr, nullptr, nullptr},
+                                              force.data(),
+                                              nullptr,
+                                              ratio.data()});
   const double expected = params.hooke_stiffness * 0.001;
   EXPECT_NEAR(force[0].x, -expected, 1e-9 * expected);
   EXPECT_NEAR(force[1].x, expected, 1e-9 * expected);

@@ -362,7 +362,7 @@ TEST(NeighborList, EmptySetGivesEmptyList) {
   box.length = make_vec3(1, 1, 1);
   CellList<HostSpace> cells;
   NeighborList<HostSpace> list;
-  cells.bin(nullptr, 0, box, 0.1);
+  cells.bin(static_cast<const Real4*>(nullptr), 0, box, 0.1);
   list.build(cells, nullptr, 0, box, 0.1);
   EXPECT_EQ(list.offsets()[0], 0u);
   EXPECT_EQ(list.pairs_kept(), 0u);

@@ -372,7 +372,7 @@ TEST_F(SceneLoaderTest, WrongTypeNamesExpectedType) {
                "expected one of \"velocity_verlet\", \"symplectic_euler\", got the string \"rk4\"");
   expect_error(load_error(base_with(kSimulationSlot, "precision = \"half\"")), kSimulationSlot,
                "simulation.precision",
-               "expected one of \"double\", \"mixed\", got the string \"half\"");
+               "expected one of \"double\", \"mixed\", \"float\", got the string \"half\"");
   expect_error(load_error(base_with(kSimulationSlot, "dt = \"fast\"")), kSimulationSlot,
                "simulation.dt", "expected \"auto\" or a number > 0 [s]");
   expect_error(load_error(base_with(kContactSlot, "normal = \"hertzian\"")), kContactSlot,
@@ -866,6 +866,15 @@ TEST_F(SceneLoaderTest, OutputRankFieldMustBeABoolean) {
                "unknown key 'rank_fields' in [output]; did you mean 'rank_field'?");
   expect_error(load_error(kBaseScene, {"output.rank_field=\"on\""}), 0, "output.rank_field",
                "expected true or false, got the string \"on\"");
+}
+
+TEST_F(SceneLoaderTest, PrecisionPoliciesRead) {
+  EXPECT_EQ(load_text(kBaseScene, {"simulation.precision=\"float\""}).simulation.precision,
+            Precision::Float);
+  EXPECT_EQ(load_text(kBaseScene, {"simulation.precision=\"mixed\""}).simulation.precision,
+            Precision::Mixed);
+  EXPECT_EQ(load_text(kBaseScene, {"simulation.precision=\"double\""}).simulation.precision,
+            Precision::Double);
 }
 
 TEST_F(SceneLoaderTest, OutputAsynchronousRead) {

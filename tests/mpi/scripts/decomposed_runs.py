@@ -9,9 +9,11 @@ CASE is one of:
                 particle count and id set are identical and the final positions, velocities,
                 spins and forces are equal bit for bit (every force sum runs in partner-id
                 order, so the summation order does not depend on the ranks); the kinetic-energy
-                series agree to 1e-12 relative (their sums do run in another order).
+                series agree to 1e-12 relative (their sums do run in another order). The same
+                in the float precision policy at N = 3 slabs and 2 x 2 blocks against its N = 1.
   restart       the same scene run straight at N = 1 against a run checkpointed half-way at
-                N = 3 or 4 and continued at N = 2 or 1: final states equal bit for bit.
+                N = 3 or 4 and continued at N = 2 or 1: final states equal bit for bit; in the
+                float policy, checkpointed at N = 3 and continued at N = 2, likewise.
   balance       tests/mpi/scenes/corner.toml (a bed settling into one end of a channel, on
                 2 x 2 blocks) with and without rebalancing: without, the final imbalance
                 (max/mean particles per rank, time-series column "imbalance") is above 1.3;
@@ -184,6 +186,13 @@ def same_physics(runner):
         out = runner.run(name, scene, ranks, setting)
         compare_states(runner, name, reference, out)
         compare_series(runner, name, reference, out)
+    single = 'simulation.precision="float"'
+    float_reference = runner.run("float_n1", scene, 1, single)
+    for name, ranks, setting in (("float_slabs_n3", 3, "decomposition.dims=[3,1,1]"),
+                                 ("float_blocks_2x2", 4, "decomposition.dims=[2,2,1]")):
+        out = runner.run(name, scene, ranks, setting, single)
+        compare_states(runner, name, float_reference, out)
+        compare_series(runner, name, float_reference, out)
 
 
 def restart(runner):
@@ -196,6 +205,11 @@ def restart(runner):
         checkpoint = out / "checkpoint.h5"
         runner.run(name, scene, second, restart=checkpoint)
         compare_states(runner, name, reference, out)
+    single = 'simulation.precision="float"'
+    float_reference = runner.run("float_straight_n1", scene, 1, single)
+    out = runner.run("float_restart_n3_n2", scene, 3, *half, single)
+    runner.run("float_restart_n3_n2", scene, 2, single, restart=out / "checkpoint.h5")
+    compare_states(runner, "float_restart_n3_n2", float_reference, out)
 
 
 def final_imbalance(out):
