@@ -84,6 +84,12 @@ class DeviceArray<T, CudaSpace> {
   std::size_t capacity_ = 0;
 };
 
+/// Frees the memory of `a` (size and capacity 0).
+template <class T, class Space>
+void release(DeviceArray<T, Space>& a) {
+  DeviceArray<T, Space>().swap(a);
+}
+
 /// Page-locked host buffer, the host end of asynchronous copies (`copy_async`) that stage device
 /// buffers for a library that reads host memory only. Grows geometrically; unlike DeviceArray it
 /// does not keep its contents when it grows.
