@@ -1001,10 +1001,12 @@ class StepEngineImpl final : public StepEngine {
 
   /// Bytes of the kept rows (offsets, partner ids, records) that a rebuild now would allocate
   /// while it still holds the list and pair history (keep_previous_rows): counted between
-  /// rebuilds too, when they are freed, so that the report shows the peak a run holds.
+  /// rebuilds too, when they are freed, so that the report shows the peak a run holds. (Those
+  /// held, should a rebuild have stopped between keeping them and the remap.)
   std::size_t carry_over_bytes() const {
     if constexpr (kHistoryWidth > 0) {
-      if (!has_list_) return 0;
+      if (!has_list_ || pair_history_.size() != neighbors_.pairs_kept())
+        return carried_pairs_.bytes();
       return HistoryCarryOver<Space, ParticleId, State>::bytes_to_keep(owned_, neighbors_.offsets(),
                                                                        pair_history_.data());
     } else {
