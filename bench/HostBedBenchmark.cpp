@@ -1,7 +1,8 @@
 // Host-backend throughput on settled beds: settles a periodic bed of 10^4 spheres, tiles it
 // in x and y to 10^4, 10^5 and 10^6 particles, and times the step loop at 1 and 2 OpenMP
 // threads in double and in mixed precision. Prints a Markdown table (particle-steps/s, bytes
-// per particle, and for mixed the largest force error against double over the largest force).
+// per particle, and for mixed the largest force error against double over the largest force),
+// then the largest bed's bytes per particle by array in each precision.
 // With a second argument, also writes the 10^5 bed for LAMMPS (scripts/bench_vs_lammps.sh).
 #include <algorithm>
 #include <chrono>
@@ -42,7 +43,10 @@ double force_error(const StepEngine& a, const StepEngine& b) {
   return worst / largest;
 }
 
-void measure(const ParticleStore& bed, int tx, int ty, int threads, Precision precision) {
+/// Times one bed at one thread count and precision, prints its row and returns the engine's
+/// memory by array after the timed steps.
+std::vector<MemoryUse> measure(const ParticleStore& bed, int tx, int ty, int threads,
+                               Precision precision) {
   set_threads(threads);
   const Scene scene = bed_scene(kSide * tx, kSide * ty);
   EngineSetup setup = make_engine_setup(scene, bed);
@@ -75,6 +79,26 @@ void measure(const ParticleStore& bed, int tx, int ty, int threads, Precision pr
               static_cast<unsigned long long>(engine->rebuild_count() - rebuilds0), rebuild,
               error.c_str());
   std::fflush(stdout);
+  return engine->memory_use();
+}
+
+/// Markdown table of the bytes per particle of each array, double and mixed side by side.
+void print_memory_by_array(const std::vector<MemoryUse> (&by_policy)[3], std::size_t particles) {
+  std::printf("\nmemory by array of the %zu-particle bed after the timed steps:\n\n", particles);
+  std::printf(
+      "| array | double [bytes/particle] | mixed [bytes/particle] | float [bytes/particle] |\n"
+      "|---|---|---|---|\n");
+  double totals[3] = {0, 0, 0};
+  for (std::size_t k = 0; k < by_policy[0].size(); ++k) {
+    std::printf("| %s", by_policy[0][k].name);
+    for (int p = 0; p < 3; ++p) {
+      const double bytes = k < by_policy[p].size() ? double(by_policy[p][k].bytes) / particles : 0;
+      std::printf(" | %.1f", bytes);
+      totals[p] += bytes;
+    }
+    std::printf(" |\n");
+  }
+  std::printf("| total | %.1f | %.1f | %.1f |\n", totals[0], totals[1], totals[2]);
 }
 
 /// Writes `bed` as a LAMMPS data file (atom_style sphere) plus `<path>.params`, a LAMMPS
@@ -128,11 +152,17 @@ int main(int argc, char** argv) {
       "in timed steps | one rebuild [s] | force error vs double |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   const int tiles[][2] = {{1, 1}, {5, 2}, {10, 10}};
+  std::vector<MemoryUse> by_policy[3];  // the largest bed's, by Precision
+  std::size_t largest = 0;
   for (int e = 4; e <= max_exponent && e <= 6; ++e) {
     const ParticleStore bed = tile(seed, tiles[e - 4][0], tiles[e - 4][1]);
     if (e == 5 && !lammps_data.empty()) write_lammps_bed(bed, 5, 2, lammps_data);
+    largest = bed.size();
     for (Precision precision : {Precision::Double, Precision::Mixed, Precision::Float})
-      for (int threads : {1, 2}) measure(bed, tiles[e - 4][0], tiles[e - 4][1], threads, precision);
+      for (int threads : {1, 2})
+        by_policy[static_cast<int>(precision)] =
+            measure(bed, tiles[e - 4][0], tiles[e - 4][1], threads, precision);
   }
+  if (largest > 0) print_memory_by_array(by_policy, largest);
   return 0;
 }

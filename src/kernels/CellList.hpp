@@ -130,8 +130,9 @@ class CellList {
     check_skin(skin);
     for (int k = 0; k < 3; ++k) check_region(box, region, 2 * r_max + skin, k);
     make_grids(position_radius, box, region, skin, r_min, r_max);
-    sort_into_cells(position_radius);
-    find_cell_begins();
+    DeviceArray<std::uint64_t, Space> cell(n_);  // cell of each slot, ascending after the sort
+    sort_into_cells(position_radius, cell);
+    find_cell_begins(cell);
   }
 
   /// Bins into grids over the whole box (a run on one rank).
@@ -149,7 +150,7 @@ class CellList {
   /// The class grids of the last binning.
   const SizeClassGrids& grids() const { return grids_; }
   /// Bytes held in Space memory.
-  std::size_t memory_bytes() const { return cell_.bytes() + order_.bytes() + cell_begin_.bytes(); }
+  std::size_t memory_bytes() const { return order_.bytes() + cell_begin_.bytes(); }
 
  private:
   static void check_radii(Real r_min, Real r_max) {
@@ -219,28 +220,28 @@ class CellList {
     grids_.total_cells = static_cast<std::uint32_t>(total);
   }
 
+  /// Fills `cell` (n_ values) with the particles' cells and sorts it, with order_.
   template <class P>
-  void sort_into_cells(const Vec4T<P>* position_radius) {
-    cell_.resize(n_);
+  void sort_into_cells(const Vec4T<P>* position_radius, DeviceArray<std::uint64_t, Space>& cell) {
     order_.resize(n_);
     parallel_for(
         Space{}, n_,
-        cell_list_kernels::AssignCell<P>{grids_, position_radius, cell_.data(), order_.data()});
+        cell_list_kernels::AssignCell<P>{grids_, position_radius, cell.data(), order_.data()});
     const std::uint32_t largest_cell = std::max<std::uint32_t>(grids_.total_cells, 1) - 1;
-    sort_by_key(Space{}, cell_.data(), order_.data(), n_, bits_for(largest_cell));
+    sort_by_key(Space{}, cell.data(), order_.data(), n_, bits_for(largest_cell));
   }
 
-  void find_cell_begins() {
+  /// cell_begin_ from the sorted cells.
+  void find_cell_begins(const DeviceArray<std::uint64_t, Space>& cell) {
     cell_begin_.resize(grids_.total_cells + std::size_t(1));
     parallel_for(Space{}, cell_begin_.size(),
-                 cell_list_kernels::FindCellBegin{cell_.data(), static_cast<std::uint32_t>(n_),
+                 cell_list_kernels::FindCellBegin{cell.data(), static_cast<std::uint32_t>(n_),
                                                   cell_begin_.data()});
   }
 
   int max_size_classes_;
   std::size_t n_ = 0;
   SizeClassGrids grids_;
-  DeviceArray<std::uint64_t, Space> cell_;  ///< cell of each slot, ascending after the sort
   DeviceArray<std::uint32_t, Space> order_;
   DeviceArray<std::uint32_t, Space> cell_begin_;
 };

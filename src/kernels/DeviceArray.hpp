@@ -34,7 +34,8 @@ class DeviceArray<T, HostSpace> {
   std::vector<T> data_;
 };
 
-/// CUDA device buffer; grows geometrically, keeps its contents on resize.
+/// CUDA device buffer; keeps its contents on resize. The first allocation is exact; a buffer that
+/// grows beyond it gets a quarter more room, so one that keeps growing reallocates rarely.
 template <class T>
 class DeviceArray<T, CudaSpace> {
  public:
@@ -54,7 +55,7 @@ class DeviceArray<T, CudaSpace> {
   std::size_t size() const { return size_; }
   void resize(std::size_t n) {
     if (n > capacity_) {
-      std::size_t cap = n + n / 4;
+      const std::size_t cap = capacity_ == 0 ? n : n + n / 4;
       T* fresh = static_cast<T*>(cuda::allocate(cap * sizeof(T)));
       if (size_ > 0) cuda::copy_on_device(fresh, ptr_, size_ * sizeof(T));
       cuda::release(ptr_);
@@ -83,6 +84,12 @@ class DeviceArray<T, CudaSpace> {
   std::size_t size_ = 0;
   std::size_t capacity_ = 0;
 };
+
+/// Frees the memory of `a` (size and capacity 0).
+template <class T, class Space>
+void release(DeviceArray<T, Space>& a) {
+  DeviceArray<T, Space>().swap(a);
+}
 
 /// Page-locked host buffer, the host end of asynchronous copies (`copy_async`) that stage device
 /// buffers for a library that reads host memory only. Grows geometrically; unlike DeviceArray it

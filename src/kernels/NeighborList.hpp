@@ -75,7 +75,8 @@ struct NeighborSearch {
 };
 
 /// Rows of a list built for some of the binned particles only (a rank's owned particles), in the
-/// caller's storage order, holding storage indices ordered by partner key (global id).
+/// caller's storage order, holding storage indices ordered by partner key (global id). Null slots
+/// and storage indices mean the storage order is the cell order (row r is slot r).
 struct NeighborRows {
   const std::uint32_t* slot;           ///< cell-order slot of row r's particle, `count` entries
   std::size_t count;                   ///< number of rows
@@ -178,20 +179,19 @@ class NeighborList {
   /// Builds the list of the n particles binned in `cells`, whose positions and radii
   /// (x, y, z, radius) are given in cell order (cells.order()); box and skin [m] must be those of
   /// the binning. Without `rows`, one row per slot; with them, the given rows only (their
-  /// pointers in Space memory, slots < n). Counts the neighbours, scans the counts into offsets,
-  /// then writes them.
+  /// pointers in Space memory, slots < n). Frees the previous list, counts the neighbours, scans
+  /// the counts into offsets, then writes them: the list holds exactly its entries, and a rebuild
+  /// never holds two lists.
   void build(const CellList<Space>& cells, const Real4* sorted_position_radius, std::size_t n,
              const PeriodicBox& box, Real skin, const NeighborRows* rows = nullptr) {
     check_matches(cells, n, box, skin);
     const NeighborSearch search{cells.grids(), cells.cell_begin(), sorted_position_radius};
     const neighbor_list_kernels::RowLayout layout = layout_of(rows);
     n_ = rows ? rows->count : n;
+    release(offsets_);
+    release(neighbors_);
     offsets_.resize(n_ + 1);
-    candidates_per_particle_.resize(n_);
-    parallel_for(Space{}, n_,
-                 neighbor_list_kernels::CountNeighbors{search, layout, offsets_.data(),
-                                                       candidates_per_particle_.data()},
-                 LaunchSlot::neighbor_list);
+    candidates_examined_ = count_neighbors(search, layout);
     pairs_kept_ = exclusive_scan(Space{}, offsets_.data(), offsets_.data(), n_);
     if (pairs_kept_ > std::numeric_limits<std::uint32_t>::max())
       throw std::overflow_error("NeighborList: more than 2^32 - 1 neighbour entries");
@@ -203,8 +203,6 @@ class NeighborList {
         Space{}, n_,
         neighbor_list_kernels::WriteNeighbors{search, layout, offsets_.data(), neighbors_.data()},
         LaunchSlot::neighbor_list);
-    candidates_examined_ = static_cast<std::uint64_t>(
-        reduce_sum(Space{}, n_, neighbor_list_kernels::ValueOf{candidates_per_particle_.data()}));
   }
 
   /// Number of rows in the list: n, or rows.count when built for given rows.
@@ -218,11 +216,22 @@ class NeighborList {
   /// pairs).
   std::uint64_t pairs_kept() const { return pairs_kept_; }
   /// Bytes held in Space memory.
-  std::size_t memory_bytes() const {
-    return offsets_.bytes() + neighbors_.bytes() + candidates_per_particle_.bytes();
-  }
+  std::size_t memory_bytes() const { return offsets_.bytes() + neighbors_.bytes(); }
 
  private:
+  /// Writes each row's neighbour count to offsets_ and returns the candidates examined (counted
+  /// per row in scratch that is freed before the entries are allocated).
+  std::uint64_t count_neighbors(const NeighborSearch& search,
+                                const neighbor_list_kernels::RowLayout& layout) {
+    DeviceArray<std::uint32_t, Space> examined(n_);
+    parallel_for(
+        Space{}, n_,
+        neighbor_list_kernels::CountNeighbors{search, layout, offsets_.data(), examined.data()},
+        LaunchSlot::neighbor_list);
+    return static_cast<std::uint64_t>(
+        reduce_sum(Space{}, n_, neighbor_list_kernels::ValueOf{examined.data()}));
+  }
+
   static void check_matches(const CellList<Space>& cells, std::size_t n, const PeriodicBox& box,
                             Real skin) {
     if (n != cells.size())
@@ -233,8 +242,9 @@ class NeighborList {
 
   static neighbor_list_kernels::RowLayout layout_of(const NeighborRows* rows) {
     if (!rows) return {};
-    if (rows->count > 0 && (!rows->slot || !rows->index_of_slot || !rows->key))
-      throw std::invalid_argument("NeighborList: rows need slots, storage indices and keys");
+    if (rows->count > 0 && (!rows->key || !rows->slot != !rows->index_of_slot))
+      throw std::invalid_argument(
+          "NeighborList: rows need keys, and slots and storage indices both or neither");
     return {rows->slot, rows->index_of_slot, rows->key};
   }
 
@@ -251,7 +261,6 @@ class NeighborList {
   std::uint64_t pairs_kept_ = 0;
   DeviceArray<std::uint32_t, Space> offsets_;
   DeviceArray<std::uint32_t, Space> neighbors_;
-  DeviceArray<std::uint32_t, Space> candidates_per_particle_;
 };
 
 }  // namespace gpudem

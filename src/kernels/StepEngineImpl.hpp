@@ -20,6 +20,7 @@
 #include "kernels/Diagnostics.hpp"
 #include "kernels/DomainLink.hpp"
 #include "kernels/GhostExchange.hpp"
+#include "kernels/HistoryCarryOver.hpp"
 #include "kernels/Integrators.hpp"
 #include "kernels/LaunchTuning.hpp"
 #include "kernels/MeshWalls.hpp"
@@ -68,6 +69,14 @@ struct WrapPositions {
   }
 };
 
+/// out[i] = in[i] in Real.
+template <class P>
+struct CopyInReal {
+  const Vec4T<P>* in;
+  Real4* out;
+  GPUDEM_HD void operator()(std::size_t i) const { out[i] = vec4_cast<Real>(in[i]); }
+};
+
 template <class P>
 struct Radius {
   const Vec4T<P>* position_radius;
@@ -94,43 +103,6 @@ struct GatherRows {
   GPUDEM_HD void operator()(std::size_t k) const {
     for (std::uint32_t w = 0; w < width; ++w) out[k * width + w] = in[order[k] * width + w];
   }
-};
-
-/// Carries contact history over a neighbour rebuild: for each new list entry of owned
-/// particle k, the record that particle k's previous row (row previous_index[k]) held for the
-/// same partner global id, or zero for a new contact. Contact history is keyed by global id,
-/// never by position in a list, so rows that arrived from another rank fit in as well.
-template <class State>
-struct RemapPairHistory {
-  const std::uint32_t* offsets;
-  const std::uint32_t* neighbors;
-  const ParticleId* id;
-  const std::uint32_t* previous_index;
-  const std::uint32_t* previous_offsets;
-  const ParticleId* previous_partner;
-  const State* previous_history;
-  State* history;
-  GPUDEM_HD void operator()(std::size_t k) const {
-    const std::uint32_t old = previous_index[k];
-    for (std::uint32_t e = offsets[k]; e < offsets[k + 1]; ++e) {
-      const ParticleId partner = id[neighbors[e]];
-      State carried{};
-      for (std::uint32_t f = previous_offsets[old]; f < previous_offsets[old + 1]; ++f)
-        if (previous_partner[f] == partner) {
-          carried = previous_history[f];
-          break;
-        }
-      history[e] = carried;
-    }
-  }
-};
-
-/// partner[e] = id[neighbors[e]]: a list's entries as global ids.
-struct PartnerIds {
-  const std::uint32_t* neighbors;
-  const ParticleId* id;
-  ParticleId* partner;
-  GPUDEM_HD void operator()(std::size_t e) const { partner[e] = id[neighbors[e]]; }
 };
 
 /// slot_of[i] = the cell-order slot of owned particle i (index_of_slot[slot] = i).
@@ -829,22 +801,22 @@ class StepEngineImpl final : public StepEngine {
     ++rebuilds_;
   }
 
-  /// Keeps each owned particle's list row as (partner id, history) records for the remap, and
-  /// its mesh candidates as (triangle, history) records.
+  /// Keeps each owned particle's list row as (partner id, history) records for the remap, only
+  /// those that are not fresh, then frees the pair history (the remap writes a new one); keeps
+  /// the mesh candidates as (triangle, history) records.
   void keep_previous_rows() {
     iota(previous_index_, owned_);
     if constexpr (kHistoryWidth > 0) {
-      if (!has_list_) return;
-      meshes_.keep_rows();
-      previous_offsets_.resize(owned_ + 1);
-      parallel_for(Space{}, owned_ + 1,
-                   CopyArray<std::uint32_t>{neighbors_.offsets(), previous_offsets_.data()});
-      previous_partner_.resize(neighbors_.pairs_kept());
-      parallel_for(Space{}, previous_partner_.size(),
-                   PartnerIds{neighbors_.neighbors(), id_.data(), previous_partner_.data()});
-      previous_history_.swap(pair_history_);
+      if (has_list_) {
+        meshes_.keep_rows();
+        carried_pairs_.keep(owned_, neighbors_.offsets(), pair_history_.data(), partner_ids());
+      }
+      release(pair_history_);
     }
   }
+
+  /// The key of each entry of the current neighbour list: its partner's global id.
+  PartnerIdKey partner_ids() const { return PartnerIdKey{neighbors_.neighbors(), id_.data()}; }
 
   /// Particles that another rank owns go there with their state and history (host-staged).
   void migrate_particles() {
@@ -854,9 +826,7 @@ class StepEngineImpl final : public StepEngine {
     iota(previous_index_, owned_);
     if constexpr (kHistoryWidth > 0) {
       wall_history_.upload(moved.wall_history);
-      previous_offsets_.upload(moved.row_offsets);
-      previous_partner_.upload(moved.row_partner);
-      previous_history_.upload(moved.row_history);
+      carried_pairs_.upload(moved.row_offsets, moved.row_partner, moved.row_history);
       meshes_.set_kept_rows(moved.mesh_offsets, moved.mesh_triangle, moved.mesh_history);
     }
   }
@@ -876,11 +846,9 @@ class StepEngineImpl final : public StepEngine {
       if (!has_list_) return p;
       std::vector<std::uint32_t> index, offsets;
       previous_index_.download(index);
-      previous_offsets_.download(offsets);
       std::vector<ParticleId> partner;
       std::vector<State> history;
-      previous_partner_.download(partner);
-      previous_history_.download(history);
+      carried_pairs_.download(offsets, partner, history);
       gather_rows(index, offsets, partner, history, p.row_offsets, p.row_partner, p.row_history);
       if (meshes_.empty()) return p;
       std::vector<std::uint32_t> triangle;
@@ -926,23 +894,24 @@ class StepEngineImpl final : public StepEngine {
   /// each row ordered by partner id so that no sum depends on particle order or rank count.
   void build_list(std::size_t ghosts) { build_list_into(neighbors_, ghosts); }
 
-  /// build_list into `list`.
+  /// build_list into `list`. The sorted positions and slots of a build over ghosts are freed
+  /// afterwards.
   void build_list_into(NeighborList<Space>& list, std::size_t ghosts) {
     if (ghosts == 0) {  // the storage order is the cell order of the last binning
-      iota(identity_, owned_);
-      const NeighborRows rows{identity_.data(), owned_, identity_.data(), id_.data()};
-      list.build(cells_, positions_in_real(), owned_, setup_.box, setup_.skin, &rows);
+      const NeighborRows rows{nullptr, owned_, nullptr, id_.data()};
+      DeviceArray<Real4, Space> in_real;  // the positions in Real, when the state is not
+      list.build(cells_, positions_in_real(in_real), owned_, setup_.box, setup_.skin, &rows);
       return;
     }
     const std::size_t total = owned_ + ghosts;
     cells_.bin(position_radius_.data(), total, setup_.box, setup_.skin, domain_.region());
-    sorted_position_.resize(total);
-    permute_into_real(Space{}, cells_.order(), position_radius_.data(), sorted_position_.data(),
+    DeviceArray<Real4, Space> sorted_position(total);  // in Real, for the search
+    permute_into_real(Space{}, cells_.order(), position_radius_.data(), sorted_position.data(),
                       total);
-    slot_of_owned_.resize(owned_);
-    parallel_for(Space{}, total, SlotOfOwned{cells_.order(), owned_, slot_of_owned_.data()});
-    const NeighborRows rows{slot_of_owned_.data(), owned_, cells_.order(), id_.data()};
-    list.build(cells_, sorted_position_.data(), total, setup_.box, setup_.skin, &rows);
+    DeviceArray<std::uint32_t, Space> slot_of_owned(owned_);
+    parallel_for(Space{}, total, SlotOfOwned{cells_.order(), owned_, slot_of_owned.data()});
+    const NeighborRows rows{slot_of_owned.data(), owned_, cells_.order(), id_.data()};
+    list.build(cells_, sorted_position.data(), total, setup_.box, setup_.skin, &rows);
   }
 
   /// On several ranks, splits the new list's rows by whether they read a ghost.
@@ -958,19 +927,18 @@ class StepEngineImpl final : public StepEngine {
                     domain_.region(), previous_index_.data(), carry);
   }
 
+  /// The new list's pair history: the kept records of each particle's previous row (all fresh
+  /// on the first build); the kept rows are then freed.
   void remap_pair_history() {
     if constexpr (kHistoryWidth > 0) {
       DeviceArray<State, Space> fresh(neighbors_.pairs_kept());
-      if (has_list_) {
-        parallel_for(Space{}, owned_,
-                     RemapPairHistory<State>{neighbors_.offsets(), neighbors_.neighbors(),
-                                             id_.data(), previous_index_.data(),
-                                             previous_offsets_.data(), previous_partner_.data(),
-                                             previous_history_.data(), fresh.data()});
-      } else {
+      if (has_list_)
+        carried_pairs_.remap(owned_, neighbors_.offsets(), partner_ids(), previous_index_.data(),
+                             fresh.data());
+      else
         parallel_for(Space{}, fresh.size(), Fill<State>{fresh.data(), State{}});
-      }
       pair_history_.swap(fresh);
+      carried_pairs_.release();
     }
     has_list_ = true;
   }
@@ -985,13 +953,12 @@ class StepEngineImpl final : public StepEngine {
     global_count_ -= all_leavers;
     std::uint64_t leaver_ids = 0;
     if (leavers > 0) {
-      sort_key_.resize(n);
-      sort_index_.resize(n);
-      parallel_for(
-          Space{}, n,
-          LeaverKey<P>{position_radius_.data(), setup_.box, sort_key_.data(), sort_index_.data()});
-      sort_by_key(Space{}, sort_key_.data(), sort_index_.data(), n, bits_for(1));  // keys 0, 1
-      reorder(sort_index_.data(), n);
+      DeviceArray<std::uint64_t, Space> key(n);
+      DeviceArray<std::uint32_t, Space> index(n);
+      parallel_for(Space{}, n,
+                   LeaverKey<P>{position_radius_.data(), setup_.box, key.data(), index.data()});
+      sort_by_key(Space{}, key.data(), index.data(), n, bits_for(1));  // keys 0, 1
+      reorder(index.data(), n);
       leaver_ids = tally_of(download_values<Space>(id_.data() + (n - leavers), leavers)).id_sum;
       resize_owned(n - leavers);
     }
@@ -1024,16 +991,14 @@ class StepEngineImpl final : public StepEngine {
   }
 
   /// The owned particles' positions in Real for the neighbour search, in their storage order:
-  /// the state itself when P is Real, else a converted copy in sorted_position_ (which needs
-  /// identity_ to hold 0 .. owned_ − 1).
-  const Real4* positions_in_real() {
+  /// the state itself when P is Real, else a converted copy in `scratch`.
+  const Real4* positions_in_real(DeviceArray<Real4, Space>& scratch) const {
     if constexpr (std::is_same_v<P, Real>) {
       return position_radius_.data();
     } else {
-      sorted_position_.resize(owned_);
-      permute_into_real(Space{}, identity_.data(), position_radius_.data(), sorted_position_.data(),
-                        owned_);
-      return sorted_position_.data();
+      scratch.resize(owned_);
+      parallel_for(Space{}, owned_, CopyInReal<P>{position_radius_.data(), scratch.data()});
+      return scratch.data();
     }
   }
 
@@ -1083,23 +1048,18 @@ class StepEngineImpl final : public StepEngine {
     if constexpr (kHistoryWidth > 0) wall_history_.resize(n * wall_count());
   }
 
-  std::size_t scratch_bytes() const {
-    return sort_key_.bytes() + sort_index_.bytes() + previous_index_.bytes() + identity_.bytes() +
-           slot_of_owned_.bytes() + sorted_position_.bytes();
-  }
+  std::size_t scratch_bytes() const { return previous_index_.bytes(); }
 
-  /// Bytes of the previous list's offsets, partner ids and history that a rebuild keeps for the
-  /// carry-over (keep_previous_rows). They stay allocated from the first rebuild on, so they are
-  /// counted at the size the current list needs from the start: the report before any rebuild
-  /// shows what the run will hold.
+  /// Bytes of the kept rows (offsets, partner ids, records) that a rebuild now would allocate
+  /// while it still holds the list and pair history (keep_previous_rows): counted between
+  /// rebuilds too, when they are freed, so that the report shows the peak a run holds. (Those
+  /// held, should a rebuild have stopped between keeping them and the remap.)
   std::size_t carry_over_bytes() const {
     if constexpr (kHistoryWidth > 0) {
-      const std::size_t needed =
-          has_list_ ? (owned_ + 1) * sizeof(std::uint32_t) +
-                          neighbors_.pairs_kept() * (sizeof(ParticleId) + sizeof(State))
-                    : 0;
-      return std::max(needed, previous_offsets_.bytes() + previous_partner_.bytes() +
-                                  previous_history_.bytes());
+      if (!has_list_ || pair_history_.size() != neighbors_.pairs_kept())
+        return carried_pairs_.bytes();
+      return HistoryCarryOver<Space, ParticleId, State>::bytes_to_keep(owned_, neighbors_.offsets(),
+                                                                       pair_history_.data());
     } else {
       return 0;
     }
@@ -1123,15 +1083,8 @@ class StepEngineImpl final : public StepEngine {
   DeviceArray<State, Space> pair_history_;  ///< per neighbour-list entry (empty: no history)
   DeviceArray<State, Space> wall_history_;  ///< per (particle, wall) (empty: no history)
   // Rebuild scratch.
-  DeviceArray<std::uint64_t, Space> sort_key_;
-  DeviceArray<std::uint32_t, Space> sort_index_;
-  DeviceArray<std::uint32_t, Space> previous_index_;    ///< row of each particle's previous list
-  DeviceArray<std::uint32_t, Space> previous_offsets_;  ///< previous rows, keyed by partner id
-  DeviceArray<ParticleId, Space> previous_partner_;
-  DeviceArray<State, Space> previous_history_;
-  DeviceArray<std::uint32_t, Space> identity_;
-  DeviceArray<std::uint32_t, Space> slot_of_owned_;
-  DeviceArray<Real4, Space> sorted_position_;  ///< owned and ghosts in cell order, in Real
+  DeviceArray<std::uint32_t, Space> previous_index_;  ///< row of each particle's previous list
+  HistoryCarryOver<Space, ParticleId, State> carried_pairs_;  ///< previous rows' history
   CellList<Space> cells_;
   NeighborList<Space> neighbors_;
   MeshWalls<Space, Law> meshes_;

@@ -14,6 +14,7 @@
 #include "core/ContactModel.hpp"
 #include "core/ParticleSources.hpp"
 #include "core/SceneSetup.hpp"
+#include "kernels/SizeClassGrid.hpp"
 #include "kernels/contact/ContactLaw.hpp"
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
@@ -93,25 +94,122 @@ TEST_P(ContactHistory, EngineRecordsAsManyValuesPerContactAsItsLawKeeps) {
   }
 }
 
+/// Bytes of the array `name` in an engine's memory report.
+std::size_t reported_bytes(const StepEngine& engine, const std::string& name) {
+  for (const MemoryUse& use : engine.memory_use())
+    if (name == use.name) return use.bytes;
+  ADD_FAILURE() << "no array named " << name;
+  return 0;
+}
+
+/// Records in the engine's history that are not zero, counted on host copies.
+std::size_t loaded_pair_records(const StepEngine& engine) {
+  gpudem::ContactHistory history;
+  engine.get_contact_history(history);
+  return history.pair_owner.size();
+}
+
+/// Bytes of a rebuild's history carry-over for n particles with `loaded` pair records of
+/// `record` bytes: the row offsets, then each record with its partner's id.
+std::size_t carry_over_bytes(std::size_t n, std::size_t loaded, std::size_t record) {
+  return (n + 1) * sizeof(std::uint32_t) + loaded * (sizeof(ParticleId) + record);
+}
+
 // The memory a run holds is known before its first rebuild: a rebuild at unchanged positions
 // (the same list) allocates the history carry-over, which the report counts from the start, so
-// the engine's total does not change.
+// the engine's total does not change. The carry-over is one record per loaded spring with its
+// partner's id, plus row offsets.
 TEST_P(ContactHistory, MemoryReportBeforeARebuildCountsItsCarryOver) {
   Scene scene = basic_scene({0, 0, 0}, {0.05, 0.05, 0.05}, 2000, 0.2, 0.8);
   scene.materials[0].young = 1e6;
   add_box_source(scene, {0, 0, 0}, {0.05, 0.05, 0.05}, 400, 2.5e-3, 0.5e-3);
   ParticleStore particles;
   create_particles(scene, particles);
-  for (Real4& x : particles.position_radius) x.w *= 1.3;  // overlapping: a list with entries
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    particles.position_radius[i].w *= 1.3;  // overlapping: a list with entries
+    particles.velocity_inv_mass[i].x = 0.01 * static_cast<double>(i % 7);  // loaded springs
+  }
   auto engine = make_engine(make_engine_setup(scene, particles));
   engine->set_particles(particles);
   const std::size_t before = engine->memory_bytes();
+  const std::size_t loaded = loaded_pair_records(*engine);
+  ASSERT_GT(loaded, particles.size());
+  const std::size_t record = contact_history_width(scene.contact.model) * sizeof(double);
+  EXPECT_EQ(reported_bytes(*engine, "history carry-over"),
+            carry_over_bytes(particles.size(), loaded, record));
   engine->rebuild_neighbors();
+  EXPECT_EQ(loaded_pair_records(*engine), loaded);
   EXPECT_EQ(engine->memory_bytes(), before);
-  for (const MemoryUse& use : engine->memory_use()) {
-    if (std::string(use.name) == "history carry-over") {
-      EXPECT_GT(use.bytes, 0u);
+}
+
+/// The bytes each report line of a one-rank engine without meshes needs, from its particle
+/// count, list length, walls and loaded springs: state (positions, velocities, spins) in the
+/// policy's state scalar (`state` bytes), forces and history in its law scalar (`scalar`
+/// bytes), a cell range per cell at most (kMaxCellsPerParticle cells per particle and one cell
+/// per empty size class at most).
+std::map<std::string, std::size_t> needed_bytes(const StepEngine& engine, std::size_t walls,
+                                                std::size_t width, std::size_t scalar,
+                                                std::size_t state) {
+  const std::size_t n = engine.owned_count(), record = width * scalar;
+  std::vector<std::uint32_t> lengths;
+  engine.get_list_lengths(lengths);
+  std::size_t entries = 0;
+  for (const std::uint32_t length : lengths) entries += length;
+  const std::size_t index = sizeof(std::uint32_t);
+  const std::size_t cells = kMaxCellsPerParticle * n + kMaxSizeClasses;
+  return {{"position, radius", n * 4 * state},
+          {"velocity, inverse mass", n * 4 * state},
+          {"angular velocity", n * 3 * state},
+          {"id, material", n * (sizeof(ParticleId) + sizeof(MaterialId))},
+          {"force, torque", n * 6 * scalar},
+          {"overlap ratio", n * sizeof(Real)},
+          {"position at list build", n * 4 * state},
+          {"neighbour list", (n + 1 + entries) * index},
+          {"pair history", entries * record},
+          {"wall history", n * walls * record},
+          {"cell list", n * index + (cells + 1) * index},
+          {"history carry-over", carry_over_bytes(n, loaded_pair_records(engine), record)},
+          {"rebuild scratch", n * index},  // each particle's row in the previous list
+          {"ghost buffers", 0},
+          {"meshes", 0}};
+}
+
+// After a poured bed has settled through many rebuilds, no array of the engine is larger than
+// what it needs: one list entry per neighbour, history per entry and per wall, and a carry-over
+// of the loaded springs only (not of every list entry). Holding a second list or history, or a
+// list with room to grow, exceeds these sizes.
+TEST_P(ContactHistory, SettledBedHoldsNoMoreThanItsArraysNeed) {
+  Scene scene = basic_scene({0, 0, 0}, {0.05, 0.05, 0.2}, 2000, 0.2, 0.8);
+  scene.materials[0].young = 1e6;
+  scene.domain.periodic = {true, true, false};
+  add_floor(scene);
+  add_box_source(scene, {0, 0, 0}, {0.05, 0.05, 0.07}, 800, 2.5e-3, 0.5e-3);
+  ParticleStore particles;
+  create_particles(scene, particles);
+  const std::size_t width = contact_history_width(scene.contact.model);
+  for (const Precision precision : {Precision::Double, Precision::Mixed, Precision::Float}) {
+    const char* name = precision == Precision::Double  ? "double"
+                       : precision == Precision::Mixed ? "mixed"
+                                                       : "float";
+    SCOPED_TRACE(name);
+    const std::size_t scalar = precision == Precision::Double ? sizeof(double) : sizeof(float);
+    const std::size_t state = precision == Precision::Float ? sizeof(float) : sizeof(double);
+    EngineSetup setup = make_engine_setup(scene, particles);
+    setup.precision = precision;
+    auto engine = make_engine(setup);
+    engine->set_particles(particles);
+    for (int n = 0; n < 6000; ++n) engine->step();
+    ASSERT_GE(engine->rebuild_count(), 5u);
+    const auto needed = needed_bytes(*engine, scene.walls.size(), width, scalar, state);
+    std::size_t total = 0;
+    for (const MemoryUse& use : engine->memory_use()) {
+      ASSERT_EQ(needed.count(use.name), 1u) << "unexpected array " << use.name;
+      EXPECT_LE(use.bytes, needed.at(use.name)) << use.name;
+      total += needed.at(use.name);
     }
+    EXPECT_LE(engine->memory_bytes(), total);
+    RecordProperty(std::string(name) + "_bytes_per_particle",
+                   significant(double(engine->memory_bytes()) / particles.size()));
   }
 }
 
