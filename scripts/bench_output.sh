@@ -6,17 +6,19 @@
 # spent on output and the time the writer thread spent writing. Run it on an idle machine.
 # Usage: scripts/bench_output.sh [EXPONENT (4..6, default 5)] [STEPS (default 200)]
 #                                [EVERY (default 10)] [RANKS (default 1)]
+# Environment: BUILD_DIR (default build), as for scripts/setup.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh > /dev/null
 source scripts/mpi-env.sh
+build=${BUILD_DIR:-build}
 exponent=${1:-5}
 steps=${2:-200}
 every=${3:-10}
 ranks=${4:-1}
 work=out/bench_output
 mkdir -p "$work"
-read -r lx ly < <(build/bench/gpudem-bench-write-bed "$exponent" "$work/bed.csv" | tail -1)
+read -r lx ly < <("$build"/bench/gpudem-bench-write-bed "$exponent" "$work/bed.csv" | tail -1)
 cat > "$work/scene.toml" <<TOML
 [simulation]
 end_time = 1.0
@@ -50,13 +52,13 @@ csv = "bed.csv"
 [output]
 timeseries_every = 1.0  # first and last rows only
 TOML
-dt=$(build/gpudem-mpi "$work/scene.toml" --check | sed -n 's/^dt = \([^ ]*\) s.*/\1/p')
+dt=$("$build"/gpudem-mpi "$work/scene.toml" --check | sed -n 's/^dt = \([^ ]*\) s.*/\1/p')
 end_time=$(awk -v dt="$dt" -v n="$steps" 'BEGIN { printf "%.17g", dt * n }')
 output_every=$(awk -v dt="$dt" -v n="$every" 'BEGIN { printf "%.17g", dt * n }')
 echo "bed of 10^$exponent spheres, $steps steps, a snapshot every $every steps, $ranks rank(s)"
 for asynchronous in false true; do
   echo "== output.asynchronous = $asynchronous"
-  OMP_NUM_THREADS=1 mpirun -np "$ranks" build/gpudem-mpi "$work/scene.toml" \
+  OMP_NUM_THREADS=1 mpirun -np "$ranks" "$build"/gpudem-mpi "$work/scene.toml" \
     --set simulation.end_time="$end_time" --set output.every="$output_every" \
     --set output.asynchronous=$asynchronous --set "decomposition.dims=[$ranks,1,1]" \
     --output-dir "$work/async_$asynchronous" | grep -E "^(snapshots|time split|done)"
