@@ -11,6 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh > /dev/null
 source scripts/mpi-env.sh
+source scripts/bench_scene.sh
 build=${BUILD_DIR:-build}
 exponent=${1:-5}
 steps=${2:-200}
@@ -18,40 +19,7 @@ every=${3:-10}
 ranks=${4:-1}
 work=out/bench_output
 mkdir -p "$work"
-read -r lx ly < <("$build"/bench/gpudem-bench-write-bed "$exponent" "$work/bed.csv" | tail -1)
-cat > "$work/scene.toml" <<TOML
-[simulation]
-end_time = 1.0
-seed = 1
-
-[domain]
-min = [0.0, 0.0, 0.0]
-max = [$lx, $ly, 0.3]
-periodic = [true, true, false]
-
-[[material]]
-name = "grain"
-density = 1850.0
-young = 1.0e6
-poisson = 0.3
-restitution = 0.2
-friction = 0.5
-
-[contact]
-stiffness = 2000.0
-
-[[wall]]
-name = "floor"
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-material = "grain"
-
-[[insert]]
-csv = "bed.csv"
-
-[output]
-timeseries_every = 1.0  # first and last rows only
-TOML
+write_bench_scene "$build" "$work" "$exponent"
 dt=$("$build"/gpudem-mpi "$work/scene.toml" --check | sed -n 's/^dt = \([^ ]*\) s.*/\1/p')
 end_time=$(awk -v dt="$dt" -v n="$steps" 'BEGIN { printf "%.17g", dt * n }')
 output_every=$(awk -v dt="$dt" -v n="$every" 'BEGIN { printf "%.17g", dt * n }')
