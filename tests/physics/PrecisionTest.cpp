@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <string>
@@ -70,15 +71,21 @@ std::size_t bytes_of(const StepEngine& engine, const std::string& name) {
   return 0;
 }
 
+/// Each array named holds in `halved` half the bytes it holds in `full` (and some).
+void expect_half_the_bytes(const StepEngine& full, const StepEngine& halved,
+                           std::initializer_list<const char*> names) {
+  for (const char* name : names) {
+    SCOPED_TRACE(name);
+    ASSERT_GT(bytes_of(full, name), 0u);
+    EXPECT_EQ(2 * bytes_of(halved, name), bytes_of(full, name));
+  }
+}
+
 TEST_P(MixedPrecision, HoldsHistoryAndForcesInHalfTheBytes) {
   const Scene scene = hertz_mindlin_box({0.08, 0.08, 0.08}, 1200, 2.5e-3);
   const ParticleStore particles = overlapping_bed(scene);
   auto [exact, mixed] = started_engines(scene, particles);
-  for (const char* name : {"pair history", "wall history", "force, torque"}) {
-    SCOPED_TRACE(name);
-    ASSERT_GT(bytes_of(*exact, name), 0u);
-    EXPECT_EQ(2 * bytes_of(*mixed, name), bytes_of(*exact, name));
-  }
+  expect_half_the_bytes(*exact, *mixed, {"pair history", "wall history", "force, torque"});
   EXPECT_EQ(bytes_of(*mixed, "position, radius"), bytes_of(*exact, "position, radius"));
 }
 
@@ -124,12 +131,9 @@ TEST_P(MixedPrecision, FloatHoldsTheParticleStateInHalfTheBytes) {
   const Scene scene = hertz_mindlin_box({0.08, 0.08, 0.08}, 1200, 2.5e-3);
   const ParticleStore particles = overlapping_bed(scene);
   auto [mixed, single] = started_engines(scene, particles, Precision::Mixed, Precision::Float);
-  for (const char* name : {"position, radius", "velocity, inverse mass", "angular velocity",
-                           "position at list build"}) {
-    SCOPED_TRACE(name);
-    ASSERT_GT(bytes_of(*mixed, name), 0u);
-    EXPECT_EQ(2 * bytes_of(*single, name), bytes_of(*mixed, name));
-  }
+  expect_half_the_bytes(
+      *mixed, *single,
+      {"position, radius", "velocity, inverse mass", "angular velocity", "position at list build"});
   EXPECT_EQ(bytes_of(*single, "pair history"), bytes_of(*mixed, "pair history"));
 }
 
