@@ -16,9 +16,10 @@ struct RunOptions {
   std::string restart_file;            ///< --restart: checkpoint to continue from (empty: none)
   BackendChoice backend = BackendChoice::Auto;
   GpuAwareChoice gpu_aware_mpi = GpuAwareChoice::Auto;  ///< --gpu-aware-mpi
-  bool check_only = false;  ///< --check
-  bool quiet = false;       ///< --quiet
-  bool verbose = false;     ///< --verbose: the memory report at start-up
+  bool check_only = false;                              ///< --check
+  bool quiet = false;                                   ///< --quiet
+  bool verbose = false;           ///< --verbose: the memory report at start-up
+  bool exact_time_split = false;  ///< --exact-time-split: EngineSetup::exact_phase_times
 };
 
 }  // namespace gpudem

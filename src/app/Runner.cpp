@@ -41,21 +41,34 @@ std::unique_ptr<StepEngine> make_cuda_engine_on_node(const MpiContext& mpi,
   return make_cuda_engine(setup);
 }
 
+/// Whether every rank sees a CUDA device, so that all ranks choose the same backend (they run
+/// the same collectives only then). Collective.
+bool every_rank_sees_a_device(const MpiContext& mpi) {
+  int here = cuda::device_count() > 0 ? 1 : 0, everywhere = 0;
+  MPI_Allreduce(&here, &everywhere, 1, MPI_INT, MPI_MIN, mpi.comm());
+  return everywhere == 1;
+}
+
+/// The engine of the chosen backend; `auto` is CUDA when every rank sees a device. Collective.
 std::unique_ptr<StepEngine> make_engine(BackendChoice choice, const MpiContext& mpi,
                                         const EngineSetup& setup) {
+  const bool devices = every_rank_sees_a_device(mpi);
   switch (choice) {
     case BackendChoice::Host:
       return make_host_engine(setup);
     case BackendChoice::Cuda:
-      if (!cuda::compiled_in() || cuda::device_count() == 0)
+      if (!cuda::compiled_in())
+        throw InputError("", 0, "--backend", "cuda requested but this build has no CUDA backend");
+      if (!devices)
         throw InputError("", 0, "--backend",
-                         cuda::compiled_in() ? "cuda requested but no CUDA device is visible"
-                                             : "cuda requested but this build has no CUDA backend");
+                         mpi.size() > 1 ? "cuda requested but no CUDA device is visible on "
+                                          "some rank"
+                                        : "cuda requested but no CUDA device is visible");
       return make_cuda_engine_on_node(mpi, setup);
     case BackendChoice::Auto:
       break;
   }
-  return cuda::device_count() > 0 ? make_cuda_engine_on_node(mpi, setup) : make_host_engine(setup);
+  return devices ? make_cuda_engine_on_node(mpi, setup) : make_host_engine(setup);
 }
 
 /// Steps between two events `every` seconds apart (at least 1).
@@ -271,17 +284,23 @@ class TimeLoop {
   /// when the time loop made them and apart when a writer thread did. Collective.
   void report_times() const {
     const StepTimes t = engine_.step_times();
-    double slowest[6] = {t.forces,    t.neighbors,     t.ghosts,
-                         t.migration, output_seconds_, snapshots_.write_seconds()};
-    MPI_Allreduce(MPI_IN_PLACE, slowest, 6, MPI_DOUBLE, MPI_MAX, mpi_.comm());
+    double slowest[7] = {t.integrate,
+                         t.forces,
+                         t.neighbors,
+                         t.ghosts,
+                         t.migration,
+                         output_seconds_,
+                         snapshots_.write_seconds()};
+    MPI_Allreduce(MPI_IN_PLACE, slowest, 7, MPI_DOUBLE, MPI_MAX, mpi_.comm());
     double halo[2] = {static_cast<double>(t.halo_bytes), static_cast<double>(t.refreshes)};
     MPI_Allreduce(MPI_IN_PLACE, halo, 2, MPI_DOUBLE, MPI_SUM, mpi_.comm());
     if (quiet_ || !mpi_.is_root()) return;
     std::printf(
-        "time split (slowest rank): forces %.3g s, neighbour lists %.3g s, ghost exchange %.3g s, "
-        "migration %.3g s, output %.3g s%s; halo %.4g bytes per rank per step\n",
-        slowest[0], slowest[1], slowest[2], slowest[3], slowest[4],
-        writer_thread_note(slowest[5]).c_str(), halo[1] > 0 ? halo[0] / halo[1] : 0.0);
+        "time split (slowest rank): integration %.3g s, forces %.3g s, neighbour lists %.3g s, "
+        "ghost exchange %.3g s, migration %.3g s, output %.3g s%s; halo %.4g bytes per rank per "
+        "step\n",
+        slowest[0], slowest[1], slowest[2], slowest[3], slowest[4], slowest[5],
+        writer_thread_note(slowest[6]).c_str(), halo[1] > 0 ? halo[0] / halo[1] : 0.0);
   }
 
   /// The time the writer thread spent on snapshots while the run stepped on, for the time split.
@@ -463,6 +482,7 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   const std::unique_ptr<MpiDomain> domain =
       make_domain(scene, mpi, particles, setup, use_gpu_aware_mpi(options.gpu_aware_mpi));
   setup.domain = domain.get();
+  setup.exact_phase_times = options.exact_time_split;
   const std::uint64_t steps = step_count(scene.simulation.end_time, setup.dt);
   std::optional<SettleCheck> settle;
   if (scene.preparation.enabled) settle.emplace(scene, setup.dt);

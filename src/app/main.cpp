@@ -47,11 +47,13 @@ int main(int argc, char** argv) {
                  "hand device buffers to MPI: auto (ask the MPI library), on, or off (stage "
                  "through host memory)")
       ->transform(CLI::CheckedTransformer(gpu_aware, CLI::ignore_case));
-  CLI::Option* quiet =
-      app.add_flag("--quiet", options.quiet, "no banner and no progress lines");
+  CLI::Option* quiet = app.add_flag("--quiet", options.quiet, "no banner and no progress lines");
   app.add_flag("--verbose", options.verbose,
                "also print the engine's memory by array (bytes per particle) at start-up")
       ->excludes(quiet);
+  app.add_flag("--exact-time-split", options.exact_time_split,
+               "wait for the GPU at the end of each part of a step, so that the time split "
+               "printed at the end holds each part's own kernels (slows CUDA runs a little)");
 
   try {
     app.parse(argc, argv);

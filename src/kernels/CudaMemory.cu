@@ -40,6 +40,12 @@ std::string device_description() {
   return std::string(prop.name) + ", " + std::to_string(prop.totalGlobalMem >> 20) + " MiB";
 }
 
+std::size_t free_device_memory() {
+  std::size_t free = 0, total = 0;
+  check(cudaMemGetInfo(&free, &total), "cudaMemGetInfo");
+  return free;
+}
+
 void* allocate(std::size_t bytes) {
   void* p = nullptr;
   if (bytes > 0) check(cudaMalloc(&p, bytes), "cudaMalloc");

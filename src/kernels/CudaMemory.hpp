@@ -21,6 +21,8 @@ void select_device(int index);
 int current_device();
 /// Name and memory of the current device, for the start-up banner.
 std::string device_description();
+/// Bytes of the current device's memory not yet allocated.
+std::size_t free_device_memory();
 
 void* allocate(std::size_t bytes);
 void release(void* ptr);

@@ -17,6 +17,7 @@ int device_count() { return 0; }
 void select_device(int) { unavailable(); }
 int current_device() { unavailable(); }
 std::string device_description() { return "none"; }
+std::size_t free_device_memory() { unavailable(); }
 void* allocate(std::size_t) { unavailable(); }
 void release(void* ptr) {
   if (ptr) unavailable();

@@ -27,6 +27,10 @@ class DeviceArray<T, HostSpace> {
   // Copy, then move: GCC 12 -Wnonnull misfires on copy-assigning into a provably empty vector.
   void upload(const std::vector<T>& host) { data_ = std::vector<T>(host); }
   void download(std::vector<T>& host) const { host = std::vector<T>(data_); }
+  /// The first n values (n <= size()).
+  void download(std::vector<T>& host, std::size_t n) const {
+    host.assign(data_.begin(), data_.begin() + n);
+  }
   void swap(DeviceArray& other) { data_.swap(other.data_); }
   std::size_t bytes() const { return data_.capacity() * sizeof(T); }
 
@@ -68,9 +72,11 @@ class DeviceArray<T, CudaSpace> {
     resize(host.size());
     if (!host.empty()) cuda::copy_to_device(ptr_, host.data(), host.size() * sizeof(T));
   }
-  void download(std::vector<T>& host) const {
-    host.resize(size_);
-    if (size_ > 0) cuda::copy_to_host(host.data(), ptr_, size_ * sizeof(T));
+  void download(std::vector<T>& host) const { download(host, size_); }
+  /// The first n values (n <= size()).
+  void download(std::vector<T>& host, std::size_t n) const {
+    host.resize(n);
+    if (n > 0) cuda::copy_to_host(host.data(), ptr_, n * sizeof(T));
   }
   void swap(DeviceArray& o) {
     std::swap(ptr_, o.ptr_);

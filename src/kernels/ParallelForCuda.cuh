@@ -10,6 +10,7 @@
 #include <thrust/transform_reduce.h>
 #include <cub/device/device_radix_sort.cuh>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -48,14 +49,34 @@ struct MaxOp {
   __host__ __device__ Real operator()(Real a, Real b) const { return a > b ? a : b; }
 };
 
-/// One thread per index in [0, n), `block` threads per block.
+/// The most threads per block parallel_for_kernel<F> can launch with on the current device (its
+/// registers per thread bound it), rounded down to whole warps; read once per functor type.
+template <class F>
+unsigned max_block_size() {
+  static const unsigned limit = [] {
+    cudaFuncAttributes attributes{};
+    check_cuda(cudaFuncGetAttributes(&attributes, parallel_for_kernel<F>), "cudaFuncGetAttributes");
+    return static_cast<unsigned>(attributes.maxThreadsPerBlock) / 32 * 32;
+  }();
+  return limit;
+}
+
+/// One thread per index in [0, n), `block` threads per block, or fewer where the kernel cannot
+/// launch so many (a slot's tuned block size is timed on one kernel and used by others, such
+/// as the forces of a subset of the particles).
 template <class F>
 void launch_per_index(std::size_t n, const F& f, unsigned block) {
   if (n == 0) return;
+  block = std::min(block, max_block_size<F>());
   const unsigned blocks = static_cast<unsigned>((n + block - 1) / block);
   parallel_for_kernel<<<blocks, block>>>(n, f);
   check_cuda(cudaGetLastError(), "parallel_for launch");
 }
+
+/// A 32-bit count as 64 bits, for sums that must not wrap.
+struct Widen {
+  __host__ __device__ std::uint64_t operator()(std::uint32_t v) const { return v; }
+};
 
 /// A CUDA event, destroyed with its scope.
 struct ScopedEvent {
@@ -109,17 +130,15 @@ Real reduce_sum(CudaSpace, std::size_t n, const F& f) {
                                   Real(0), thrust::plus<Real>());
 }
 
+/// out[i] = in[0] + ... + in[i-1] (modulo 2^32); returns the total in 64 bits, so that the caller
+/// sees a sum beyond 2^32 - 1 (thrust adds in the input's 32 bits). `in` and `out` may alias.
 inline std::uint64_t exclusive_scan(CudaSpace, const std::uint32_t* in, std::uint32_t* out,
                                     std::size_t n) {
   if (n == 0) return 0;
-  std::uint32_t last_in = 0;
-  detail::check_cuda(cudaMemcpy(&last_in, in + n - 1, sizeof last_in, cudaMemcpyDeviceToHost),
-                     "exclusive_scan");
+  const std::uint64_t total = thrust::transform_reduce(
+      thrust::device, in, in + n, detail::Widen{}, std::uint64_t(0), thrust::plus<std::uint64_t>());
   thrust::exclusive_scan(thrust::device, in, in + n, out);
-  std::uint32_t last_out = 0;
-  detail::check_cuda(cudaMemcpy(&last_out, out + n - 1, sizeof last_out, cudaMemcpyDeviceToHost),
-                     "exclusive_scan");
-  return static_cast<std::uint64_t>(last_out) + last_in;
+  return total;
 }
 
 namespace detail {

@@ -4,6 +4,7 @@
 /// staged. CUDA backend: the copies go to page-locked host buffers on a stream of their own,
 /// ordered after the kernels already launched and before those launched later (a blocking
 /// stream), and collect() waits for them; the device needs no second copy of the particles.
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -39,10 +40,59 @@ void assign_in_real(const Vec4T<S>* from, std::size_t n, std::vector<Real4>& to)
   for (std::size_t k = 0; k < n; ++k) to[k] = vec4_cast<Real>(from[k]);
 }
 
-/// The first n values of `from` into `to` (ids and materials).
-template <class T>
-void assign_first(const T* from, std::size_t n, std::vector<T>& to) {
-  to.assign(from, from + n);
+/// Particle rows in host memory, in the engine's scalars (state P, loads S).
+template <class P, class S>
+struct HostParticleRows {
+  const Vec4T<P>* position_radius;
+  const Vec4T<P>* velocity_inv_mass;
+  const Vec3T<P>* angular_velocity;
+  const Vec3T<S>* force;
+  const Vec3T<S>* torque;
+  const ParticleId* id;
+  const MaterialId* material;
+  std::size_t count;
+};
+
+/// `out` holds the rows, converted to Real.
+template <class P, class S>
+void fill_particle_store(const HostParticleRows<P, S>& rows, ParticleStore& out) {
+  const std::size_t n = rows.count;
+  assign_in_real(rows.position_radius, n, out.position_radius);
+  assign_in_real(rows.velocity_inv_mass, n, out.velocity_inv_mass);
+  assign_in_real(rows.angular_velocity, n, out.angular_velocity);
+  out.id.assign(rows.id, rows.id + n);
+  out.material.assign(rows.material, rows.material + n);
+  assign_in_real(rows.force, n, out.force);
+  assign_in_real(rows.torque, n, out.torque);
+}
+
+/// `out` holds the owned particles in Real: read in place from host arrays, or copied from
+/// the device first (blocking).
+template <class Space, class P, class S>
+void read_owned_particles(const OwnedParticleArrays<Space, P, S>& a, ParticleStore& out) {
+  if constexpr (std::is_same_v<Space, HostSpace>) {
+    fill_particle_store<P, S>(
+        {a.position_radius.data(), a.velocity_inv_mass.data(), a.angular_velocity.data(),
+         a.force.data(), a.torque.data(), a.id.data(), a.material.data(), a.owned},
+        out);
+  } else {
+    std::vector<Vec4T<P>> position_radius, velocity_inv_mass;
+    std::vector<Vec3T<P>> angular_velocity;
+    std::vector<Vec3T<S>> force, torque;
+    std::vector<ParticleId> id;
+    std::vector<MaterialId> material;
+    a.position_radius.download(position_radius, a.owned);
+    a.velocity_inv_mass.download(velocity_inv_mass, a.owned);
+    a.angular_velocity.download(angular_velocity, a.owned);
+    a.force.download(force, a.owned);
+    a.torque.download(torque, a.owned);
+    a.id.download(id, a.owned);
+    a.material.download(material, a.owned);
+    fill_particle_store<P, S>(
+        {position_radius.data(), velocity_inv_mass.data(), angular_velocity.data(), force.data(),
+         torque.data(), id.data(), material.data(), a.owned},
+        out);
+  }
 }
 
 template <class Space, class P, class S>
@@ -52,16 +102,7 @@ class ParticleStaging;
 template <class P, class S>
 class ParticleStaging<HostSpace, P, S> final : public StagedParticles {
  public:
-  void stage(const OwnedParticleArrays<HostSpace, P, S>& a) {
-    const std::size_t n = a.owned;
-    assign_in_real(a.position_radius.data(), n, copy_.position_radius);
-    assign_in_real(a.velocity_inv_mass.data(), n, copy_.velocity_inv_mass);
-    assign_in_real(a.angular_velocity.data(), n, copy_.angular_velocity);
-    assign_first(a.id.data(), n, copy_.id);
-    assign_first(a.material.data(), n, copy_.material);
-    assign_in_real(a.force.data(), n, copy_.force);
-    assign_in_real(a.torque.data(), n, copy_.torque);
-  }
+  void stage(const OwnedParticleArrays<HostSpace, P, S>& a) { read_owned_particles(a, copy_); }
 
   /// Swaps the copy into `particles`: their old buffers are reused by the next stage().
   void collect(ParticleStore& particles) override { std::swap(particles, copy_); }
@@ -90,13 +131,10 @@ class ParticleStaging<CudaSpace, P, S> final : public StagedParticles {
   void collect(ParticleStore& particles) override {
     cuda::select_device(device_);  // the calling thread may not have chosen the engine's device
     stream_.synchronize();
-    assign_in_real(position_radius_.data(), owned_, particles.position_radius);
-    assign_in_real(velocity_inv_mass_.data(), owned_, particles.velocity_inv_mass);
-    assign_in_real(angular_velocity_.data(), owned_, particles.angular_velocity);
-    assign_first(id_.data(), owned_, particles.id);
-    assign_first(material_.data(), owned_, particles.material);
-    assign_in_real(force_.data(), owned_, particles.force);
-    assign_in_real(torque_.data(), owned_, particles.torque);
+    fill_particle_store<P, S>(
+        {position_radius_.data(), velocity_inv_mass_.data(), angular_velocity_.data(),
+         force_.data(), torque_.data(), id_.data(), material_.data(), owned_},
+        particles);
   }
 
  private:

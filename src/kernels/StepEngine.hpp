@@ -39,6 +39,9 @@ struct EngineSetup {
   /// This rank's part of the decomposed domain; null: a run on one rank. Must outlive the
   /// engine.
   DomainLink* domain = nullptr;
+  /// Wait for the device at the end of each timed part of a step (StepTimes), so that each
+  /// part holds its own kernels' time; a device synchronisation per part on CUDA.
+  bool exact_phase_times = false;
 };
 
 /// Global quantities reduced over all particles; walls' forces are the forces the
@@ -81,11 +84,15 @@ inline std::vector<double> triangle_pressures(const MeshSurface& mesh) {
 }
 
 /// Wall time this rank's engine spent in each part of its steps since it was made [s] (host
-/// clock: on the CUDA backend a part ends when its last launch has returned), and the ghost
-/// bytes its per-step refreshes sent. Waits for other ranks count in the part that waits.
+/// clock: on the CUDA backend a part ends when its last launch has returned, unless
+/// EngineSetup::exact_phase_times makes it wait for its kernels), and the ghost bytes its
+/// per-step refreshes sent. Waits for other ranks count in the part that waits.
 struct StepTimes {
-  double forces = 0;             ///< integration, forces, the rebuild test and its reduction
-  double neighbors = 0;          ///< cell sorting, neighbour lists, mesh candidates, history remap
+  double integrate = 0;  ///< kicks and drift (velocities, spins, positions), mesh poses
+  double forces = 0;     ///< particle, wall and mesh contact forces
+  /// The rebuild test and its reduction over ranks, cell sorting, neighbour lists, mesh
+  /// candidates, history carry-over
+  double neighbors = 0;
   double ghosts = 0;             ///< ghost plans on rebuilds and ghost refreshes on other steps
   double migration = 0;          ///< periodic wrapping, removal, migration between ranks
   std::uint64_t refreshes = 0;   ///< steps that refreshed the ghosts

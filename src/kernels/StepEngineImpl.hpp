@@ -178,20 +178,7 @@ class StepEngineImpl final : public StepEngine {
     removed_ = removed;
   }
 
-  void get_particles(ParticleStore& p) const override {
-    p.position_radius = download_in_real(position_radius_);
-    p.velocity_inv_mass = download_in_real(velocity_inv_mass_);
-    p.angular_velocity = download_in_real(angular_velocity_);
-    id_.download(p.id);
-    material_.download(p.material);
-    p.position_radius.resize(owned_);  // the ghosts belong to other ranks
-    p.velocity_inv_mass.resize(owned_);
-    p.angular_velocity.resize(owned_);
-    p.id.resize(owned_);
-    p.material.resize(owned_);
-    p.force = download_vec3(force_);
-    p.torque = download_vec3(torque_);
-  }
+  void get_particles(ParticleStore& p) const override { read_owned_particles(owned_arrays(), p); }
 
   void get_contact_history(ContactHistory& history) const override {
     HistoryValues values;
@@ -228,8 +215,7 @@ class StepEngineImpl final : public StepEngine {
   }
 
   StagedParticles& stage_particles() override {
-    staging_.stage({position_radius_, velocity_inv_mass_, angular_velocity_, force_, torque_, id_,
-                    material_, owned_});
+    staging_.stage(owned_arrays());
     staging_.expected_tally = {global_count_, expected_id_sum_};
     return staging_;
   }
@@ -242,19 +228,21 @@ class StepEngineImpl final : public StepEngine {
     drift(dt);
     ++steps_;
     if (!meshes_.empty()) meshes_.set_time(steps_ * dt);
+    times_.integrate += lap(watch);
     const bool rebuild_now = needs_rebuild();
-    times_.forces += watch.lap();
+    times_.neighbors += lap(watch);
     if (rebuild_now) {
       rebuild();  // charges its own parts
-      watch.lap();
+      lap(watch);
       compute_forces();
     } else if (domain_.ranks() > 1) {
       refresh_ghosts_computing_interior(watch);
     } else {
       compute_forces();
     }
+    times_.forces += lap(watch);
     if (verlet) kick(Real(0.5) * dt);
-    times_.forces += watch.lap();
+    times_.integrate += lap(watch);
   }
 
   void rebuild_neighbors() override {
@@ -305,6 +293,13 @@ class StepEngineImpl final : public StepEngine {
   std::string tune_launches() override {
     if constexpr (has_block_sizes(Space{})) {
       const MaxOverRanks max_all = max_over_ranks(domain_);
+      std::vector<double> shortfall{tuning_memory_shortfall()};
+      max_all(shortfall);
+      if (shortfall[0] > 0)
+        return launch_tuning_report(launch_tuning(), true) +
+               " (defaults, not timed: the timing scratch needs " +
+               std::to_string(static_cast<long long>(shortfall[0] / (1 << 20)) + 1) +
+               " MiB more device memory than a rank has free)";
       const auto timed = [](auto&& work) {
         return [&work](unsigned) { return seconds_to_run(Space{}, work); };
       };
@@ -349,6 +344,14 @@ class StepEngineImpl final : public StepEngine {
   std::string backend_name() const override { return Space::name; }
 
  private:
+  /// The arrays a snapshot or get_particles reads; the owned particles are their first rows.
+  OwnedParticleArrays<Space, P, typename Law::Scalar> owned_arrays() const {
+    return {position_radius_,  velocity_inv_mass_,
+            angular_velocity_, force_,
+            torque_,           id_,
+            material_,         owned_};
+  }
+
   ParticleArrays<P> arrays() {
     return ParticleArrays<P>{position_radius_.data(), velocity_inv_mass_.data(),
                              angular_velocity_.data(), id_.data(), material_.data()};
@@ -437,7 +440,8 @@ class StepEngineImpl final : public StepEngine {
   }
 
   /// Uploads the state of `p` (a ParticleStore or MigratingParticles) as the owned particles
-  /// and sizes the owned particles' work arrays.
+  /// and sizes the owned particles' work arrays; torques zero (a law without spin never writes
+  /// them, and a grown device array's new rows hold whatever its memory held).
   template <class Host>
   void upload_state(const Host& p) {
     upload_in_state_scalar(p.position_radius, position_radius_);
@@ -448,14 +452,13 @@ class StepEngineImpl final : public StepEngine {
     owned_ = p.size();
     force_.resize(owned_);
     torque_.resize(owned_);
+    parallel_for(Space{}, owned_, Fill<ForceVec>{torque_.data(), ForceVec{}});
     overlap_ratio_.resize(owned_);
   }
 
-  /// Uploads the particle arrays and sizes the per-particle work arrays; wall histories zero,
-  /// torques zero (a law without spin never writes them).
+  /// Uploads the particle arrays and sizes the per-particle work arrays; wall histories zero.
   void upload_particles(const ParticleStore& p) {
     upload_state(p);
-    parallel_for(Space{}, owned_, Fill<ForceVec>{torque_.data(), ForceVec{}});
     if constexpr (kHistoryWidth > 0) {
       wall_history_.resize(owned_ * wall_count());
       parallel_for(Space{}, wall_history_.size(), Fill<State>{wall_history_.data(), State{}});
@@ -511,13 +514,6 @@ class StepEngineImpl final : public StepEngine {
     out.reserve(host.size());
     for (const T& value : host) out.push_back(f(value));
     return out;
-  }
-
-  /// Host copy of a force or torque array, in Real.
-  static std::vector<Vec3> download_vec3(const DeviceArray<ForceVec, Space>& a) {
-    std::vector<ForceVec> host;
-    a.download(host);
-    return converted(host, vec_cast<Real, typename Law::Scalar>);
   }
 
   static void upload_vec3(const std::vector<Vec3>& host, DeviceArray<ForceVec, Space>& a) {
@@ -612,10 +608,26 @@ class StepEngineImpl final : public StepEngine {
           pair(pairs),
           wall(wall_slots),
           mesh(mesh) {}
+    /// The bytes the constructor allocates.
+    static std::size_t bytes(std::size_t owned, std::size_t pairs, std::size_t wall_slots,
+                             std::size_t mesh) {
+      return owned * (2 * sizeof(ForceVec) + sizeof(Real)) +
+             (pairs + wall_slots + mesh) * sizeof(State);
+    }
     DeviceArray<ForceVec, Space> force, torque;
     DeviceArray<Real, Space> overlap_ratio;
     DeviceArray<State, Space> pair, wall, mesh;
   };
+
+  /// Bytes by which the device memory that launch tuning allocates (a ForceScratch and a second
+  /// neighbour list, with an eighth more for the list's sort scratch and growth) exceeds the
+  /// free device memory; 0 when it fits.
+  double tuning_memory_shortfall() const {
+    const double needed = double(ForceScratch::bytes(owned_, pair_history_.size(),
+                                                     wall_history_.size(), meshes_.entry_count())) +
+                          1.125 * double(neighbors_.memory_bytes());
+    return std::max(0.0, needed - double(cuda::free_device_memory()));
+  }
 
   std::uint32_t wall_count() const { return static_cast<std::uint32_t>(setup_.walls.size()); }
 
@@ -656,11 +668,11 @@ class StepEngineImpl final : public StepEngine {
   /// the same sum as in compute_forces(); only the particles' order differs.
   void refresh_ghosts_computing_interior(Stopwatch& watch) {
     ghosts_.begin_update(domain_, arrays());
-    times_.ghosts += watch.lap();
+    times_.ghosts += lap(watch);
     compute_forces(ghost_rows_.interior(), ghost_rows_.interior_count());
-    times_.forces += watch.lap();
+    times_.forces += lap(watch);
     ghosts_.finish_update(domain_, arrays(), owned_);
-    times_.ghosts += watch.lap();
+    times_.ghosts += lap(watch);
     times_.halo_bytes += ghosts_.refresh_bytes();
     ++times_.refreshes;
     compute_forces(ghost_rows_.boundary(), ghost_rows_.boundary_count());
@@ -759,6 +771,14 @@ class StepEngineImpl final : public StepEngine {
     d.max_overlap_ratio = domain_.max(d.max_overlap_ratio);
   }
 
+  /// Seconds since the watch's last lap. With EngineSetup::exact_phase_times it first waits
+  /// for the device, so that a part's time holds its own kernels and not only their launches.
+  double lap(Stopwatch& watch) const {
+    if constexpr (std::is_same_v<Space, CudaSpace>)
+      if (setup_.exact_phase_times) cuda::synchronize_device();
+    return watch.lap();
+  }
+
   /// The lists stay valid while no particle on any rank and no mesh vertex moved more than
   /// skin/2.
   bool needs_rebuild() const {
@@ -776,7 +796,7 @@ class StepEngineImpl final : public StepEngine {
     Stopwatch watch;
     domain_.begin_rebuild();
     keep_previous_rows();
-    times_.neighbors += watch.lap();
+    times_.neighbors += lap(watch);
     resize_shared(owned_);  // the ghosts are planned anew
     parallel_for(Space{}, owned_, WrapPositions<P>{position_radius_.data(), setup_.box});
     remove_leavers();
@@ -784,11 +804,11 @@ class StepEngineImpl final : public StepEngine {
 #ifndef NDEBUG
     check_particles_conserved();
 #endif
-    times_.migration += watch.lap();
+    times_.migration += lap(watch);
     sort_owned_by_cell();
-    times_.neighbors += watch.lap();
+    times_.neighbors += lap(watch);
     const std::size_t ghosts = receive_ghosts();
-    times_.ghosts += watch.lap();
+    times_.ghosts += lap(watch);
     build_list(ghosts);
     split_ghost_rows();
     rebuild_mesh_candidates(has_list_);
@@ -797,7 +817,7 @@ class StepEngineImpl final : public StepEngine {
     position_at_build_.resize(owned_);
     parallel_for(Space{}, owned_,
                  CopyArray<State4>{position_radius_.data(), position_at_build_.data()});
-    times_.neighbors += watch.lap();
+    times_.neighbors += lap(watch);
     ++rebuilds_;
   }
 

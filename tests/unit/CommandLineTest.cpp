@@ -152,6 +152,28 @@ TEST_F(CommandLine, VerboseReportsEachArraysBytesPerParticle) {
   EXPECT_EQ(std::stod(r.output.substr(backend + 14)), total) << r.output;
 }
 
+/// Seconds the end-of-run time split gives `part` ("integration", "forces", ...); -1 when the
+/// split or the part is missing.
+double split_seconds(const std::string& output, const std::string& part) {
+  const std::size_t line = output.find("\ntime split (slowest rank): ");
+  if (line == std::string::npos) return -1;
+  const std::size_t at = output.find(" " + part + " ", line);
+  if (at == std::string::npos || at > output.find('\n', line + 1)) return -1;
+  return std::stod(output.substr(at + part.size() + 2));
+}
+
+/// Integration and forces are clocked apart; with --exact-time-split (which on the host changes
+/// nothing but the waits) the run is the same.
+TEST_F(CommandLine, TimeSplitClocksIntegrationApartFromForces) {
+  for (const char* flag : {"", " --exact-time-split"}) {
+    const Result r = run(scene(kValidScene) + " --output-dir " + out() + flag);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    for (const char* part : {"integration", "forces", "neighbour lists"})
+      EXPECT_GT(split_seconds(r.output, part), 0) << part << flag << ":\n" << r.output;
+    fs::remove_all(out());
+  }
+}
+
 TEST_F(CommandLine, VerboseAndQuietExcludeEachOther) {
   const Result r = run(scene(kValidScene) + " --output-dir " + out() + " --verbose --quiet");
   EXPECT_EQ(r.exit_code, 2) << r.output;

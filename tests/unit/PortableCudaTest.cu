@@ -1,7 +1,7 @@
 // The CUDA backend's sort and slot launches against the host backend (skipped without a device):
 // sort_by_key on random keys with duplicates gives the host sort's order for several bit counts,
 // twice in a row (the kept scratch), and parallel_for with a slot visits every index exactly once
-// at each candidate block size.
+// at each candidate block size, and exclusive_scan's total does not wrap at 32 bits.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -75,6 +75,25 @@ TEST(CudaParallelFor, SlotLaunchVisitsEveryIndexOnceAtEachBlockSize) {
     EXPECT_EQ(seen, std::vector<std::uint32_t>(n, 1));
   }
   launch_tuning().reset();
+}
+
+/// The scan's total is a 64-bit sum: counts past 2^32 - 1 (a neighbour list too long for
+/// 32-bit offsets) are seen as such, as on the host, and the prefixes agree with the host's.
+TEST(CudaExclusiveScan, TotalDoesNotWrapAt32Bits) {
+  if (!have_device()) GTEST_SKIP() << "no CUDA device on this machine";
+  const std::vector<std::uint32_t> counts{0x80000000u, 0x80000000u, 5u, 7u};
+  std::vector<std::uint32_t> host_out(counts.size());
+  const std::uint64_t host_total =
+      exclusive_scan(HostSpace{}, counts.data(), host_out.data(), counts.size());
+  DeviceArray<std::uint32_t, CudaSpace> values;
+  values.upload(counts);
+  const std::uint64_t total =
+      exclusive_scan(CudaSpace{}, values.data(), values.data(), counts.size());  // in place
+  std::vector<std::uint32_t> out;
+  values.download(out);
+  EXPECT_EQ(total, (std::uint64_t(1) << 32) + 12);
+  EXPECT_EQ(total, host_total);
+  EXPECT_EQ(out, host_out);
 }
 
 }  // namespace
