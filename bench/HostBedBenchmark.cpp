@@ -29,20 +29,6 @@ const char* precision_name(Precision precision) {
   return "?";
 }
 
-/// Largest |F_a − F_b| over the largest |F_b| of two engines holding the same particles in the
-/// same order.
-double force_error(const StepEngine& a, const StepEngine& b) {
-  ParticleStore pa, pb;
-  a.get_particles(pa);
-  b.get_particles(pb);
-  double largest = 0, worst = 0;
-  for (std::size_t i = 0; i < pb.size(); ++i) {
-    largest = std::max(largest, norm(pb.force[i]));
-    worst = std::max(worst, norm(pa.force[i] - pb.force[i]));
-  }
-  return worst / largest;
-}
-
 /// Times one bed at one thread count and precision, prints its row and returns the engine's
 /// memory by array after the timed steps.
 std::vector<MemoryUse> measure(const ParticleStore& bed, int tx, int ty, int threads,

@@ -1,6 +1,7 @@
 #pragma once
 // The settled bed the host benchmarks time: a periodic bed of 10^4 spheres poured onto a
 // floor and stepped until nearly at rest, tiled in x and y to larger beds.
+#include <algorithm>
 #include <cstdio>
 
 #if defined(GPUDEM_HAVE_OPENMP)
@@ -24,13 +25,15 @@ inline Scene bed_scene(double side_x, double side_y) {
   return s;
 }
 
-/// A settled periodic bed of 10^4 particles (poured, then stepped until nearly at rest).
-inline ParticleStore settled_seed_bed() {
-  Scene scene = bed_scene(kSide, kSide);
-  test::add_box_source(scene, {0, 0, 0}, {kSide, kSide, 0.3}, 10000, 2.5e-3, 0.5e-3);
+/// Makes an engine of one backend for a setup (make_host_engine, make_cuda_engine).
+using EngineMaker = std::unique_ptr<StepEngine> (*)(const EngineSetup&);
+
+/// The particles of `scene`'s sources, poured and stepped on `make`'s engine until their
+/// kinetic energy is below 1e-6 of the initial potential energy (at most 80,000 steps).
+inline ParticleStore settle(const Scene& scene, EngineMaker make) {
   ParticleStore particles;
   create_particles(scene, particles);
-  auto engine = make_host_engine(make_engine_setup(scene, particles));
+  auto engine = make(make_engine_setup(scene, particles));
   engine->set_particles(particles);
   const double potential = engine->diagnostics().potential_gravity;
   for (int block = 0; block < 400; ++block) {
@@ -43,6 +46,14 @@ inline ParticleStore settled_seed_bed() {
               (d.kinetic_translational + d.kinetic_rotational) / potential, d.max_overlap_ratio);
   engine->get_particles(particles);
   return particles;
+}
+
+/// A settled periodic bed of 10^4 particles (Hooke, linear history; bed_scene), settled on the
+/// host backend.
+inline ParticleStore settled_seed_bed() {
+  Scene scene = bed_scene(kSide, kSide);
+  test::add_box_source(scene, {0, 0, 0}, {kSide, kSide, 0.3}, 10000, 2.5e-3, 0.5e-3);
+  return settle(scene, make_host_engine);
 }
 
 /// The seed bed repeated tx × ty times in x and y.
@@ -58,6 +69,20 @@ inline ParticleStore tile(const ParticleStore& seed, int tx, int ty) {
                 {v.x, v.y, v.z}, v.w);
       }
   return out;
+}
+
+/// Largest |F_a − F_b| over the largest |F_b| of two engines holding the same particles in the
+/// same order (b the reference, e.g. the double-precision engine).
+inline double force_error(const StepEngine& a, const StepEngine& b) {
+  ParticleStore pa, pb;
+  a.get_particles(pa);
+  b.get_particles(pb);
+  double largest = 0, worst = 0;
+  for (std::size_t i = 0; i < pb.size(); ++i) {
+    largest = std::max(largest, norm(pb.force[i]));
+    worst = std::max(worst, norm(pa.force[i] - pb.force[i]));
+  }
+  return worst / largest;
 }
 
 inline void set_threads(int n) {

@@ -1,4 +1,4 @@
-add_library(gpudem_comm STATIC
+add_library(gpudem_comm ${GPUDEM_LIBRARY_TYPE}
   comm/Checkpoint.cpp
   comm/Hdf5Io.cpp
   comm/MpiContext.cpp

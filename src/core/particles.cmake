@@ -1,2 +1,2 @@
-add_library(gpudem_particles STATIC core/ParticleSources.cpp)
+add_library(gpudem_particles ${GPUDEM_LIBRARY_TYPE} core/ParticleSources.cpp)
 target_link_libraries(gpudem_particles PUBLIC gpudem_base)

@@ -1,2 +1,2 @@
-add_library(gpudem_scene STATIC core/SceneLoader.cpp)
+add_library(gpudem_scene ${GPUDEM_LIBRARY_TYPE} core/SceneLoader.cpp)
 target_link_libraries(gpudem_scene PUBLIC gpudem_contact_model toml11::toml11)

@@ -1,7 +1,7 @@
 # The step engine, instantiated per backend, normal law and precision policy from one template
 # (StepEngineImpl.hpp via EngineFactory.hpp), one generated translation unit each so that they
 # compile in parallel; launch tuning.
-add_library(gpudem_kernels STATIC kernels/LaunchTuning.cpp kernels/StepEngineHost.cpp)
+add_library(gpudem_kernels ${GPUDEM_LIBRARY_TYPE} kernels/LaunchTuning.cpp kernels/StepEngineHost.cpp)
 target_link_libraries(gpudem_kernels PUBLIC gpudem_contact_model gpudem_mesh)
 
 # Adds to gpudem_kernels one translation unit per normal law and precision policy of a backend:

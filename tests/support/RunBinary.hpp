@@ -1,10 +1,12 @@
 #pragma once
-// Runs the gpudem-mpi binary under test (GPUDEM_BINARY) with arguments and collects its exit
+// Runs the gpudem-mpi binary under test (binary_path()) with arguments and collects its exit
 // code and combined stdout/stderr.
 #include <sys/wait.h>
 
 #include <cstdio>
 #include <string>
+
+#include "support/TestPaths.hpp"
 
 namespace gpudem::test {
 
@@ -14,7 +16,7 @@ struct RunResult {
 };
 
 inline RunResult run_binary(const std::string& args) {
-  const std::string command = std::string(GPUDEM_BINARY) + " " + args + " 2>&1";
+  const std::string command = binary_path() + " " + args + " 2>&1";
   RunResult r{-1, ""};
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return r;

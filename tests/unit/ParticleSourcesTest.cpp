@@ -9,6 +9,7 @@
 
 #include "core/InputError.hpp"
 #include "core/ParticleSources.hpp"
+#include "support/TestPaths.hpp"
 
 namespace gpudem {
 namespace {
@@ -57,7 +58,7 @@ ParticleSource box(Vec3 lo, Vec3 hi, std::uint64_t count, RadiusDistribution rad
 ParticleSource csv_source(const std::string& name) {
   ParticleSource s;
   s.kind = SourceKind::Csv;
-  s.csv_file = std::string(GPUDEM_SOURCE_DIR) + "/tests/data/csv/" + name;
+  s.csv_file = test::source_dir() + "/tests/data/csv/" + name;
   return s;
 }
 

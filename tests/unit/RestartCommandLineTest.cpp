@@ -166,7 +166,7 @@ every = 1e-4
 /// Starts gpudem-mpi with `args` (output discarded) and returns its pid.
 pid_t spawn(const std::vector<std::string>& args) {
   std::vector<char*> argv;
-  std::string binary = GPUDEM_BINARY;
+  std::string binary = test::binary_path();
   argv.push_back(binary.data());
   std::vector<std::string> copies = args;
   for (std::string& a : copies) argv.push_back(a.data());

@@ -18,13 +18,14 @@
 #include "core/ContactModel.hpp"
 #include "core/InputError.hpp"
 #include "core/TomlReader.hpp"
+#include "support/TestPaths.hpp"
 
 namespace gpudem {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kSceneDir = std::string(GPUDEM_SOURCE_DIR) + "/tests/data/scenes";
+const std::string kSceneDir = test::source_dir() + "/tests/data/scenes";
 
 /// A valid scene. The comment lines are slots that a test replaces with the keys it adds, so
 /// line numbers stay fixed: each slot's number is given by the constants below.

@@ -31,6 +31,7 @@
 #include "support/MpiRank.hpp"
 #include "support/SharedTempDir.hpp"
 #include "support/SnapshotReadBack.hpp"
+#include "support/TestPaths.hpp"
 
 namespace gpudem {
 namespace {
@@ -504,7 +505,8 @@ TEST_F(SnapshotWriterTest, RejectsMeshNamesThatCannotNameAFileAndSurfacesOfOther
 // resumed.xmf: a series resumed with the rank field switched on after a snapshot without it;
 // meshed.xmf and plate.xmf: two snapshots with the mesh "plate" (two triangles) in them.
 TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
-  const std::string dir = GPUDEM_SNAPSHOT_FIXTURE_DIR;
+  const std::string dir =
+      test::path_from_environment("GPUDEM_SNAPSHOT_FIXTURE_DIR", GPUDEM_SNAPSHOT_FIXTURE_DIR);
   if (comm_rank() == 0) {
     fs::remove_all(dir);
     fs::create_directories(dir);

@@ -1,0 +1,141 @@
+#!/usr/bin/env bash
+# Runs on the GPU machine, from the repository root, with the bundle that scripts/gpu_bundle.sh
+# made (gpu-bundle/gpudem-gpu.tar.xz, carried there): checks and measurements of the CUDA
+# backend, each part's logs under $OUT (default out/gpu_check) and a summary printed last.
+#   tests      the whole test suite as ctest runs it (gpu-bundle/tests.sh), one test per 4 cores
+#              at a time (4 on the 16-core GPU machines), 2 OpenMP threads per rank
+#   sanitizer  compute-sanitizer memcheck (1 and 2 ranks) and racecheck (1 rank) on short
+#              runs of the tool scene (Hertz–Mindlin, rolling, walls, a mesh) and a periodic gas
+#   bench      gpudem-bench-soil on the CUDA backend: settled soil beds of 10^5, 10^6 and
+#              10^7 spheres in each precision, and the largest mixed bed that fits
+#   split      gpudem-mpi --exact-time-split on the benchmarks' settled 10^6 bed
+#              (scripts/bench_scene.sh), 500 steps with a snapshot every 50, on 1, 2 and 4
+#              ranks sharing the GPU: integration, forces, neighbour lists, halo, output
+# Usage: scripts/gpu_check.sh PART... (default: tests sanitizer)
+# Environment: OUT (results), BENCH_ARGS (replace the bench's default arguments), PYTHON (a
+# Python 3 with h5py and numpy, default python3).
+set -uo pipefail
+cd "$(dirname "$0")/.."
+SRC=$PWD
+OUT=${OUT:-$SRC/out/gpu_check}
+WORK=${WORK:-/tmp/gpudem-work}
+BUNDLE=/tmp/gpudem-gpu
+PYTHON=${PYTHON:-python3}
+mkdir -p "$OUT" "$WORK"
+summary=()
+
+unpack() {
+  [ -x "$BUNDLE/bin/gpudem-mpi" ] && return
+  [ -f gpu-bundle/gpudem-gpu.tar.xz ] || { echo "gpu_check: gpu-bundle/gpudem-gpu.tar.xz missing (scripts/gpu_bundle.sh, then carry gpu-bundle)" >&2; exit 2; }
+  tar -C "$(dirname "$BUNDLE")" -xJf gpu-bundle/gpudem-gpu.tar.xz
+}
+
+describe_device() {
+  { date -u; cat gpu-bundle/commit
+    nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.max.sm --format=csv
+    nproc; } > "$OUT/device.txt" 2>&1
+  summary+=("device: $(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -1), bundle of $(cat gpu-bundle/commit)")
+}
+
+# run_test NAME TIMEOUT SKIP_CODE [VAR=VALUE...] -- COMMAND...: one line of gpu-bundle/tests.sh.
+run_test() {
+  local name=$1 limit=$2 skip=$3
+  shift 3
+  local env=()
+  while [ "$1" != "--" ]; do env+=("$1"); shift; done
+  shift
+  local log="$OUT/tests/$name.log" rc
+  (cd "$WORK" && env "${env[@]}" timeout "$limit" "$@") > "$log" 2>&1
+  rc=$?
+  if [ $rc -eq 0 ]; then echo "passed $name" >> "$OUT/tests/results"
+  elif [ $rc -eq "$skip" ]; then echo "skipped $name" >> "$OUT/tests/results"
+  else echo "FAILED $name (exit $rc)" >> "$OUT/tests/results"; fi
+}
+
+part_tests() {
+  mkdir -p "$OUT/tests"
+  : > "$OUT/tests/results"
+  local at_once=$(( $(nproc) / 4 > 1 ? $(nproc) / 4 : 1 ))
+  export OMP_NUM_THREADS=2
+  export GPUDEM_SOURCE_DIR=$SRC GPUDEM_BINARY=$BUNDLE/bin/gpudem-mpi
+  export GPUDEM_SNAPSHOT_FIXTURE_DIR=$WORK/snapshot_fixture PYTHON
+  local lines line fixture='^run_test test_snapshot_writer |snapshot_fixture'
+  mapfile -t lines < <(grep '^run_test' gpu-bundle/tests.sh)
+  # The snapshot fixture's writer and readers in order, then the rest, one test per 4 cores.
+  for line in "${lines[@]}"; do [[ $line =~ $fixture ]] && eval "$line"; done
+  for line in "${lines[@]}"; do
+    [[ $line =~ $fixture ]] && continue
+    while [ "$(jobs -rp | wc -l)" -ge "$at_once" ]; do wait -n; done
+    eval "$line" &
+  done
+  wait
+  # GoogleTest's own count of the cases that skipped inside a passing executable.
+  local skipped failed
+  skipped=$(grep -h "^\[  SKIPPED \] [A-Za-z]" "$OUT"/tests/*.log | sort -u | wc -l)
+  summary+=("tests: $(grep -c '^passed' "$OUT/tests/results") passed, $(grep -c '^skipped' "$OUT/tests/results") skipped, $(grep -c '^FAILED' "$OUT/tests/results") failed; $skipped GoogleTest cases skipped inside them")
+  mapfile -t failed < <(grep '^FAILED' "$OUT/tests/results")
+  for line in "${failed[@]}"; do summary+=("  $line"); done
+}
+
+# sanitize TOOL RANKS SCENE END_TIME: one compute-sanitizer run, its verdict into the summary.
+sanitize() {
+  local tool=$1 ranks=$2 scene=$3 end=$4
+  local name="$tool-np$ranks-$(basename "$scene" .toml)" rc
+  mpirun -np "$ranks" compute-sanitizer --tool "$tool" --error-exitcode 99 --print-limit 20 \
+    "$BUNDLE/bin/gpudem-mpi" "$scene" --backend cuda --set simulation.end_time="$end" \
+    --output-dir "$WORK/$name" --quiet > "$OUT/sanitizer/$name.log" 2>&1
+  rc=$?
+  summary+=("sanitizer $name: exit $rc, $(grep -hE 'ERROR SUMMARY|RACECHECK SUMMARY' "$OUT/sanitizer/$name.log" | sort | uniq -c | tr -s ' ' | paste -sd ';')")
+}
+
+part_sanitizer() {
+  mkdir -p "$OUT/sanitizer"
+  local tool=$SRC/tests/mpi/scenes/tool.toml gas=$SRC/tests/mpi/scenes/periodic_gas.toml
+  sanitize memcheck 1 "$tool" 0.004
+  sanitize memcheck 2 "$tool" 0.004
+  sanitize memcheck 1 "$gas" 0.004
+  sanitize racecheck 1 "$tool" 0.001
+}
+
+part_bench() {
+  local args=${BENCH_ARGS:---backend cuda --sizes 1e5,1e6,1e7 --precisions mixed,double,float --largest}
+  # shellcheck disable=SC2086
+  "$BUNDLE/bin/gpudem-bench-soil" $args > "$OUT/bench_soil.md" 2>&1
+  summary+=("bench: exit $?, $OUT/bench_soil.md")
+  summary+=("$(grep '^|' "$OUT/bench_soil.md")")
+}
+
+part_split() {
+  mkdir -p "$WORK/split/build/bench"
+  ln -sf "$BUNDLE/bin/gpudem-bench-write-bed" "$WORK/split/build/bench/"
+  source scripts/bench_scene.sh
+  write_bench_scene "$WORK/split/build" "$WORK/split" 6 > "$OUT/split.log" 2>&1
+  local dt end every ranks
+  dt=$("$BUNDLE/bin/gpudem-mpi" "$WORK/split/scene.toml" --check | sed -n 's/^dt = \([^ ]*\) s.*/\1/p')
+  end=$(awk -v dt="$dt" 'BEGIN { printf "%.17g", dt * 500 }')
+  every=$(awk -v dt="$dt" 'BEGIN { printf "%.17g", dt * 50 }')
+  for ranks in 1 2 4; do
+    echo "== $ranks rank(s)" >> "$OUT/split.log"
+    mpirun -np "$ranks" "$BUNDLE/bin/gpudem-mpi" "$WORK/split/scene.toml" --backend cuda \
+      --exact-time-split --set simulation.end_time="$end" --set output.every="$every" \
+      --set "decomposition.dims=[$ranks,1,1]" --output-dir "$WORK/split/n$ranks" \
+      >> "$OUT/split.log" 2>&1
+    summary+=("split, $ranks rank(s): exit $?")
+  done
+  mapfile -t lines < <(grep -E "^(== |time split|done)" "$OUT/split.log")
+  summary+=("${lines[@]}")
+}
+
+unpack
+source "$BUNDLE/env.sh"
+export PATH=$PATH:/usr/local/cuda/bin  # compute-sanitizer
+describe_device
+parts=("$@")
+[ ${#parts[@]} -gt 0 ] || parts=(tests sanitizer)
+for part in "${parts[@]}"; do
+  case $part in
+    tests | sanitizer | bench | split) "part_$part" ;;
+    *) echo "gpu_check: unknown part '$part' (tests, sanitizer, bench, split)" >&2; exit 2 ;;
+  esac
+done
+printf '%s\n' "${summary[@]}" | tee "$OUT/summary.txt"
