@@ -3,7 +3,7 @@
 # made (gpu-bundle/gpudem-gpu.tar.xz, carried there): checks and measurements of the CUDA
 # backend, each part's logs under $OUT (default out/gpu_check) and a summary printed last.
 #   tests      the whole test suite as ctest runs it (gpu-bundle/tests.sh), one test per 4 cores
-#              at a time (4 on the 16-core GPU machines), 2 OpenMP threads per rank
+#              at a time (4 on the 16-core GPU machines), one OpenMP thread per rank
 #   sanitizer  compute-sanitizer memcheck (1 and 2 ranks) and racecheck (1 rank) on short
 #              runs of the tool scene (Hertz–Mindlin, rolling, walls, a mesh) and a periodic gas
 #   bench      gpudem-bench-soil on the CUDA backend: settled soil beds of 10^5, 10^6 and
@@ -34,7 +34,7 @@ describe_device() {
   { date -u; cat gpu-bundle/commit
     nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.max.sm --format=csv
     nproc; } > "$OUT/device.txt" 2>&1
-  summary+=("device: $(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -1), bundle of $(cat gpu-bundle/commit)")
+  summary+=("device: $(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -1), bundle of $(paste -sd ' ' gpu-bundle/commit)")
 }
 
 # run_test NAME TIMEOUT SKIP_CODE [VAR=VALUE...] -- COMMAND...: one line of gpu-bundle/tests.sh.
@@ -56,7 +56,7 @@ part_tests() {
   mkdir -p "$OUT/tests"
   : > "$OUT/tests/results"
   local at_once=$(( $(nproc) / 4 > 1 ? $(nproc) / 4 : 1 ))
-  export OMP_NUM_THREADS=2
+  export OMP_NUM_THREADS=1  # as scripts/test.sh: ranks and tests share the cores
   export GPUDEM_SOURCE_DIR=$SRC GPUDEM_BINARY=$BUNDLE/bin/gpudem-mpi
   export GPUDEM_SNAPSHOT_FIXTURE_DIR=$WORK/snapshot_fixture PYTHON
   local lines line fixture='^run_test test_snapshot_writer |snapshot_fixture'
@@ -116,7 +116,8 @@ part_split() {
   every=$(awk -v dt="$dt" 'BEGIN { printf "%.17g", dt * 50 }')
   for ranks in 1 2 4; do
     echo "== $ranks rank(s)" >> "$OUT/split.log"
-    mpirun -np "$ranks" "$BUNDLE/bin/gpudem-mpi" "$WORK/split/scene.toml" --backend cuda \
+    OMP_NUM_THREADS=$(( $(nproc) / ranks )) \
+      mpirun -np "$ranks" "$BUNDLE/bin/gpudem-mpi" "$WORK/split/scene.toml" --backend cuda \
       --exact-time-split --set simulation.end_time="$end" --set output.every="$every" \
       --set "decomposition.dims=[$ranks,1,1]" --output-dir "$WORK/split/n$ranks" \
       >> "$OUT/split.log" 2>&1
