@@ -24,9 +24,10 @@ PYTHON=${PYTHON:-python3}
 mkdir -p "$OUT" "$WORK"
 summary=()
 
+# Unpacks the carried bundle afresh (a warm machine may hold an older one).
 unpack() {
-  [ -x "$BUNDLE/bin/gpudem-mpi" ] && return
   [ -f gpu-bundle/gpudem-gpu.tar.xz ] || { echo "gpu_check: gpu-bundle/gpudem-gpu.tar.xz missing (scripts/gpu_bundle.sh, then carry gpu-bundle)" >&2; exit 2; }
+  rm -rf "$BUNDLE"
   tar -C "$(dirname "$BUNDLE")" -xJf gpu-bundle/gpudem-gpu.tar.xz
 }
 
