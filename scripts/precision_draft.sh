@@ -3,7 +3,7 @@
 # precision policies: a bed settled in each, and the sweep pass in each from the double bed and
 # from its own bed. Prints the wall time of every stage and each pass's draft (mean and standard
 # deviation over 0.45-0.84 s, plot_draft.py); writes precision.csv and each pass's draft.png.
-# Usage: scripts/precision_draft.sh [OUT]   (NP=ranks, default 1)
+# Usage: scripts/precision_draft.sh [OUT]   (NP=ranks, default 1; BUILD_DIR as for setup.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh > /dev/null
@@ -15,7 +15,7 @@ run() {  # PRECISION SCENE DIR [--set ...]: one stage, timed
   local precision=$1 scene=$2 dir=$3
   shift 3
   local start=$SECONDS
-  mpirun -np "$NP" --bind-to none build/gpudem-mpi --quiet "$scene" --output-dir "$dir" \
+  mpirun -np "$NP" --bind-to none "${BUILD_DIR:-build}"/gpudem-mpi --quiet "$scene" --output-dir "$dir" \
     --set "simulation.precision=\"$precision\"" "$@"
   echo "$(basename "$dir"): $((SECONDS - start)) s"
 }
