@@ -1,6 +1,9 @@
 #pragma once
 /// Element-wise array functors for parallel_for, shared by the engine's components.
 #include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "core/Config.hpp"
@@ -29,6 +32,17 @@ template <class Space, class T>
 void copy_values(const T* in, std::size_t n, DeviceArray<T, Space>& out) {
   out.resize(n);
   parallel_for(Space{}, n, CopyArray<T>{in, out.data()});
+}
+
+/// Turns the n counts at offsets[0, n) into CSR offsets in place (offsets holds n + 1 values in
+/// Space memory): offsets[i] = counts[0] + ... + counts[i - 1], offsets[n] = the total, which it
+/// returns. Throws std::overflow_error(`overflow`) when the total does not fit 32 bits.
+template <class Space>
+std::uint64_t counts_to_offsets(std::uint32_t* offsets, std::size_t n, const char* overflow) {
+  const std::uint64_t total = exclusive_scan(Space{}, offsets, offsets, n);
+  if (total > std::numeric_limits<std::uint32_t>::max()) throw std::overflow_error(overflow);
+  parallel_for(Space{}, 1, Fill<std::uint32_t>{offsets + n, static_cast<std::uint32_t>(total)});
+  return total;
 }
 
 /// Host copy of the n values at `data` in Space memory (a part of a larger array).

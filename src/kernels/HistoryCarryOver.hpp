@@ -120,9 +120,8 @@ class HistoryCarryOver {
     offsets_.resize(rows + 1);
     const carry_over_kernels::KeptInRow<State> row{offsets, history};
     parallel_for(Space{}, rows, carry_over_kernels::CountKept<State>{row, offsets_.data()});
-    const std::uint64_t total = exclusive_scan(Space{}, offsets_.data(), offsets_.data(), rows);
-    parallel_for(Space{}, 1,
-                 Fill<std::uint32_t>{offsets_.data() + rows, static_cast<std::uint32_t>(total)});
+    const std::uint64_t total = counts_to_offsets<Space>(
+        offsets_.data(), rows, "HistoryCarryOver: more than 2^32 - 1 kept records");
     keys_.resize(total);
     records_.resize(total);
     parallel_for(Space{}, rows,

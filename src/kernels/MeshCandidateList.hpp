@@ -293,11 +293,8 @@ class MeshCandidateList {
     parallel_for(Space{}, n,
                  ParticleTriangles<false, P>{bins_, images, position_radius, skin, offsets_.data(),
                                              nullptr});
-    const std::uint64_t total = exclusive_scan(Space{}, offsets_.data(), offsets_.data(), n);
-    if (total > std::numeric_limits<std::uint32_t>::max())
-      throw std::overflow_error("MeshCandidateList: more than 2^32 - 1 particle-triangle pairs");
-    parallel_for(Space{}, 1,
-                 Fill<std::uint32_t>{offsets_.data() + n, static_cast<std::uint32_t>(total)});
+    const std::uint64_t total = counts_to_offsets<Space>(
+        offsets_.data(), n, "MeshCandidateList: more than 2^32 - 1 particle-triangle pairs");
     triangles_.resize(total);
     parallel_for(Space{}, n,
                  ParticleTriangles<true, P>{bins_, images, position_radius, skin, offsets_.data(),

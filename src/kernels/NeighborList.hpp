@@ -14,11 +14,11 @@
 /// rank count.
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <stdexcept>
 
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
+#include "kernels/ArrayKernels.hpp"
 #include "kernels/CellList.hpp"
 #include "kernels/DeviceArray.hpp"
 #include "kernels/ParallelFor.hpp"
@@ -160,12 +160,6 @@ struct WriteNeighbors {
   }
 };
 
-struct StoreValue {
-  std::uint32_t* target;
-  std::uint32_t value;
-  GPUDEM_HD void operator()(std::size_t) const { *target = value; }
-};
-
 struct ValueOf {
   const std::uint32_t* values;
   GPUDEM_HD Real operator()(std::size_t i) const { return values[i]; }
@@ -192,12 +186,8 @@ class NeighborList {
     release(neighbors_);
     offsets_.resize(n_ + 1);
     candidates_examined_ = count_neighbors(search, layout);
-    pairs_kept_ = exclusive_scan(Space{}, offsets_.data(), offsets_.data(), n_);
-    if (pairs_kept_ > std::numeric_limits<std::uint32_t>::max())
-      throw std::overflow_error("NeighborList: more than 2^32 - 1 neighbour entries");
-    parallel_for(Space{}, 1,
-                 neighbor_list_kernels::StoreValue{offsets_.data() + n_,
-                                                   static_cast<std::uint32_t>(pairs_kept_)});
+    pairs_kept_ = counts_to_offsets<Space>(offsets_.data(), n_,
+                                           "NeighborList: more than 2^32 - 1 neighbour entries");
     neighbors_.resize(pairs_kept_);
     parallel_for(
         Space{}, n_,
