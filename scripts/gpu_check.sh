@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs on the GPU machine, from the repository root, with the bundle that scripts/gpu_bundle.sh
 # made (gpu-bundle/gpudem-gpu.tar.xz, carried there): checks and measurements of the CUDA
-# backend, each part's logs under $OUT (default out/gpu_check) and a summary printed last.
+# backend. Under $OUT (default out/gpu_check) it leaves few files, refreshed after each part:
+# summary.txt (also printed last), device.txt, bench_soil.md and logs.tar.gz (every log).
 #   tests      the whole test suite as ctest runs it (gpu-bundle/tests.sh), one test per 4 cores
 #              at a time (4 on the 16-core GPU machines), one OpenMP thread per rank
 #   sanitizer  compute-sanitizer memcheck (1 and 2 ranks) and racecheck (1 rank) on short
@@ -21,8 +22,16 @@ OUT=${OUT:-$SRC/out/gpu_check}
 WORK=${WORK:-/tmp/gpudem-work}
 BUNDLE=/tmp/gpudem-gpu
 PYTHON=${PYTHON:-python3}
-mkdir -p "$OUT" "$WORK"
+LOGS=$WORK/logs
+rm -rf "$LOGS"
+mkdir -p "$OUT" "$WORK" "$LOGS"
 summary=()
+
+# Leaves the summary so far and every log under $OUT, so that a run cut short still reports.
+publish() {
+  printf '%s\n' "${summary[@]}" > "$OUT/summary.txt"
+  tar -C "$WORK" -czf "$OUT/logs.tar.gz" logs
+}
 
 # Unpacks the carried bundle afresh (a warm machine may hold an older one).
 unpack() {
@@ -45,17 +54,17 @@ run_test() {
   local env=()
   while [ "$1" != "--" ]; do env+=("$1"); shift; done
   shift
-  local log="$OUT/tests/$name.log" rc
+  local log="$LOGS/tests/$name.log" rc
   (cd "$WORK" && env "${env[@]}" timeout "$limit" "$@") > "$log" 2>&1
   rc=$?
-  if [ $rc -eq 0 ]; then echo "passed $name" >> "$OUT/tests/results"
-  elif [ $rc -eq "$skip" ]; then echo "skipped $name" >> "$OUT/tests/results"
-  else echo "FAILED $name (exit $rc)" >> "$OUT/tests/results"; fi
+  if [ $rc -eq 0 ]; then echo "passed $name" >> "$LOGS/tests/results"
+  elif [ $rc -eq "$skip" ]; then echo "skipped $name" >> "$LOGS/tests/results"
+  else echo "FAILED $name (exit $rc)" >> "$LOGS/tests/results"; fi
 }
 
 part_tests() {
-  mkdir -p "$OUT/tests"
-  : > "$OUT/tests/results"
+  mkdir -p "$LOGS/tests"
+  : > "$LOGS/tests/results"
   local at_once=$(( $(nproc) / 4 > 1 ? $(nproc) / 4 : 1 ))
   export OMP_NUM_THREADS=1  # as scripts/test.sh: ranks and tests share the cores
   export GPUDEM_SOURCE_DIR=$SRC GPUDEM_BINARY=$BUNDLE/bin/gpudem-mpi
@@ -66,15 +75,15 @@ part_tests() {
   for line in "${lines[@]}"; do [[ $line =~ $fixture ]] && eval "$line"; done
   for line in "${lines[@]}"; do
     [[ $line =~ $fixture ]] && continue
-    while [ "$(jobs -rp | wc -l)" -ge "$at_once" ]; do wait -n; done
+    while [ "$(jobs -rp | wc -l)" -ge "$at_once" ]; do wait -n; publish; done
     eval "$line" &
   done
   wait
   # GoogleTest's own count of the cases that skipped inside a passing executable.
   local skipped failed
-  skipped=$(grep -h "^\[  SKIPPED \] [A-Za-z]" "$OUT"/tests/*.log | sort -u | wc -l)
-  summary+=("tests: $(grep -c '^passed' "$OUT/tests/results") passed, $(grep -c '^skipped' "$OUT/tests/results") skipped, $(grep -c '^FAILED' "$OUT/tests/results") failed; $skipped GoogleTest cases skipped inside them")
-  mapfile -t failed < <(grep '^FAILED' "$OUT/tests/results")
+  skipped=$(grep -h "^\[  SKIPPED \] [A-Za-z]" "$LOGS"/tests/*.log | sort -u | wc -l)
+  summary+=("tests: $(grep -c '^passed' "$LOGS/tests/results") passed, $(grep -c '^skipped' "$LOGS/tests/results") skipped, $(grep -c '^FAILED' "$LOGS/tests/results") failed; $skipped GoogleTest cases skipped inside them")
+  mapfile -t failed < <(grep '^FAILED' "$LOGS/tests/results")
   for line in "${failed[@]}"; do summary+=("  $line"); done
 }
 
@@ -84,13 +93,13 @@ sanitize() {
   local name="$tool-np$ranks-$(basename "$scene" .toml)" rc
   mpirun -np "$ranks" compute-sanitizer --tool "$tool" --error-exitcode 99 --print-limit 20 \
     "$BUNDLE/bin/gpudem-mpi" "$scene" --backend cuda --set simulation.end_time="$end" \
-    --output-dir "$WORK/$name" --quiet > "$OUT/sanitizer/$name.log" 2>&1
+    --output-dir "$WORK/$name" --quiet > "$LOGS/sanitizer/$name.log" 2>&1
   rc=$?
-  summary+=("sanitizer $name: exit $rc, $(grep -hE 'ERROR SUMMARY|RACECHECK SUMMARY' "$OUT/sanitizer/$name.log" | sort | uniq -c | tr -s ' ' | paste -sd ';')")
+  summary+=("sanitizer $name: exit $rc, $(grep -hE 'ERROR SUMMARY|RACECHECK SUMMARY' "$LOGS/sanitizer/$name.log" | sort | uniq -c | tr -s ' ' | paste -sd ';')")
 }
 
 part_sanitizer() {
-  mkdir -p "$OUT/sanitizer"
+  mkdir -p "$LOGS/sanitizer"
   local tool=$SRC/tests/mpi/scenes/tool.toml gas=$SRC/tests/mpi/scenes/periodic_gas.toml
   sanitize memcheck 1 "$tool" 0.004
   sanitize memcheck 2 "$tool" 0.004
@@ -110,21 +119,21 @@ part_split() {
   mkdir -p "$WORK/split/build/bench"
   ln -sf "$BUNDLE/bin/gpudem-bench-write-bed" "$WORK/split/build/bench/"
   source scripts/bench_scene.sh
-  write_bench_scene "$WORK/split/build" "$WORK/split" 6 > "$OUT/split.log" 2>&1
+  write_bench_scene "$WORK/split/build" "$WORK/split" 6 > "$LOGS/split.log" 2>&1
   local dt end every ranks
   dt=$("$BUNDLE/bin/gpudem-mpi" "$WORK/split/scene.toml" --check | sed -n 's/^dt = \([^ ]*\) s.*/\1/p')
   end=$(awk -v dt="$dt" 'BEGIN { printf "%.17g", dt * 500 }')
   every=$(awk -v dt="$dt" 'BEGIN { printf "%.17g", dt * 50 }')
   for ranks in 1 2 4; do
-    echo "== $ranks rank(s)" >> "$OUT/split.log"
+    echo "== $ranks rank(s)" >> "$LOGS/split.log"
     OMP_NUM_THREADS=$(( $(nproc) / ranks )) \
       mpirun -np "$ranks" "$BUNDLE/bin/gpudem-mpi" "$WORK/split/scene.toml" --backend cuda \
       --exact-time-split --set simulation.end_time="$end" --set output.every="$every" \
       --set "decomposition.dims=[$ranks,1,1]" --output-dir "$WORK/split/n$ranks" \
-      >> "$OUT/split.log" 2>&1
+      >> "$LOGS/split.log" 2>&1
     summary+=("split, $ranks rank(s): exit $?")
   done
-  mapfile -t lines < <(grep -E "^(== |time split|done)" "$OUT/split.log")
+  mapfile -t lines < <(grep -E "^(== |time split|done)" "$LOGS/split.log")
   summary+=("${lines[@]}")
 }
 
@@ -136,8 +145,8 @@ parts=("$@")
 [ ${#parts[@]} -gt 0 ] || parts=(tests sanitizer)
 for part in "${parts[@]}"; do
   case $part in
-    tests | sanitizer | bench | split) "part_$part" ;;
+    tests | sanitizer | bench | split) "part_$part"; publish ;;
     *) echo "gpu_check: unknown part '$part' (tests, sanitizer, bench, split)" >&2; exit 2 ;;
   esac
 done
-printf '%s\n' "${summary[@]}" | tee "$OUT/summary.txt"
+cat "$OUT/summary.txt"
