@@ -14,7 +14,8 @@
 #              ranks sharing the GPU: integration, forces, neighbour lists, halo, output
 # Usage: scripts/gpu_check.sh PART... (default: tests sanitizer)
 # Environment: OUT (results), BENCH_ARGS (replace the bench's default arguments), PYTHON (a
-# Python 3 with h5py and numpy, default python3).
+# Python 3 with h5py and numpy, default python3), TESTS (an extended regular expression: only
+# the tests whose whole name it matches, e.g. 'test_settling|mpi_.*'; default all).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 SRC=$PWD
@@ -22,6 +23,7 @@ OUT=${OUT:-$SRC/out/gpu_check}
 WORK=${WORK:-/tmp/gpudem-work}
 BUNDLE=/tmp/gpudem-gpu
 PYTHON=${PYTHON:-python3}
+TESTS=${TESTS:-.*}
 LOGS=$WORK/logs
 rm -rf "$LOGS"
 mkdir -p "$OUT" "$WORK" "$LOGS"
@@ -70,7 +72,7 @@ part_tests() {
   export GPUDEM_SOURCE_DIR=$SRC GPUDEM_BINARY=$BUNDLE/bin/gpudem-mpi
   export GPUDEM_SNAPSHOT_FIXTURE_DIR=$WORK/snapshot_fixture PYTHON
   local lines line fixture='^run_test test_snapshot_writer |snapshot_fixture'
-  mapfile -t lines < <(grep '^run_test' gpu-bundle/tests.sh)
+  mapfile -t lines < <(grep '^run_test' gpu-bundle/tests.sh | grep -E "^run_test ($TESTS) ")
   # The snapshot fixture's writer and readers in order, then the rest, one test per 4 cores.
   for line in "${lines[@]}"; do [[ $line =~ $fixture ]] && eval "$line"; done
   for line in "${lines[@]}"; do

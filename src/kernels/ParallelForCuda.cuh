@@ -7,12 +7,14 @@
 #include <thrust/functional.h>
 #include <thrust/iterator/counting_iterator.h>
 #include <thrust/scan.h>
+#include <thrust/system/cuda/execution_policy.h>
 #include <thrust/transform_reduce.h>
 #include <cub/device/device_radix_sort.cuh>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -116,18 +118,68 @@ double seconds_to_run(CudaSpace, const W& work) {
   return 1e-3 * milliseconds;
 }
 
+namespace detail {
+
+/// Gives `a` n elements without keeping its contents: allocates only when n exceeds its capacity
+/// (from size 0, DeviceArray::resize has nothing to copy).
+template <class T>
+void size_discarding(DeviceArray<T, CudaSpace>& a, std::size_t n) {
+  a.resize(0);
+  a.resize(n);
+}
+
+/// Device memory for the temporary storage of thrust's reductions and scans, kept between calls
+/// and only ever grown: once warm, a reduction allocates nothing (a cudaMalloc and a cudaFree,
+/// which waits for the device, would each cost a round trip to the driver every step). One pool
+/// per process (one device per rank); blocks are reused while free.
+class ThrustScratch {
+ public:
+  using value_type = char;
+
+  char* allocate(std::ptrdiff_t bytes) {
+    const auto n = std::max<std::size_t>(static_cast<std::size_t>(bytes), 1);
+    Block* chosen = nullptr;  // the largest free block
+    for (Block& b : blocks_)
+      if (!b.in_use && (!chosen || b.memory.bytes() > chosen->memory.bytes())) chosen = &b;
+    if (!chosen) chosen = &blocks_.emplace_back();
+    if (chosen->memory.bytes() < n) size_discarding(chosen->memory, n);
+    chosen->in_use = true;
+    return reinterpret_cast<char*>(chosen->memory.data());
+  }
+
+  void deallocate(char* p, std::size_t) {
+    for (Block& b : blocks_)
+      if (reinterpret_cast<char*>(b.memory.data()) == p) b.in_use = false;
+  }
+
+ private:
+  struct Block {
+    DeviceArray<unsigned char, CudaSpace> memory;
+    bool in_use = false;
+  };
+  std::deque<Block> blocks_;  // stable addresses as blocks are added
+};
+
+/// thrust's execution policy on the default stream with the process's ThrustScratch.
+inline auto thrust_on_scratch() {
+  static ThrustScratch scratch;
+  return thrust::cuda::par(scratch);
+}
+
+}  // namespace detail
+
 template <class F>
 Real reduce_max(CudaSpace, std::size_t n, Real identity, const F& f) {
   thrust::counting_iterator<std::size_t> first(0);
-  return thrust::transform_reduce(thrust::device, first, first + n, detail::IndexTransform<F>{f},
-                                  identity, detail::MaxOp{});
+  return thrust::transform_reduce(detail::thrust_on_scratch(), first, first + n,
+                                  detail::IndexTransform<F>{f}, identity, detail::MaxOp{});
 }
 
 template <class F>
 Real reduce_sum(CudaSpace, std::size_t n, const F& f) {
   thrust::counting_iterator<std::size_t> first(0);
-  return thrust::transform_reduce(thrust::device, first, first + n, detail::IndexTransform<F>{f},
-                                  Real(0), thrust::plus<Real>());
+  return thrust::transform_reduce(detail::thrust_on_scratch(), first, first + n,
+                                  detail::IndexTransform<F>{f}, Real(0), thrust::plus<Real>());
 }
 
 /// out[i] = in[0] + ... + in[i-1] (modulo 2^32); returns the total in 64 bits, so that the caller
@@ -135,9 +187,10 @@ Real reduce_sum(CudaSpace, std::size_t n, const F& f) {
 inline std::uint64_t exclusive_scan(CudaSpace, const std::uint32_t* in, std::uint32_t* out,
                                     std::size_t n) {
   if (n == 0) return 0;
-  const std::uint64_t total = thrust::transform_reduce(
-      thrust::device, in, in + n, detail::Widen{}, std::uint64_t(0), thrust::plus<std::uint64_t>());
-  thrust::exclusive_scan(thrust::device, in, in + n, out);
+  const std::uint64_t total =
+      thrust::transform_reduce(detail::thrust_on_scratch(), in, in + n, detail::Widen{},
+                               std::uint64_t(0), thrust::plus<std::uint64_t>());
+  thrust::exclusive_scan(detail::thrust_on_scratch(), in, in + n, out);
   return total;
 }
 
@@ -156,14 +209,6 @@ struct RadixSortScratch {
 inline RadixSortScratch& radix_sort_scratch() {
   static RadixSortScratch scratch;
   return scratch;
-}
-
-/// Gives `a` n elements without keeping its contents: allocates only when n exceeds its capacity
-/// (from size 0, DeviceArray::resize has nothing to copy).
-template <class T>
-void size_discarding(DeviceArray<T, CudaSpace>& a, std::size_t n) {
-  a.resize(0);
-  a.resize(n);
 }
 
 }  // namespace detail

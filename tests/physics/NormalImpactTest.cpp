@@ -100,12 +100,13 @@ ContactState pair_state(const ParticleStore& p) {
   return s;
 }
 
-/// Particle 0 on the floor z = 0: δ = r − z, δ̇ = −v_z, F_n = −(force on the wall)_z.
-ContactState wall_state(const ParticleStore& p, const Diagnostics& d) {
+/// Particle 0 on the floor z = 0: δ = r − z, δ̇ = −v_z, F_n = −(force on the wall)_z, read
+/// from the engine's diagnostics while in contact (0 before).
+ContactState wall_state(const ParticleStore& p, const StepEngine& engine) {
   ContactState s;
   s.overlap = p.position_radius[0].w - p.position_radius[0].z;
   s.overlap_rate = -p.velocity_inv_mass[0].z;
-  s.normal_force = -d.wall_force[0].z;
+  s.normal_force = s.overlap > 0 ? -engine.diagnostics().wall_force[0].z : 0.0;
   return s;
 }
 
@@ -162,7 +163,7 @@ class NormalImpact : public BackendTest {
  private:
   ContactState sample(StepEngine& engine, bool on_wall) {
     engine.get_particles(current_);
-    return on_wall ? wall_state(current_, engine.diagnostics()) : pair_state(current_);
+    return on_wall ? wall_state(current_, engine) : pair_state(current_);
   }
   ParticleStore current_;
 };
