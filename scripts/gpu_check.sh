@@ -3,6 +3,8 @@
 # made (gpu-bundle/gpudem-gpu.tar.xz, carried there): checks and measurements of the CUDA
 # backend. Under $OUT (default out/gpu_check) it leaves few files, refreshed after each part:
 # summary.txt (also printed last), device.txt, bench_soil.md and logs.tar.gz (every log).
+#   mps        starts the CUDA Multi-Process Service for the parts after it (processes that
+#              share the GPU then run side by side rather than in turns)
 #   tests      the whole test suite as ctest runs it (gpu-bundle/tests.sh), one test per 4 cores
 #              at a time (4 on the 16-core GPU machines), one OpenMP thread per rank
 #   sanitizer  compute-sanitizer memcheck (1 and 2 ranks) and racecheck (1 rank) on short
@@ -109,6 +111,27 @@ part_sanitizer() {
   sanitize racecheck 1 "$tool" 0.001
 }
 
+# Starts the CUDA Multi-Process Service, so that the processes sharing the GPU (tests run side
+# by side, ranks) run their kernels concurrently instead of taking turns in time slices; stops it
+# again if a CUDA run then fails.
+part_mps() {
+  local log=$LOGS/mps.log
+  if ! command -v nvidia-cuda-mps-control > /dev/null; then
+    summary+=("mps: nvidia-cuda-mps-control not found, the processes take turns on the GPU")
+    return
+  fi
+  export CUDA_MPS_PIPE_DIRECTORY=$WORK/mps-pipe CUDA_MPS_LOG_DIRECTORY=$WORK/mps-log
+  mkdir -p "$CUDA_MPS_PIPE_DIRECTORY" "$CUDA_MPS_LOG_DIRECTORY"
+  nvidia-cuda-mps-control -d > "$log" 2>&1
+  if "$BUNDLE/bin/gpudem-mpi" "$SRC/tests/mpi/scenes/tool.toml" --backend cuda --quiet \
+      --set simulation.end_time=0.0005 --output-dir "$WORK/mps-probe" >> "$log" 2>&1; then
+    summary+=("mps: on")
+  else
+    echo quit | nvidia-cuda-mps-control >> "$log" 2>&1
+    summary+=("mps: a CUDA run failed under it (logs/mps.log), stopped")
+  fi
+}
+
 part_bench() {
   local args=${BENCH_ARGS:---backend cuda --sizes 1e5,1e6,1e7 --precisions mixed,double,float --largest}
   # shellcheck disable=SC2086
@@ -147,8 +170,8 @@ parts=("$@")
 [ ${#parts[@]} -gt 0 ] || parts=(tests sanitizer)
 for part in "${parts[@]}"; do
   case $part in
-    tests | sanitizer | bench | split) "part_$part"; publish ;;
-    *) echo "gpu_check: unknown part '$part' (tests, sanitizer, bench, split)" >&2; exit 2 ;;
+    mps | tests | sanitizer | bench | split) "part_$part"; publish ;;
+    *) echo "gpu_check: unknown part '$part' (mps, tests, sanitizer, bench, split)" >&2; exit 2 ;;
   esac
 done
 cat "$OUT/summary.txt"
