@@ -14,7 +14,7 @@
 #   split      gpudem-mpi --exact-time-split on the benchmarks' settled 10^6 bed
 #              (scripts/bench_scene.sh), 500 steps with a snapshot every 50, on 1, 2 and 4
 #              ranks sharing the GPU: integration, forces, neighbour lists, halo, output
-# Usage: scripts/gpu_check.sh PART... (default: tests sanitizer)
+# Usage: scripts/gpu_check.sh PART... (default: mps tests sanitizer)
 # Environment: OUT (results), BENCH_ARGS (replace the bench's default arguments), PYTHON (a
 # Python 3 with h5py and numpy, default python3), TESTS (an extended regular expression: only
 # the tests whose whole name it matches, e.g. 'test_settling|mpi_.*'; default all).
@@ -167,7 +167,7 @@ source "$BUNDLE/env.sh"
 export PATH=$PATH:/usr/local/cuda/bin  # compute-sanitizer
 describe_device
 parts=("$@")
-[ ${#parts[@]} -gt 0 ] || parts=(tests sanitizer)
+[ ${#parts[@]} -gt 0 ] || parts=(mps tests sanitizer)
 for part in "${parts[@]}"; do
   case $part in
     mps | tests | sanitizer | bench | split) "part_$part"; publish ;;

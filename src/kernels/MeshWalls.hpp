@@ -149,8 +149,10 @@ class MeshWalls {
 
   /// Moves every mesh to its pose at time t (from its initial pose, so no error accumulates)
   /// and records its surface velocity and its image centre at t: b(t) = R(t)(b₀ − c₀) + c(t),
-  /// b₀ the initial one, R(t) the rotation by ∫₀ᵗ ω, c the rotation centre.
+  /// b₀ the initial one, R(t) the rotation by ∫₀ᵗ ω, c the rotation centre. Where no mesh has
+  /// a prescribed motion, the first call's poses hold for every t and later calls do nothing.
   void set_time(double t) {
+    if (poses_fixed_) return;
     std::vector<MeshKinematics> kinematics;
     std::vector<Vec3> image_centre = initial_image_centre_;
     for (std::uint32_t m = 0; m < count(); ++m) {
@@ -168,11 +170,14 @@ class MeshWalls {
     }
     kinematics_.upload(kinematics);
     image_centre_.upload(image_centre);
+    poses_fixed_ = std::all_of(setups_.begin(), setups_.end(), [](const MeshWallSetup& mesh) {
+      return mesh.motion.stands_still();
+    });
   }
 
   /// True once some vertex has moved more than skin/2 since the last build.
   bool moved_beyond(Real half_skin) const {
-    if (empty()) return false;
+    if (empty() || poses_fixed_) return false;
     const Real moved2 =
         reduce_max(Space{}, vertices_.size(), Real(0),
                    mesh_wall_kernels::VertexDisplacement{vertices_.data(), at_build_.data()});
@@ -308,6 +313,7 @@ class MeshWalls {
   std::vector<std::size_t> first_vertex_;  ///< mesh m's vertices: [first[m], first[m + 1])
   PeriodicBox box_;
   std::vector<Vec3> initial_image_centre_;  ///< b₀ of each mesh [m]
+  bool poses_fixed_ = false;                ///< no mesh moves, and set_time has placed them once
   DeviceArray<Vec3, Space> initial_;
   DeviceArray<Vec3, Space> vertices_;
   DeviceArray<Vec3, Space> at_build_;
