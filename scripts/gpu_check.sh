@@ -3,8 +3,9 @@
 # made (gpu-bundle/gpudem-gpu.tar.xz, carried there): checks and measurements of the CUDA
 # backend. Under $OUT (default out/gpu_check) it leaves few files, refreshed after each part:
 # summary.txt (also printed last), device.txt, bench_soil.md and logs.tar.gz (every log).
-#   mps        starts the CUDA Multi-Process Service for the parts after it (processes that
-#              share the GPU then run side by side rather than in turns)
+#   mps        starts the CUDA Multi-Process Service for the parts after it, up to the
+#              sanitizer (processes that share the GPU then run side by side rather than in
+#              turns); stopped at the end
 #   tests      the whole test suite as ctest runs it (gpu-bundle/tests.sh), one test per 4 cores
 #              at a time (4 on the 16-core GPU machines), one OpenMP thread per rank
 #   sanitizer  compute-sanitizer memcheck (1 and 2 ranks) and racecheck (1 rank) on short
@@ -34,7 +35,8 @@ summary=()
 # Leaves the summary so far and every log under $OUT, so that a run cut short still reports.
 publish() {
   printf '%s\n' "${summary[@]}" > "$OUT/summary.txt"
-  tar -C "$WORK" -czf "$OUT/logs.tar.gz" logs
+  tar -C "$WORK" --warning=no-file-changed -czf "$WORK/logs.tar.gz.part" logs &&
+    mv "$WORK/logs.tar.gz.part" "$OUT/logs.tar.gz"
 }
 
 # Unpacks the carried bundle afresh (a warm machine may hold an older one).
@@ -74,7 +76,7 @@ part_tests() {
   export GPUDEM_SOURCE_DIR=$SRC GPUDEM_BINARY=$BUNDLE/bin/gpudem-mpi
   export GPUDEM_SNAPSHOT_FIXTURE_DIR=$WORK/snapshot_fixture PYTHON
   local lines line fixture='^run_test test_snapshot_writer |snapshot_fixture'
-  mapfile -t lines < <(grep '^run_test' gpu-bundle/tests.sh | grep -E "^run_test ($TESTS) ")
+  mapfile -t lines < <(awk -v names="^($TESTS)\$" '$1 == "run_test" && $2 ~ names' gpu-bundle/tests.sh)
   # The snapshot fixture's writer and readers in order, then the rest, one test per 4 cores.
   for line in "${lines[@]}"; do [[ $line =~ $fixture ]] && eval "$line"; done
   for line in "${lines[@]}"; do
@@ -103,6 +105,7 @@ sanitize() {
 }
 
 part_sanitizer() {
+  stop_mps
   mkdir -p "$LOGS/sanitizer"
   local tool=$SRC/tests/mpi/scenes/tool.toml gas=$SRC/tests/mpi/scenes/periodic_gas.toml
   sanitize memcheck 1 "$tool" 0.004
@@ -113,7 +116,9 @@ part_sanitizer() {
 
 # Starts the CUDA Multi-Process Service, so that the processes sharing the GPU (tests run side
 # by side, ranks) run their kernels concurrently instead of taking turns in time slices; stops it
-# again if a CUDA run then fails.
+# again if a CUDA run then fails. Under MPS a fatal fault in one process ends the others on the
+# GPU too: a test that fails alone shows in its own log.
+mps_started=false
 part_mps() {
   local log=$LOGS/mps.log
   if ! command -v nvidia-cuda-mps-control > /dev/null; then
@@ -122,15 +127,25 @@ part_mps() {
   fi
   export CUDA_MPS_PIPE_DIRECTORY=$WORK/mps-pipe CUDA_MPS_LOG_DIRECTORY=$WORK/mps-log
   mkdir -p "$CUDA_MPS_PIPE_DIRECTORY" "$CUDA_MPS_LOG_DIRECTORY"
-  nvidia-cuda-mps-control -d > "$log" 2>&1
+  nvidia-cuda-mps-control -d > "$log" 2>&1 && mps_started=true
   if "$BUNDLE/bin/gpudem-mpi" "$SRC/tests/mpi/scenes/tool.toml" --backend cuda --quiet \
       --set simulation.end_time=0.0005 --output-dir "$WORK/mps-probe" >> "$log" 2>&1; then
     summary+=("mps: on")
   else
-    echo quit | nvidia-cuda-mps-control >> "$log" 2>&1
+    stop_mps
     summary+=("mps: a CUDA run failed under it (logs/mps.log), stopped")
   fi
 }
+
+# Stops the MPS daemon this script started (at the end, and before the sanitizer, which runs
+# without it).
+stop_mps() {
+  if $mps_started; then
+    echo quit | nvidia-cuda-mps-control >> "$LOGS/mps.log" 2>&1
+    mps_started=false
+  fi
+}
+trap stop_mps EXIT
 
 part_bench() {
   local args=${BENCH_ARGS:---backend cuda --sizes 1e5,1e6,1e7 --precisions mixed,double,float --largest}

@@ -66,6 +66,35 @@ void fill_particle_store(const HostParticleRows<P, S>& rows, ParticleStore& out)
   assign_in_real(rows.torque, n, out.torque);
 }
 
+/// `out` holds the owned particles in Real: read in place from host arrays, or copied from
+/// the device first (blocking).
+template <class Space, class P, class S>
+void read_owned_particles(const OwnedParticleArrays<Space, P, S>& a, ParticleStore& out) {
+  if constexpr (std::is_same_v<Space, HostSpace>) {
+    fill_particle_store<P, S>(
+        {a.position_radius.data(), a.velocity_inv_mass.data(), a.angular_velocity.data(),
+         a.force.data(), a.torque.data(), a.id.data(), a.material.data(), a.owned},
+        out);
+  } else {
+    std::vector<Vec4T<P>> position_radius, velocity_inv_mass;
+    std::vector<Vec3T<P>> angular_velocity;
+    std::vector<Vec3T<S>> force, torque;
+    std::vector<ParticleId> id;
+    std::vector<MaterialId> material;
+    a.position_radius.download(position_radius, a.owned);
+    a.velocity_inv_mass.download(velocity_inv_mass, a.owned);
+    a.angular_velocity.download(angular_velocity, a.owned);
+    a.force.download(force, a.owned);
+    a.torque.download(torque, a.owned);
+    a.id.download(id, a.owned);
+    a.material.download(material, a.owned);
+    fill_particle_store<P, S>(
+        {position_radius.data(), velocity_inv_mass.data(), angular_velocity.data(), force.data(),
+         torque.data(), id.data(), material.data(), a.owned},
+        out);
+  }
+}
+
 template <class Space, class P, class S>
 class ParticleStaging;
 
@@ -73,12 +102,7 @@ class ParticleStaging;
 template <class P, class S>
 class ParticleStaging<HostSpace, P, S> final : public StagedParticles {
  public:
-  void stage(const OwnedParticleArrays<HostSpace, P, S>& a) {
-    fill_particle_store<P, S>(
-        {a.position_radius.data(), a.velocity_inv_mass.data(), a.angular_velocity.data(),
-         a.force.data(), a.torque.data(), a.id.data(), a.material.data(), a.owned},
-        copy_);
-  }
+  void stage(const OwnedParticleArrays<HostSpace, P, S>& a) { read_owned_particles(a, copy_); }
 
   /// Swaps the copy into `particles`: their old buffers are reused by the next stage().
   void collect(ParticleStore& particles) override { std::swap(particles, copy_); }

@@ -178,12 +178,7 @@ class StepEngineImpl final : public StepEngine {
     removed_ = removed;
   }
 
-  /// Through staging buffers of its own (page-locked on CUDA: all arrays queued, one wait),
-  /// kept for the next read.
-  void get_particles(ParticleStore& p) const override {
-    readback_.stage(owned_arrays());
-    readback_.collect(p);
-  }
+  void get_particles(ParticleStore& p) const override { read_owned_particles(owned_arrays(), p); }
 
   void get_contact_history(ContactHistory& history) const override {
     HistoryValues values;
@@ -1114,8 +1109,6 @@ class StepEngineImpl final : public StepEngine {
   NeighborList<Space> neighbors_;
   MeshWalls<Space, Law> meshes_;
   ParticleStaging<Space, P, typename Law::Scalar> staging_;  ///< snapshot copies (host memory)
-  /// get_particles' copies (host memory), apart from a snapshot's that a writer may still read
-  mutable ParticleStaging<Space, P, typename Law::Scalar> readback_;
   GhostExchange<Space, Law::needs_spin, P> ghosts_;
   GhostRowSplit<Space> ghost_rows_;  ///< owned particles by whether their rows read ghosts
   std::size_t owned_ = 0;

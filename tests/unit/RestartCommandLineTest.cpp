@@ -225,7 +225,10 @@ TEST_F(RestartCommandLine, KilledWriterNeverLeavesAHalfWrittenCheckpoint) {
     ::kill(pid, SIGKILL);
     int status = 0;
     ::waitpid(pid, &status, 0);
-    ASSERT_GT(first, step) << "round " << round << " wrote no checkpoint in 20 s";
+    ASSERT_GT(first, step) << "round " << round << " wrote no checkpoint in 20 s"
+                           << (WIFEXITED(status) ? " (it exited with status " +
+                                                       std::to_string(WEXITSTATUS(status)) + ")"
+                                                 : std::string());
     killed_inside_a_write += fs::exists(checkpoint + ".tmp") ? 1 : 0;
     ASSERT_TRUE(fs::exists(checkpoint)) << "round " << round;
     const std::uint64_t now = read_checkpoint(checkpoint).step;  // throws if damaged
