@@ -49,25 +49,18 @@ bool every_rank_sees_a_device(const MpiContext& mpi) {
   return everywhere == 1;
 }
 
-/// The engine of the chosen backend; `auto` is CUDA when every rank sees a device. Collective.
+/// The engine of the chosen backend; `auto` is CUDA when every rank sees a device. Collective
+/// unless the choice is the host (every rank has the same choice).
 std::unique_ptr<StepEngine> make_engine(BackendChoice choice, const MpiContext& mpi,
                                         const EngineSetup& setup) {
+  if (choice == BackendChoice::Host) return make_host_engine(setup);
+  if (choice == BackendChoice::Cuda && !cuda::compiled_in())
+    throw InputError("", 0, "--backend", "cuda requested but this build has no CUDA backend");
   const bool devices = every_rank_sees_a_device(mpi);
-  switch (choice) {
-    case BackendChoice::Host:
-      return make_host_engine(setup);
-    case BackendChoice::Cuda:
-      if (!cuda::compiled_in())
-        throw InputError("", 0, "--backend", "cuda requested but this build has no CUDA backend");
-      if (!devices)
-        throw InputError("", 0, "--backend",
-                         mpi.size() > 1 ? "cuda requested but no CUDA device is visible on "
-                                          "some rank"
-                                        : "cuda requested but no CUDA device is visible");
-      return make_cuda_engine_on_node(mpi, setup);
-    case BackendChoice::Auto:
-      break;
-  }
+  if (choice == BackendChoice::Cuda && !devices)
+    throw InputError("", 0, "--backend",
+                     mpi.size() > 1 ? "cuda requested but no CUDA device is visible on some rank"
+                                    : "cuda requested but no CUDA device is visible");
   return devices ? make_cuda_engine_on_node(mpi, setup) : make_host_engine(setup);
 }
 
