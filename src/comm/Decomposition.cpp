@@ -334,35 +334,6 @@ CoarseGrid CoarseGrid::over(const PeriodicBox& box, Real min_side) {
   return g;
 }
 
-std::size_t CoarseGrid::count() const {
-  return static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) *
-         static_cast<std::size_t>(n[2]);
-}
-
-std::size_t CoarseGrid::index(int x, int y, int z) const {
-  return static_cast<std::size_t>(x) +
-         static_cast<std::size_t>(n[0]) *
-             (static_cast<std::size_t>(y) + static_cast<std::size_t>(n[1]) * z);
-}
-
-std::array<int, 3> CoarseGrid::coords(std::size_t i) const {
-  const std::size_t nx = static_cast<std::size_t>(n[0]), ny = static_cast<std::size_t>(n[1]);
-  return {static_cast<int>(i % nx), static_cast<int>((i / nx) % ny),
-          static_cast<int>(i / (nx * ny))};
-}
-
-Real CoarseGrid::edge(int k) const { return axis(length, k) / n[k]; }
-
-int CoarseGrid::coordinate(int k, Real x) const {
-  Real t = (x - axis(lo, k)) / axis(length, k) * n[k];
-  if (periodic[k]) t -= n[k] * std::floor(t / n[k]);
-  return std::clamp(static_cast<int>(std::floor(std::clamp(t, Real(-1), Real(n[k])))), 0, n[k] - 1);
-}
-
-std::size_t CoarseGrid::cell_of(Vec3 p) const {
-  return index(coordinate(0, p.x), coordinate(1, p.y), coordinate(2, p.z));
-}
-
 Decomposition::Decomposition(const CoarseGrid& cells, std::vector<int> owner, int ranks)
     : cells_(cells), owner_(std::move(owner)), ranks_(ranks) {}
 
@@ -430,6 +401,38 @@ std::vector<int> Decomposition::neighbor_ranks(int rank) const {
   }
   sort_unique(result);
   return result;
+}
+
+namespace {
+
+/// flag dilated along axis k by kGhostReachCells cells: out[c] = 1 where a cell of `flag` no
+/// further than that along k (periodic wrap) is 1.
+std::vector<std::uint8_t> dilated_along(const CoarseGrid& cells,
+                                        const std::vector<std::uint8_t>& flag, int k) {
+  std::vector<std::uint8_t> out(flag.size(), 0);
+  for (std::size_t i = 0; i < flag.size(); ++i) {
+    std::array<int, 3> c = cells.coords(i);
+    const int centre = c[k];
+    for (int step = -kGhostReachCells; step <= kGhostReachCells && out[i] == 0; ++step) {
+      c[k] = neighbour_coordinate(cells, k, centre, step);
+      if (c[k] >= 0 && flag[cells.index(c[0], c[1], c[2])] != 0) out[i] = 1;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+CellOwnership Decomposition::ownership(int rank, std::uint64_t version) const {
+  CellOwnership map;
+  map.grid = cells_;
+  map.owner = owner_;
+  map.version = version;
+  std::vector<std::uint8_t> other(owner_.size());
+  for (std::size_t i = 0; i < owner_.size(); ++i) other[i] = owner_[i] != rank ? 1 : 0;
+  for (int k = 0; k < 3; ++k) other = dilated_along(cells_, other, k);
+  map.near_other = std::move(other);
+  return map;
 }
 
 BinRegion Decomposition::region(int rank, Real ghost_width, Real cutoff) const {

@@ -11,31 +11,10 @@
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
 #include "kernels/BinRegion.hpp"
+#include "kernels/CoarseGrid.hpp"
 #include "kernels/PeriodicBox.hpp"
 
 namespace gpudem {
-
-/// The coarse cells of the global box: n[k] = max(1, floor(L_k / min_side)) per axis, edge
-/// L_k / n[k] (so the edge is >= min_side whenever L_k >= min_side; where L_k / min_side rounds
-/// across an integer, n[k] is the one for which the edge, as computed, is). Cells numbered x
-/// fastest.
-struct CoarseGrid {
-  Vec3 lo;      ///< [m] lower corner of the box
-  Vec3 length;  ///< [m] edge lengths of the box
-  int n[3] = {1, 1, 1};
-  bool periodic[3] = {false, false, false};
-
-  static CoarseGrid over(const PeriodicBox& box, Real min_side);
-  std::size_t count() const;
-  std::size_t index(int x, int y, int z) const;
-  std::array<int, 3> coords(std::size_t index) const;
-  /// [m] edge of a cell along axis k.
-  Real edge(int k) const;
-  /// Cell coordinate of x along k: wrapped on a periodic axis, clamped otherwise (so points
-  /// slightly outside the box belong to the edge cells).
-  int coordinate(int k, Real x) const;
-  std::size_t cell_of(Vec3 p) const;
-};
 
 class Decomposition {
  public:
@@ -64,6 +43,12 @@ class Decomposition {
   /// Ranks other than `rank` that own a coarse cell adjacent (26 neighbours, periodic wrap) to
   /// one of rank's cells, ascending.
   std::vector<int> neighbor_ranks(int rank) const;
+  /// The map as `rank`'s engine reads it (CellOwnership): the owners, and near_other[c] = 1
+  /// where a cell within kGhostReachCells of c along every axis (periodic wrap; nothing beyond
+  /// a non-periodic face) belongs to another rank. ghost_ranks(p, rank, reach) is empty for
+  /// every p whose cell_of(p) has near_other 0 (reach at most the cell edge, as ghost_ranks
+  /// requires). version as given.
+  CellOwnership ownership(int rank, std::uint64_t version) const;
   /// Where `rank` bins its particles. Per axis: the smallest interval of coarse cells holding
   /// all of rank's cells (circular on a periodic axis; of several equally short, the one
   /// starting at the lowest cell), grown by ghost_width on both sides, not clipped to the box. On a

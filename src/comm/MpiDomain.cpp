@@ -36,7 +36,12 @@ MpiDomain::MpiDomain(MPI_Comm comm, Decomposition decomposition, Real ghost_widt
   MPI_Comm_size(comm_, &size_);
   if (decomposition_.ranks() != size_)
     throw std::invalid_argument("MpiDomain: the decomposition is for another rank count");
+  adopt_decomposition();
+}
+
+void MpiDomain::adopt_decomposition() {
   region_ = decomposition_.region(rank_, ghost_width_, ghost_width_);
+  ownership_ = decomposition_.ownership(rank_, ownership_.version + 1);
 }
 
 void MpiDomain::propose(Decomposition next) {
@@ -49,7 +54,7 @@ void MpiDomain::begin_rebuild() {
   if (!pending_) return;
   decomposition_ = std::move(*pending_);
   pending_.reset();
-  region_ = decomposition_.region(rank_, ghost_width_, ghost_width_);
+  adopt_decomposition();
 }
 
 double MpiDomain::max(double value) const {

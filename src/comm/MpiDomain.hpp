@@ -25,6 +25,7 @@ class MpiDomain final : public DomainLink {
   int ranks() const override { return size_; }
   BinRegion region() const override { return region_; }
   int owner_of(Vec3 p) const override { return decomposition_.owner_of(p); }
+  const CellOwnership& cell_ownership() const override { return ownership_; }
   void ghost_ranks(Vec3 p, std::vector<int>& out) const override {
     decomposition_.ghost_ranks(p, rank_, ghost_width_, out);
   }
@@ -52,6 +53,8 @@ class MpiDomain final : public DomainLink {
   bool gpu_aware() const { return gpu_aware_; }
 
  private:
+  /// region_ and ownership_ of decomposition_ (a new map version).
+  void adopt_decomposition();
   /// exchange once the receiver knows the sizes: incoming[q] sized by the caller.
   void exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const;
 
@@ -63,6 +66,7 @@ class MpiDomain final : public DomainLink {
   Real ghost_width_;
   bool gpu_aware_;
   BinRegion region_;
+  CellOwnership ownership_;  ///< of decomposition_ for this rank
 };
 
 }  // namespace gpudem

@@ -55,4 +55,13 @@ std::vector<T> download_values(const T* data, std::size_t n) {
   return host;
 }
 
+/// Copies the host values `host` into the host.size() values at `data` in Space memory (a part
+/// of a larger array).
+template <class Space, class T>
+void upload_values(const std::vector<T>& host, T* data) {
+  DeviceArray<T, Space> copy;
+  copy.upload(host);
+  parallel_for(Space{}, host.size(), CopyArray<T>{copy.data(), data});
+}
+
 }  // namespace gpudem

@@ -13,6 +13,7 @@
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
 #include "kernels/BinRegion.hpp"
+#include "kernels/CoarseGrid.hpp"
 #include "kernels/PeriodicBox.hpp"
 
 namespace gpudem {
@@ -41,6 +42,10 @@ class DomainLink {
   virtual int owner_of(Vec3 p) const = 0;
   /// The ranks other than this one that need a particle at p as a ghost (ascending).
   virtual void ghost_ranks(Vec3 p, std::vector<int>& out) const = 0;
+  /// The owner of each coarse cell and the cells near another rank's, for the engine's
+  /// kernels: owner_of(p) is owner[grid.cell_of(p)], and ghost_ranks(p) is empty where
+  /// near_other[grid.cell_of(p)] is 0.
+  virtual const CellOwnership& cell_ownership() const = 0;
 
   /// Collective reductions over all ranks.
   virtual double max(double value) const = 0;
@@ -78,12 +83,19 @@ class DomainLink {
 /// A run on one rank: the region is the whole box, every particle is owned, nothing travels.
 class OneRankDomain final : public DomainLink {
  public:
-  explicit OneRankDomain(const PeriodicBox& box) : region_(whole_box_region(box)) {}
+  explicit OneRankDomain(const PeriodicBox& box) : region_(whole_box_region(box)) {
+    ownership_.grid.lo = box.lo;
+    ownership_.grid.length = box.length;
+    for (int k = 0; k < 3; ++k) ownership_.grid.periodic[k] = box.periodic[k];
+    ownership_.owner = {0};
+    ownership_.near_other = {0};
+  }
   int rank() const override { return 0; }
   int ranks() const override { return 1; }
   BinRegion region() const override { return region_; }
   int owner_of(Vec3) const override { return 0; }
   void ghost_ranks(Vec3, std::vector<int>& out) const override { out.clear(); }
+  const CellOwnership& cell_ownership() const override { return ownership_; }
   double max(double value) const override { return value; }
   void sum(std::vector<double>&) const override {}
   std::uint64_t wrapping_sum(std::uint64_t value) const override { return value; }
@@ -105,6 +117,7 @@ class OneRankDomain final : public DomainLink {
 
  private:
   BinRegion region_;
+  CellOwnership ownership_;  ///< one cell, this rank's
 };
 
 }  // namespace gpudem

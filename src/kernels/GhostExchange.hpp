@@ -1,11 +1,12 @@
 #pragma once
 /// Ghost particles (DESIGN §4, plan then execute): on a rebuild step `plan` decides which owned
 /// particles each other rank needs (those within the ghost width of its cells, asked of the
-/// DomainLink), sends their full records once and keeps the plan; every other step `update`
-/// (or `begin_update`, work, `finish_update`) sends only the fields a contact evaluation reads
-/// (position and radius, velocity and inverse mass, and the spin when the law uses it), packed
-/// in the engine's memory space, one non-blocking message per rank. Ghosts occupy the slots
-/// after the owned particles, in the order of the ranks that sent them.
+/// DomainLink for the particles the device finds near another rank's cells), sends their full
+/// records once and keeps the plan; every other step `update` (or `begin_update`, work,
+/// `finish_update`) sends only the fields a contact evaluation reads (position and radius, velocity
+/// and inverse mass, and the spin when the law uses it), packed in the engine's memory space, one
+/// non-blocking message per rank. Ghosts occupy the slots after the owned particles, in the order
+/// of the ranks that sent them.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -21,6 +22,7 @@
 #include "kernels/DeviceArray.hpp"
 #include "kernels/DomainLink.hpp"
 #include "kernels/ParallelFor.hpp"
+#include "kernels/RankCells.hpp"
 
 namespace gpudem {
 
@@ -205,14 +207,18 @@ class GhostExchange {
  public:
   /// Plans the exchange from the owned particles' positions and sends their records; returns
   /// the number of ghosts received, to be written by `fill` once the caller has made room for
-  /// them after its `owned` particles. Collective.
-  std::size_t plan(const DomainLink& domain, const Arrays& particles, std::size_t owned) {
-    const std::vector<Vec4T<P>> position = download_values<Space>(particles.position_radius, owned);
+  /// them after its `owned` particles. Only the particles in cells near another rank's
+  /// (`cells`, the domain's map) are asked of the domain, on the host. Collective.
+  std::size_t plan(const DomainLink& domain, const RankCells<Space>& cells, const Arrays& particles,
+                   std::size_t owned) {
+    std::vector<std::uint32_t> candidate;
+    std::vector<Vec4T<P>> position;
+    cells.near_other_rank(particles.position_radius, owned, candidate, position);
     std::vector<std::vector<std::uint32_t>> to_rank(domain.ranks());
     std::vector<int> ranks;
-    for (std::size_t i = 0; i < owned; ++i) {
-      domain.ghost_ranks(vec_cast<Real>(xyz(position[i])), ranks);
-      for (const int q : ranks) to_rank[q].push_back(static_cast<std::uint32_t>(i));
+    for (std::size_t k = 0; k < candidate.size(); ++k) {
+      domain.ghost_ranks(vec_cast<Real>(xyz(position[k])), ranks);
+      for (const int q : ranks) to_rank[q].push_back(candidate[k]);
     }
     std::vector<std::uint32_t> index;
     send_count_.assign(domain.ranks(), 0);

@@ -13,6 +13,7 @@
 
 #include "core/Config.hpp"
 #include "kernels/ArrayKernels.hpp"
+#include "kernels/CsrRows.hpp"
 #include "kernels/DeviceArray.hpp"
 #include "kernels/ParallelFor.hpp"
 
@@ -117,54 +118,40 @@ class HistoryCarryOver {
   template <class KeyOf>
   void keep(std::size_t rows, const std::uint32_t* offsets, const State* history, KeyOf key_of) {
     release();
-    offsets_.resize(rows + 1);
+    kept_.offsets.resize(rows + 1);
     const carry_over_kernels::KeptInRow<State> row{offsets, history};
-    parallel_for(Space{}, rows, carry_over_kernels::CountKept<State>{row, offsets_.data()});
+    parallel_for(Space{}, rows, carry_over_kernels::CountKept<State>{row, kept_.offsets.data()});
     const std::uint64_t total = counts_to_offsets<Space>(
-        offsets_.data(), rows, "HistoryCarryOver: more than 2^32 - 1 kept records");
-    keys_.resize(total);
-    records_.resize(total);
-    parallel_for(Space{}, rows,
-                 carry_over_kernels::Keep<Key, State, KeyOf>{
-                     offsets, history, key_of, offsets_.data(), keys_.data(), records_.data()});
+        kept_.offsets.data(), rows, "HistoryCarryOver: more than 2^32 - 1 kept records");
+    kept_.keys.resize(total);
+    kept_.values.resize(total);
+    parallel_for(
+        Space{}, rows,
+        carry_over_kernels::Keep<Key, State, KeyOf>{offsets, history, key_of, kept_.offsets.data(),
+                                                    kept_.keys.data(), kept_.values.data()});
   }
 
-  /// Takes host rows in the same layout (rows that arrived from other ranks).
-  void upload(const std::vector<std::uint32_t>& offsets, const std::vector<Key>& keys,
-              const std::vector<State>& records) {
-    release();
-    offsets_.upload(offsets);
-    keys_.upload(keys);
-    records_.upload(records);
-  }
-
-  void download(std::vector<std::uint32_t>& offsets, std::vector<Key>& keys,
-                std::vector<State>& records) const {
-    offsets_.download(offsets);
-    keys_.download(keys);
-    records_.download(records);
-  }
+  /// The kept rows (those of particles that leave for another rank; those that arrived are
+  /// appended to them).
+  CsrRows<Space, Key, State>& rows() { return kept_; }
+  const CsrRows<Space, Key, State>& rows() const { return kept_; }
 
   /// history[e] for every entry e of new rows [0, rows) (offsets: rows + 1 of them): the record
   /// kept by old row previous_row[r] under key_of(e), or a fresh one.
   template <class KeyOf>
   void remap(std::size_t rows, const std::uint32_t* offsets, KeyOf key_of,
              const std::uint32_t* previous_row, State* history) const {
-    parallel_for(
-        Space{}, rows,
-        carry_over_kernels::Remap<Key, State, KeyOf>{offsets, key_of, previous_row, offsets_.data(),
-                                                     keys_.data(), records_.data(), history});
+    parallel_for(Space{}, rows,
+                 carry_over_kernels::Remap<Key, State, KeyOf>{
+                     offsets, key_of, previous_row, kept_.offsets.data(), kept_.keys.data(),
+                     kept_.values.data(), history});
   }
 
   /// Frees the kept rows.
-  void release() {
-    gpudem::release(offsets_);
-    gpudem::release(keys_);
-    gpudem::release(records_);
-  }
+  void release() { kept_.release(); }
 
   /// Bytes held in Space memory.
-  std::size_t bytes() const { return offsets_.bytes() + keys_.bytes() + records_.bytes(); }
+  std::size_t bytes() const { return kept_.bytes(); }
 
   /// Bytes keep() allocates for `rows` rows of a CSR history (offsets, history): their offsets
   /// and the records that are not fresh with their keys. A reduction over the rows.
@@ -176,9 +163,7 @@ class HistoryCarryOver {
   }
 
  private:
-  DeviceArray<std::uint32_t, Space> offsets_;
-  DeviceArray<Key, Space> keys_;
-  DeviceArray<State, Space> records_;
+  CsrRows<Space, Key, State> kept_;
 };
 
 }  // namespace gpudem

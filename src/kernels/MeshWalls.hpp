@@ -15,6 +15,7 @@
 
 #include "core/Rotation.hpp"
 #include "kernels/ArrayKernels.hpp"
+#include "kernels/CsrRows.hpp"
 #include "kernels/DeviceArray.hpp"
 #include "kernels/MeshCandidateList.hpp"
 #include "kernels/MeshWallSetup.hpp"
@@ -189,28 +190,16 @@ class MeshWalls {
   void keep_rows() {
     if constexpr (Law::history_size > 0) {
       if (empty()) return;
-      copy_values(candidates_.offsets(), candidates_.size() + 1, previous_offsets_);
-      copy_values(candidates_.triangles(), candidates_.pairs(), previous_triangles_);
-      previous_history_.swap(history_);
+      copy_values(candidates_.offsets(), candidates_.size() + 1, kept_.offsets);
+      copy_values(candidates_.triangles(), candidates_.pairs(), kept_.keys);
+      kept_.values.swap(history_);
     }
   }
 
-  /// Host copies of the kept rows (particle i's: entries [offsets[i], offsets[i + 1])).
-  void get_kept_rows(std::vector<std::uint32_t>& offsets, std::vector<std::uint32_t>& triangles,
-                     std::vector<State>& history) const {
-    previous_offsets_.download(offsets);
-    previous_triangles_.download(triangles);
-    previous_history_.download(history);
-  }
-
-  /// Replaces the kept rows (by particles that arrived from other ranks, say).
-  void set_kept_rows(const std::vector<std::uint32_t>& offsets,
-                     const std::vector<std::uint32_t>& triangles,
-                     const std::vector<State>& history) {
-    previous_offsets_.upload(offsets);
-    previous_triangles_.upload(triangles);
-    previous_history_.upload(history);
-  }
+  /// The kept rows (those of particles that leave for another rank; those that arrived are
+  /// appended to them).
+  CsrRows<Space, std::uint32_t, State>& kept_rows() { return kept_; }
+  const CsrRows<Space, std::uint32_t, State>& kept_rows() const { return kept_; }
 
   /// New candidate lists for the n particles (in their new order, all inside `region` on
   /// this rank), with the history carried over from the kept rows: previous_index[k] is
@@ -228,10 +217,10 @@ class MeshWalls {
       DeviceArray<State, Space> fresh(candidates_.pairs());
       if (had_lists) {
         parallel_for(Space{}, n,
-                     mesh_wall_kernels::RemapEntries<State>{
-                         candidates_.offsets(), candidates_.triangles(), previous_index,
-                         previous_offsets_.data(), previous_triangles_.data(),
-                         previous_history_.data(), fresh.data()});
+                     mesh_wall_kernels::RemapEntries<State>{candidates_.offsets(),
+                                                            candidates_.triangles(), previous_index,
+                                                            kept_.offsets.data(), kept_.keys.data(),
+                                                            kept_.values.data(), fresh.data()});
       } else {
         parallel_for(Space{}, fresh.size(), Fill<State>{fresh.data(), State{}});
       }
@@ -293,7 +282,7 @@ class MeshWalls {
   std::size_t memory_bytes() const {
     return initial_.bytes() + vertices_.bytes() + at_build_.bytes() + corners_.bytes() +
            ids_.bytes() + triangle_mesh_.bytes() + history_.bytes() + candidates_.memory_bytes() +
-           previous_offsets_.bytes() + previous_triangles_.bytes() + previous_history_.bytes();
+           kept_.bytes();
   }
 
  private:
@@ -326,9 +315,7 @@ class MeshWalls {
   MeshCandidateList<Space> candidates_;
   DeviceArray<State, Space> history_;  ///< per candidate-list entry
   // The rows kept for the next rebuild: per particle, (triangle, history) entries.
-  DeviceArray<std::uint32_t, Space> previous_offsets_;
-  DeviceArray<std::uint32_t, Space> previous_triangles_;
-  DeviceArray<State, Space> previous_history_;
+  CsrRows<Space, std::uint32_t, State> kept_;
 };
 
 }  // namespace gpudem

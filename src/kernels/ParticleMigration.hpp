@@ -3,8 +3,8 @@
 /// travel there with all their state and their contact history: the wall records, the
 /// records of their own side of each particle contact, keyed by the partner's global id, and
 /// their mesh records, keyed by triangle index, so that they find their contacts again in the
-/// new rank's lists. Host code over host
-/// copies; the engine stages its arrays through it.
+/// new rank's lists. Host code over host copies of the leaving particles only: the engine finds
+/// and gathers them on the device and appends those that arrive.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -16,8 +16,8 @@
 
 namespace gpudem {
 
-/// A rank's owned particles as host copies (state in scalar P), with their pair history as rows
-/// keyed by partner id: particle i's records are row_partner / row_history [row_offsets[i],
+/// Particles that travel between ranks, as host copies (state in scalar P), with their pair history
+/// as rows keyed by partner id: particle i's records are row_partner / row_history [row_offsets[i],
 /// row_offsets[i + 1]), and its mesh history as rows keyed by triangle index in mesh_offsets the
 /// same way.
 template <class State, class P>
@@ -36,27 +36,6 @@ struct MigratingParticles {
   std::vector<State> mesh_history;
 
   std::size_t size() const { return id.size(); }
-
-  /// Appends particle i of `from` (which has `walls` wall records per particle).
-  void append(const MigratingParticles& from, std::size_t i, std::uint32_t walls) {
-    position_radius.push_back(from.position_radius[i]);
-    velocity_inv_mass.push_back(from.velocity_inv_mass[i]);
-    angular_velocity.push_back(from.angular_velocity[i]);
-    id.push_back(from.id[i]);
-    material.push_back(from.material[i]);
-    wall_history.insert(wall_history.end(), from.wall_history.begin() + i * walls,
-                        from.wall_history.begin() + (i + 1) * walls);
-    for (std::uint32_t e = from.row_offsets[i]; e < from.row_offsets[i + 1]; ++e) {
-      row_partner.push_back(from.row_partner[e]);
-      row_history.push_back(from.row_history[e]);
-    }
-    row_offsets.push_back(static_cast<std::uint32_t>(row_partner.size()));
-    for (std::uint32_t e = from.mesh_offsets[i]; e < from.mesh_offsets[i + 1]; ++e) {
-      mesh_triangle.push_back(from.mesh_triangle[e]);
-      mesh_history.push_back(from.mesh_history[e]);
-    }
-    mesh_offsets.push_back(static_cast<std::uint32_t>(mesh_triangle.size()));
-  }
 };
 
 namespace migration_detail {
@@ -126,25 +105,21 @@ void unpack(const std::vector<char>& in, std::uint32_t walls, MigratingParticles
 
 }  // namespace migration_detail
 
-/// Sends every particle of `local` that another rank owns to that rank and returns the
-/// particles this rank keeps followed by those it received (in the order of the sending
-/// ranks). Collective.
+/// Sends particle k of `leaving` (which has `walls` wall records per particle) to rank
+/// destination[k] and returns the particles the other ranks sent here, in the order of the
+/// sending ranks, each sender's in its order. Collective.
 template <class State, class P>
-MigratingParticles<State, P> migrate(const MigratingParticles<State, P>& local, std::uint32_t walls,
-                                     const DomainLink& domain) {
-  MigratingParticles<State, P> kept;
+MigratingParticles<State, P> exchange_migrants(const MigratingParticles<State, P>& leaving,
+                                               const std::vector<int>& destination,
+                                               std::uint32_t walls, const DomainLink& domain) {
   RankBuffers outgoing(domain.ranks());
-  for (std::size_t i = 0; i < local.size(); ++i) {
-    const int owner = domain.owner_of(vec_cast<Real>(xyz(local.position_radius[i])));
-    if (owner == domain.rank())
-      kept.append(local, i, walls);
-    else
-      migration_detail::pack(local, i, walls, outgoing[owner]);
-  }
+  for (std::size_t k = 0; k < leaving.size(); ++k)
+    migration_detail::pack(leaving, k, walls, outgoing[destination[k]]);
   RankBuffers incoming;
   domain.exchange(outgoing, incoming);
-  for (const std::vector<char>& bytes : incoming) migration_detail::unpack(bytes, walls, kept);
-  return kept;
+  MigratingParticles<State, P> arrived;
+  for (const std::vector<char>& bytes : incoming) migration_detail::unpack(bytes, walls, arrived);
+  return arrived;
 }
 
 }  // namespace gpudem

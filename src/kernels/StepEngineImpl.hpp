@@ -28,6 +28,7 @@
 #include "kernels/ParticleMigration.hpp"
 #include "kernels/ParticleStaging.hpp"
 #include "kernels/Permute.hpp"
+#include "kernels/RankCells.hpp"
 #include "kernels/StepEngine.hpp"
 
 namespace gpudem {
@@ -91,6 +92,13 @@ struct ReadValue {
 struct Iota {
   std::uint32_t* out;
   GPUDEM_HD void operator()(std::size_t k) const { out[k] = static_cast<std::uint32_t>(k); }
+};
+
+/// out[k] = first + k.
+struct IotaFrom {
+  std::uint32_t* out;
+  std::uint32_t first;
+  GPUDEM_HD void operator()(std::size_t k) const { out[k] = first + static_cast<std::uint32_t>(k); }
 };
 
 /// out row k = in row order[k], rows of `width` values (per-particle wall histories).
@@ -337,7 +345,8 @@ class StepEngineImpl final : public StepEngine {
             {"cell list", cells_.memory_bytes()},
             {"history carry-over", carry_over_bytes()},
             {"rebuild scratch", scratch_bytes()},
-            {"ghost buffers", ghosts_.memory_bytes() + ghost_rows_.memory_bytes()},
+            {"ghost buffers",
+             ghosts_.memory_bytes() + ghost_rows_.memory_bytes() + rank_cells_.memory_bytes()},
             {"meshes", meshes_.memory_bytes()}};
   }
 
@@ -838,60 +847,79 @@ class StepEngineImpl final : public StepEngine {
   /// The key of each entry of the current neighbour list: its partner's global id.
   PartnerIdKey partner_ids() const { return PartnerIdKey{neighbors_.neighbors(), id_.data()}; }
 
-  /// Particles that another rank owns go there with their state and history (host-staged).
+  /// Particles that another rank owns go there with their state and history. The device sorts
+  /// the leaving ones to the end, grouped by destination (the others keep their order); only
+  /// they travel through the host, and those that arrive are appended.
   void migrate_particles() {
-    const std::uint32_t walls = kHistoryWidth > 0 ? wall_count() : 0;
-    const MigratingParticles<State, P> moved = migrate(migrating_particles(walls), walls, domain_);
-    upload_state(moved);
-    iota(previous_index_, owned_);
-    if constexpr (kHistoryWidth > 0) {
-      wall_history_.upload(moved.wall_history);
-      carried_pairs_.upload(moved.row_offsets, moved.row_partner, moved.row_history);
-      meshes_.set_kept_rows(moved.mesh_offsets, moved.mesh_triangle, moved.mesh_history);
+    rank_cells_.update(domain_.cell_ownership(), domain_.rank());
+    const std::size_t n = owned_;
+    DeviceArray<std::uint64_t, Space> key(n);
+    DeviceArray<std::uint32_t, Space> index(n);
+    parallel_for(Space{}, n,
+                 rank_cell_kernels::DestinationKey<P>{rank_cells_.view(), position_radius_.data(),
+                                                      key.data(), index.data()});
+    const auto leaving = static_cast<std::size_t>(
+        std::llround(reduce_sum(Space{}, n, rank_cell_kernels::NonZero{key.data()})));
+    std::vector<int> destination;
+    if (leaving > 0) {
+      sort_by_key(Space{}, key.data(), index.data(), n, bits_for(domain_.ranks()));
+      reorder(index.data(), n);
+      for (const std::uint64_t k : download_values<Space>(key.data() + (n - leaving), leaving))
+        destination.push_back(static_cast<int>(k - 1));
     }
+    const std::uint32_t walls = kHistoryWidth > 0 ? wall_count() : 0;
+    const MigratingParticles<State, P> arrived =
+        exchange_migrants(owned_from(n - leaving, walls), destination, walls, domain_);
+    resize_owned(n - leaving);
+    append_owned(arrived, walls);
   }
 
-  /// Host copies of the owned particles with their history rows (in their current order).
-  MigratingParticles<State, P> migrating_particles(std::uint32_t walls) const {
+  /// Host copies of the owned particles [first, owned_) with their kept history rows.
+  MigratingParticles<State, P> owned_from(std::size_t first, std::uint32_t walls) const {
+    const std::size_t count = owned_ - first;
     MigratingParticles<State, P> p;
-    position_radius_.download(p.position_radius);
-    velocity_inv_mass_.download(p.velocity_inv_mass);
-    angular_velocity_.download(p.angular_velocity);
-    id_.download(p.id);
-    material_.download(p.material);
-    p.row_offsets.assign(owned_ + 1, 0);
-    p.mesh_offsets.assign(owned_ + 1, 0);
+    p.position_radius = download_values<Space>(position_radius_.data() + first, count);
+    p.velocity_inv_mass = download_values<Space>(velocity_inv_mass_.data() + first, count);
+    p.angular_velocity = download_values<Space>(angular_velocity_.data() + first, count);
+    p.id = download_values<Space>(id_.data() + first, count);
+    p.material = download_values<Space>(material_.data() + first, count);
+    p.row_offsets.assign(count + 1, 0);
+    p.mesh_offsets.assign(count + 1, 0);
     if constexpr (kHistoryWidth > 0) {
-      if (walls > 0) wall_history_.download(p.wall_history);
+      p.wall_history = download_values<Space>(wall_history_.data() + first * walls, count * walls);
       if (!has_list_) return p;
-      std::vector<std::uint32_t> index, offsets;
-      previous_index_.download(index);
-      std::vector<ParticleId> partner;
-      std::vector<State> history;
-      carried_pairs_.download(offsets, partner, history);
-      gather_rows(index, offsets, partner, history, p.row_offsets, p.row_partner, p.row_history);
-      if (meshes_.empty()) return p;
-      std::vector<std::uint32_t> triangle;
-      meshes_.get_kept_rows(offsets, triangle, history);
-      gather_rows(index, offsets, triangle, history, p.mesh_offsets, p.mesh_triangle,
-                  p.mesh_history);
+      const std::uint32_t* rows = previous_index_.data() + first;
+      carried_pairs_.rows().download(rows, count, p.row_offsets, p.row_partner, p.row_history);
+      if (!meshes_.empty())
+        meshes_.kept_rows().download(rows, count, p.mesh_offsets, p.mesh_triangle, p.mesh_history);
     }
     return p;
   }
 
-  /// Appends the rows of each owned particle i (rows [offsets[index[i]], offsets[index[i] + 1])
-  /// of `keys` and `values`) in particle order, with their CSR offsets (owned_ + 1 of them).
-  template <class Key>
-  void gather_rows(const std::vector<std::uint32_t>& index,
-                   const std::vector<std::uint32_t>& offsets, const std::vector<Key>& keys,
-                   const std::vector<State>& values, std::vector<std::uint32_t>& out_offsets,
-                   std::vector<Key>& out_keys, std::vector<State>& out_values) const {
-    for (std::size_t i = 0; i < owned_; ++i) {
-      for (std::uint32_t f = offsets[index[i]]; f < offsets[index[i] + 1]; ++f) {
-        out_keys.push_back(keys[f]);
-        out_values.push_back(values[f]);
-      }
-      out_offsets[i + 1] = static_cast<std::uint32_t>(out_keys.size());
+  /// Appends `arrived` to the owned particles, their history rows after the kept ones
+  /// (previous_index_ pointing there); torques zero (a law without spin never writes them).
+  void append_owned(const MigratingParticles<State, P>& arrived, std::uint32_t walls) {
+    const std::size_t first = owned_;
+    resize_owned(first + arrived.size());
+    upload_values<Space>(arrived.position_radius, position_radius_.data() + first);
+    upload_values<Space>(arrived.velocity_inv_mass, velocity_inv_mass_.data() + first);
+    upload_values<Space>(arrived.angular_velocity, angular_velocity_.data() + first);
+    upload_values<Space>(arrived.id, id_.data() + first);
+    upload_values<Space>(arrived.material, material_.data() + first);
+    parallel_for(Space{}, owned_, Fill<ForceVec>{torque_.data(), ForceVec{}});
+    if constexpr (kHistoryWidth > 0) {
+      upload_values<Space>(arrived.wall_history, wall_history_.data() + first * walls);
+      auto& pair_rows = carried_pairs_.rows();
+      const auto first_row = static_cast<std::uint32_t>(pair_rows.rows());
+      parallel_for(Space{}, arrived.size(), IotaFrom{previous_index_.data() + first, first_row});
+      if (!has_list_) return;
+      pair_rows.append(arrived.row_offsets, arrived.row_partner, arrived.row_history);
+      if (meshes_.empty()) return;
+      if (meshes_.kept_rows().rows() != first_row)
+        throw std::logic_error("migration: the kept mesh rows and pair rows differ in count");
+      meshes_.kept_rows().append(arrived.mesh_offsets, arrived.mesh_triangle, arrived.mesh_history);
+    } else {
+      parallel_for(Space{}, arrived.size(), IotaFrom{previous_index_.data() + first, 0});
     }
   }
 
@@ -904,7 +932,8 @@ class StepEngineImpl final : public StepEngine {
   /// their number.
   std::size_t receive_ghosts() {
     if (domain_.ranks() == 1) return 0;
-    const std::size_t ghosts = ghosts_.plan(domain_, arrays(), owned_);
+    rank_cells_.update(domain_.cell_ownership(), domain_.rank());
+    const std::size_t ghosts = ghosts_.plan(domain_, rank_cells_, arrays(), owned_);
     resize_shared(owned_ + ghosts);
     ghosts_.fill(arrays(), owned_);
     return ghosts;
@@ -1111,6 +1140,7 @@ class StepEngineImpl final : public StepEngine {
   ParticleStaging<Space, P, typename Law::Scalar> staging_;  ///< snapshot copies (host memory)
   GhostExchange<Space, Law::needs_spin, P> ghosts_;
   GhostRowSplit<Space> ghost_rows_;  ///< owned particles by whether their rows read ghosts
+  RankCells<Space> rank_cells_;      ///< the decomposition's cell map (several ranks)
   std::size_t owned_ = 0;
   std::uint64_t global_count_ = 0;     ///< particles on all ranks
   std::uint64_t expected_id_sum_ = 0;  ///< id_checksum of the particles on all ranks

@@ -250,10 +250,30 @@ TEST(Decomposition, RankWorkAndImbalance) {
 
 // --- Ghost ranks --------------------------------------------------------------------------
 
+/// Checks ghost_ranks against the brute force for a point and a rank, and that the rank's cell
+/// map marks the point's cell as near another rank's wherever the point has ghost ranks.
+/// Returns whether it has any.
+bool expect_ghost_ranks_at(const Decomposition& d, const std::vector<CellOwnership>& maps, Vec3 p,
+                           int rank, Real reach) {
+  const std::vector<int> expected = brute_force_ghost_ranks(d, p, rank, reach);
+  EXPECT_EQ(ghost_ranks_of(d, p, rank, reach), expected)
+      << "p = (" << p.x << ", " << p.y << ", " << p.z << "), rank " << rank;
+  const std::size_t cell = d.cells().cell_of(p);
+  EXPECT_EQ(maps[static_cast<std::size_t>(rank)].owner[cell], d.owner_of(p));
+  if (!expected.empty()) {
+    EXPECT_EQ(maps[static_cast<std::size_t>(rank)].near_other[cell], 1)
+        << "p = (" << p.x << ", " << p.y << ", " << p.z << ") has ghost ranks, rank " << rank;
+  }
+  return !expected.empty();
+}
+
 /// Compares ghost_ranks with the brute force at random points within reach of the box, for
-/// the owner of each point and for another rank.
+/// the owner of each point and for another rank, and at every cell's lower corner (a point on
+/// the faces of its cell, one edge from the cells two below) for every rank.
 void expect_ghost_ranks_match(const Decomposition& d, Real reach, std::uint64_t seed) {
   const CoarseGrid& g = d.cells();
+  std::vector<CellOwnership> maps;
+  for (int rank = 0; rank < d.ranks(); ++rank) maps.push_back(d.ownership(rank, 1));
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   std::uniform_int_distribution<int> any_rank(0, d.ranks() - 1);
@@ -262,14 +282,17 @@ void expect_ghost_ranks_match(const Decomposition& d, Real reach, std::uint64_t 
     Vec3 p;
     for (int k = 0; k < 3; ++k)
       axis(p, k) = axis(g.lo, k) - reach + (axis(g.length, k) + 2 * reach) * u(rng);
-    for (int rank : {d.owner_of(p), any_rank(rng)}) {
-      const std::vector<int> expected = brute_force_ghost_ranks(d, p, rank, reach);
-      EXPECT_EQ(ghost_ranks_of(d, p, rank, reach), expected)
-          << "p = (" << p.x << ", " << p.y << ", " << p.z << "), rank " << rank;
-      with_ghosts += !expected.empty();
-    }
+    for (int rank : {d.owner_of(p), any_rank(rng)})
+      with_ghosts += expect_ghost_ranks_at(d, maps, p, rank, reach);
   }
   EXPECT_GT(with_ghosts, 100);  // the check saw points near other ranks
+  for (std::size_t i = 0; i < g.count(); ++i) {
+    const std::array<int, 3> c = g.coords(i);
+    Vec3 corner;
+    for (int k = 0; k < 3; ++k) axis(corner, k) = axis(g.lo, k) + c[k] * g.edge(k);
+    for (int rank = 0; rank < d.ranks(); ++rank)
+      expect_ghost_ranks_at(d, maps, corner, rank, reach);
+  }
 }
 
 TEST(GhostRanks, MatchBruteForceOnGrids) {
@@ -312,6 +335,51 @@ TEST(GhostRanks, MatchBruteForceOnAnyOwnerMap) {
   // METIS parts of the same cells.
   const std::vector<double> work(g.count(), 3.0);
   expect_ghost_ranks_match(Decomposition::from_owners(g, metis_owners(g, work, 4), 4), 0.12, 23);
+}
+
+/// near_other of `rank`'s map, cell by cell: whether any cell at most kGhostReachCells away
+/// along every axis (periodic wrap, nothing beyond a non-periodic face) belongs to another rank.
+std::vector<std::uint8_t> brute_force_near_other(const Decomposition& d, int rank) {
+  const CoarseGrid& g = d.cells();
+  std::vector<std::uint8_t> near(g.count(), 0);
+  for (std::size_t i = 0; i < g.count(); ++i) {
+    const std::array<int, 3> c = g.coords(i);
+    for (std::size_t j = 0; j < g.count(); ++j) {
+      const std::array<int, 3> o = g.coords(j);
+      bool within = true;
+      for (int k = 0; k < 3; ++k) {
+        int gap = std::abs(o[k] - c[k]);
+        if (g.periodic[k]) gap = std::min(gap, g.n[k] - gap);
+        within = within && gap <= kGhostReachCells;
+      }
+      if (within && d.owner_of_cell(j) != rank) near[i] = 1;
+    }
+  }
+  return near;
+}
+
+TEST(CellOwnership, NearOtherMarksExactlyTheCellsWithinReachOfAnotherRank) {
+  std::mt19937_64 rng(5);
+  const CoarseGrid g =
+      CoarseGrid::over(make_box({0, 0, 0}, {2, 0.75, 1}, true, false, false), 0.125);
+  const Decomposition slabs = Decomposition::grid(g, {{{0, 5, 16}, {0, 6}, {0, 8}}});
+  std::vector<int> owner(g.count());
+  std::uniform_int_distribution<int> of3(0, 2);
+  for (std::size_t i = 0; i < g.count(); ++i) owner[i] = g.coords(i)[0] < 8 ? 0 : of3(rng);
+  const Decomposition patches = Decomposition::from_owners(g, owner, 3);
+  for (const Decomposition* d : {&slabs, &patches})
+    for (int rank = 0; rank < d->ranks(); ++rank) {
+      const CellOwnership map = d->ownership(rank, 9);
+      EXPECT_EQ(map.version, 9u);
+      EXPECT_EQ(map.owner.size(), g.count());
+      for (std::size_t i = 0; i < g.count(); ++i) EXPECT_EQ(map.owner[i], d->owner_of_cell(i));
+      const std::vector<std::uint8_t> expected = brute_force_near_other(*d, rank);
+      EXPECT_EQ(map.near_other, expected) << "rank " << rank;
+      // The map spares the cells deep inside the rank's own part (48 of them in the slab).
+      if (rank == 0) {
+        EXPECT_GE(std::count(expected.begin(), expected.end(), std::uint8_t(0)), 48);
+      }
+    }
 }
 
 TEST(GhostRanks, PeriodicAxisWithTwoRanksAlongIt) {

@@ -1,0 +1,123 @@
+#pragma once
+/// The decomposition's cell map in the engine's memory space (DESIGN §4–5), so that a rebuild
+/// finds on the device the owned particles that leave for another rank and the few that may be
+/// another rank's ghosts; only those travel to the host.
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+#include "core/Config.hpp"
+#include "core/Vec3.hpp"
+#include "kernels/ArrayKernels.hpp"
+#include "kernels/CoarseGrid.hpp"
+#include "kernels/DeviceArray.hpp"
+#include "kernels/ParallelFor.hpp"
+#include "kernels/Permute.hpp"
+
+namespace gpudem {
+
+/// CellOwnership as kernels read it (pointers into Space memory).
+struct RankCellsView {
+  CoarseGrid grid;
+  const int* owner;
+  const std::uint8_t* near_other;
+  int rank;  ///< this rank
+};
+
+namespace rank_cell_kernels {
+
+/// key[i] = 0 when this rank owns particle i's position, else 1 + its owner; index[i] = i. A
+/// stable sort by these keys keeps the staying particles first in their order and groups the
+/// leaving ones by destination.
+template <class P>
+struct DestinationKey {
+  RankCellsView cells;
+  const Vec4T<P>* position_radius;
+  std::uint64_t* key;
+  std::uint32_t* index;
+  GPUDEM_HD void operator()(std::size_t i) const {
+    const int owner = cells.owner[cells.grid.cell_of(vec_cast<Real>(xyz(position_radius[i])))];
+    key[i] = owner == cells.rank ? 0 : 1 + static_cast<std::uint64_t>(owner);
+    index[i] = static_cast<std::uint32_t>(i);
+  }
+};
+
+/// 1 for a non-zero key, for reduce_sum.
+struct NonZero {
+  const std::uint64_t* key;
+  GPUDEM_HD Real operator()(std::size_t i) const { return key[i] != 0 ? Real(1) : Real(0); }
+};
+
+/// flag[i] = 1 when particle i (i < n) lies in a cell near another rank's, else 0; flag[n] = 0.
+template <class P>
+struct NearOtherRank {
+  RankCellsView cells;
+  const Vec4T<P>* position_radius;
+  std::size_t n;
+  std::uint32_t* flag;
+  GPUDEM_HD void operator()(std::size_t i) const {
+    flag[i] =
+        i < n && cells.near_other[cells.grid.cell_of(vec_cast<Real>(xyz(position_radius[i])))] != 0
+            ? 1
+            : 0;
+  }
+};
+
+/// out[before[i]] = i where before[i + 1] != before[i] (the exclusive scan of 0/1 flags).
+struct ScatterFlagged {
+  const std::uint32_t* before;
+  std::uint32_t* out;
+  GPUDEM_HD void operator()(std::size_t i) const {
+    if (before[i + 1] != before[i]) out[before[i]] = static_cast<std::uint32_t>(i);
+  }
+};
+
+}  // namespace rank_cell_kernels
+
+/// A device copy of a DomainLink's CellOwnership, uploaded again only when its version changes.
+template <class Space>
+class RankCells {
+ public:
+  void update(const CellOwnership& map, int rank) {
+    if (map.version == version_ && rank == rank_) return;
+    grid_ = map.grid;
+    owner_.upload(map.owner);
+    near_other_.upload(map.near_other);
+    version_ = map.version;
+    rank_ = rank;
+  }
+
+  RankCellsView view() const {
+    return RankCellsView{grid_, owner_.data(), near_other_.data(), rank_};
+  }
+
+  /// Host copies of the positions of the particles among [0, n) that lie in a cell near another
+  /// rank's, with their indices, ascending.
+  template <class P>
+  void near_other_rank(const Vec4T<P>* position_radius, std::size_t n,
+                       std::vector<std::uint32_t>& index, std::vector<Vec4T<P>>& position) const {
+    DeviceArray<std::uint32_t, Space> before(n + 1);
+    parallel_for(Space{}, n + 1,
+                 rank_cell_kernels::NearOtherRank<P>{view(), position_radius, n, before.data()});
+    const std::size_t count = exclusive_scan(Space{}, before.data(), before.data(), n + 1);
+    DeviceArray<std::uint32_t, Space> selected(count);
+    parallel_for(Space{}, n, rank_cell_kernels::ScatterFlagged{before.data(), selected.data()});
+    DeviceArray<Vec4T<P>, Space> gathered(count);
+    parallel_for(Space{}, count,
+                 GatherByOrder<Vec4T<P>>{selected.data(), position_radius, gathered.data()});
+    selected.download(index);
+    gathered.download(position);
+  }
+
+  /// Bytes held in Space memory.
+  std::size_t memory_bytes() const { return owner_.bytes() + near_other_.bytes(); }
+
+ private:
+  CoarseGrid grid_;
+  DeviceArray<int, Space> owner_;
+  DeviceArray<std::uint8_t, Space> near_other_;
+  std::uint64_t version_ = std::numeric_limits<std::uint64_t>::max();  ///< none yet
+  int rank_ = -1;
+};
+
+}  // namespace gpudem

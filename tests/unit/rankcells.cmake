@@ -1,0 +1,7 @@
+# The device side of a rebuild on several ranks: chosen CSR rows read out and appended, the
+# particles near another rank's cells, the leaving particles' destinations (RankCells).
+gpudem_add_test(test_rank_cells
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/RankCellsTest.cpp
+  LIBS gpudem_kernels gpudem_decomposition
+  LABELS unit
+  TIMEOUT 60)
