@@ -34,9 +34,17 @@ MpiDomain::MpiDomain(MPI_Comm comm, Decomposition decomposition, Real ghost_widt
       gpu_aware_(gpu_aware) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
-  if (decomposition_.ranks() != size_)
-    throw std::invalid_argument("MpiDomain: the decomposition is for another rank count");
+  require_fits(decomposition_);
   adopt_decomposition();
+}
+
+void MpiDomain::require_fits(const Decomposition& d) const {
+  if (d.ranks() != size_)
+    throw std::invalid_argument("MpiDomain: the decomposition is for another rank count");
+  const CoarseGrid& cells = d.cells();
+  for (int k = 0; k < 3; ++k)
+    if (cells.n[k] > 1 && ghost_width_ > cells.edge(k))
+      throw std::invalid_argument("MpiDomain: the ghost width exceeds a coarse cell's edge");
 }
 
 void MpiDomain::adopt_decomposition() {
@@ -45,8 +53,7 @@ void MpiDomain::adopt_decomposition() {
 }
 
 void MpiDomain::propose(Decomposition next) {
-  if (next.ranks() != size_)
-    throw std::invalid_argument("MpiDomain: the decomposition is for another rank count");
+  require_fits(next);
   pending_ = std::move(next);
 }
 

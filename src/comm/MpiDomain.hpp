@@ -53,6 +53,10 @@ class MpiDomain final : public DomainLink {
   bool gpu_aware() const { return gpu_aware_; }
 
  private:
+  /// Throws std::invalid_argument unless `d` is for this rank count and every coarse cell edge
+  /// (along an axis of more than one cell) is at least the ghost width, which ghost_ranks and
+  /// the cell map's reach of kGhostReachCells assume.
+  void require_fits(const Decomposition& d) const;
   /// region_ and ownership_ of decomposition_ (a new map version).
   void adopt_decomposition();
   /// exchange once the receiver knows the sizes: incoming[q] sized by the caller.

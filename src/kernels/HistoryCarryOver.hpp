@@ -131,8 +131,8 @@ class HistoryCarryOver {
                                                     kept_.keys.data(), kept_.values.data()});
   }
 
-  /// The kept rows (those of particles that leave for another rank; those that arrived are
-  /// appended to them).
+  /// The kept rows: those of the owned particles at keep time (each read through its
+  /// previous_index), then those of particles that arrived from other ranks, appended.
   CsrRows<Space, Key, State>& rows() { return kept_; }
   const CsrRows<Space, Key, State>& rows() const { return kept_; }
 

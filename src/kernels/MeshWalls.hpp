@@ -196,8 +196,8 @@ class MeshWalls {
     }
   }
 
-  /// The kept rows (those of particles that leave for another rank; those that arrived are
-  /// appended to them).
+  /// The kept rows: those of the owned particles at keep time (each read through its
+  /// previous_index), then those of particles that arrived from other ranks, appended.
   CsrRows<Space, std::uint32_t, State>& kept_rows() { return kept_; }
   const CsrRows<Space, std::uint32_t, State>& kept_rows() const { return kept_; }
 

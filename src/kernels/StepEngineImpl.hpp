@@ -448,11 +448,10 @@ class StepEngineImpl final : public StepEngine {
     zero_history();
   }
 
-  /// Uploads the state of `p` (a ParticleStore or MigratingParticles) as the owned particles
-  /// and sizes the owned particles' work arrays; torques zero (a law without spin never writes
-  /// them, and a grown device array's new rows hold whatever its memory held).
-  template <class Host>
-  void upload_state(const Host& p) {
+  /// Uploads the particle arrays of `p` as the owned particles and sizes the owned particles'
+  /// work arrays; torques zero (a law without spin never writes them, and a grown device
+  /// array's new rows hold whatever its memory held), wall histories zero.
+  void upload_particles(const ParticleStore& p) {
     upload_in_state_scalar(p.position_radius, position_radius_);
     upload_in_state_scalar(p.velocity_inv_mass, velocity_inv_mass_);
     upload_in_state_scalar(p.angular_velocity, angular_velocity_);
@@ -463,11 +462,6 @@ class StepEngineImpl final : public StepEngine {
     torque_.resize(owned_);
     parallel_for(Space{}, owned_, Fill<ForceVec>{torque_.data(), ForceVec{}});
     overlap_ratio_.resize(owned_);
-  }
-
-  /// Uploads the particle arrays and sizes the per-particle work arrays; wall histories zero.
-  void upload_particles(const ParticleStore& p) {
-    upload_state(p);
     if constexpr (kHistoryWidth > 0) {
       wall_history_.resize(owned_ * wall_count());
       parallel_for(Space{}, wall_history_.size(), Fill<State>{wall_history_.data(), State{}});
@@ -887,7 +881,7 @@ class StepEngineImpl final : public StepEngine {
     p.mesh_offsets.assign(count + 1, 0);
     if constexpr (kHistoryWidth > 0) {
       p.wall_history = download_values<Space>(wall_history_.data() + first * walls, count * walls);
-      if (!has_list_) return p;
+      if (!has_list_ || count == 0) return p;
       const std::uint32_t* rows = previous_index_.data() + first;
       carried_pairs_.rows().download(rows, count, p.row_offsets, p.row_partner, p.row_history);
       if (!meshes_.empty())
@@ -907,19 +901,18 @@ class StepEngineImpl final : public StepEngine {
     upload_values<Space>(arrived.id, id_.data() + first);
     upload_values<Space>(arrived.material, material_.data() + first);
     parallel_for(Space{}, owned_, Fill<ForceVec>{torque_.data(), ForceVec{}});
+    // The arrivals' rows go after the kept ones (none without history: the index is then only
+    // carried along by the sorts).
+    const auto first_row = static_cast<std::uint32_t>(carried_pairs_.rows().rows());
+    parallel_for(Space{}, arrived.size(), IotaFrom{previous_index_.data() + first, first_row});
     if constexpr (kHistoryWidth > 0) {
       upload_values<Space>(arrived.wall_history, wall_history_.data() + first * walls);
-      auto& pair_rows = carried_pairs_.rows();
-      const auto first_row = static_cast<std::uint32_t>(pair_rows.rows());
-      parallel_for(Space{}, arrived.size(), IotaFrom{previous_index_.data() + first, first_row});
       if (!has_list_) return;
-      pair_rows.append(arrived.row_offsets, arrived.row_partner, arrived.row_history);
+      carried_pairs_.rows().append(arrived.row_offsets, arrived.row_partner, arrived.row_history);
       if (meshes_.empty()) return;
       if (meshes_.kept_rows().rows() != first_row)
         throw std::logic_error("migration: the kept mesh rows and pair rows differ in count");
       meshes_.kept_rows().append(arrived.mesh_offsets, arrived.mesh_triangle, arrived.mesh_history);
-    } else {
-      parallel_for(Space{}, arrived.size(), IotaFrom{previous_index_.data() + first, 0});
     }
   }
 

@@ -127,6 +127,23 @@ TEST(DomainExchange, CountsForAnotherRankCountAreRefused) {
   EXPECT_THROW(domain.start_exchange(&byte, counts, &byte, counts), std::invalid_argument);
 }
 
+TEST(DomainExchange, GhostWidthBeyondACellEdgeIsRefused) {
+  const CoarseGrid cells = CoarseGrid::over(unit_cube(), Real(0.25));  // edge 0.25 m
+  const auto slabs = [&] {
+    std::vector<int> owner(cells.count());
+    for (std::size_t c = 0; c < owner.size(); ++c)
+      owner[c] = cells.coords(c)[0] * comm_size() / cells.n[0];
+    return Decomposition::from_owners(cells, owner, comm_size());
+  };
+  EXPECT_NO_THROW(MpiDomain(MPI_COMM_WORLD, slabs(), Real(0.25), false));
+  EXPECT_THROW(MpiDomain(MPI_COMM_WORLD, slabs(), Real(0.26), false), std::invalid_argument);
+  MpiDomain domain(MPI_COMM_WORLD, slabs(), Real(0.25), false);
+  const CoarseGrid fine = CoarseGrid::over(unit_cube(), Real(0.2));  // edge 0.2 m
+  std::vector<int> owner(fine.count(), 0);
+  EXPECT_THROW(domain.propose(Decomposition::from_owners(fine, owner, comm_size())),
+               std::invalid_argument);
+}
+
 TEST(OneRankExchange, CopiesTheMessage) {
   const OneRankDomain domain(unit_cube());
   std::vector<char> send(11);

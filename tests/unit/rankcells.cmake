@@ -5,3 +5,10 @@ gpudem_add_test(test_rank_cells
   LIBS gpudem_kernels gpudem_decomposition
   LABELS unit
   TIMEOUT 60)
+if(GPUDEM_HAVE_CUDA)
+  gpudem_add_test(test_rank_cells_cuda
+    SOURCES ${CMAKE_CURRENT_LIST_DIR}/RankCellsCudaTest.cu
+    LIBS gpudem_kernels gpudem_decomposition
+    LABELS unit
+    TIMEOUT 60)
+endif()
