@@ -16,6 +16,7 @@
 
 #include "core/ContactModel.hpp"
 #include "core/InputError.hpp"
+#include "core/RowShare.hpp"
 
 namespace gpudem {
 namespace {
@@ -268,7 +269,7 @@ void BedLoader::apply_history(const Scene& scene, const MpiContext& mpi, StepEng
     std::printf("bed %s: %zu wall contact record(s) name walls this scene does not have; dropped\n",
                 path_.c_str(), dropped);
   try {
-    engine.set_contact_history(history);
+    engine.set_contact_history(share_of(history, mpi.rank(), mpi.size()));
   } catch (const std::invalid_argument& e) {
     throw InputError(path_, 0, "", e.what());
   }

@@ -8,51 +8,65 @@
 #include <utility>
 #include <vector>
 
+#include "comm/StartupShares.hpp"
 #include "core/InputError.hpp"
 
 namespace gpudem {
 
 namespace {
 
-Real largest_radius(const ParticleStore& particles) {
-  Real r_max = 0;
-  for (const Real4& p : particles.position_radius) r_max = std::max(r_max, p.w);
-  return r_max;
+/// Largest radius over all ranks' shares, or 0. Collective.
+Real largest_radius(MPI_Comm comm, const ParticleStore& share) {
+  double r_max = 0, all = 0;
+  for (const Real4& p : share.position_radius) r_max = std::max(r_max, double(p.w));
+  MPI_Allreduce(&r_max, &all, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return Real(all);
 }
 
-/// The bounding box of the particles' spheres, [lo, hi].
-std::pair<Vec3, Vec3> bed_bounds(const ParticleStore& particles, const PeriodicBox& box) {
-  if (particles.size() == 0) return {box.lo, box.lo + box.length};
-  constexpr Real kHuge = std::numeric_limits<Real>::max();
-  Vec3 lo{kHuge, kHuge, kHuge}, hi{-kHuge, -kHuge, -kHuge};
-  for (const Real4& p : particles.position_radius)
+/// The bounding box [lo, hi] of the spheres of all ranks' shares; the box without particles.
+/// Collective.
+std::pair<Vec3, Vec3> bed_bounds(MPI_Comm comm, const ParticleStore& share, const PeriodicBox& box,
+                                 std::uint64_t count) {
+  if (count == 0) return {box.lo, box.lo + box.length};
+  constexpr double kHuge = std::numeric_limits<double>::max();
+  double lo[3] = {kHuge, kHuge, kHuge}, minus_hi[3] = {kHuge, kHuge, kHuge};
+  for (const Real4& p : share.position_radius)
     for (int k = 0; k < 3; ++k) {
-      axis(lo, k) = std::min(axis(lo, k), axis(xyz(p), k) - p.w);
-      axis(hi, k) = std::max(axis(hi, k), axis(xyz(p), k) + p.w);
+      lo[k] = std::min(lo[k], double(axis(xyz(p), k) - p.w));
+      minus_hi[k] = std::min(minus_hi[k], -double(axis(xyz(p), k) + p.w));
     }
-  return {lo, hi};
+  MPI_Allreduce(MPI_IN_PLACE, lo, 3, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, minus_hi, 3, MPI_DOUBLE, MPI_MIN, comm);
+  return {Vec3{Real(lo[0]), Real(lo[1]), Real(lo[2])},
+          Vec3{Real(-minus_hi[0]), Real(-minus_hi[1]), Real(-minus_hi[2])}};
 }
 
 /// Solid fraction of a settled random packing, for the settled-bed estimate.
 constexpr Real kSettledPacking = 0.6;
 
-/// The bed as auto dims judge it. Particles that have yet to settle (their volume fills, at
-/// kSettledPacking over the bounding box's section across gravity, less height than the box
-/// has along gravity) will move along gravity, so cuts across gravity balanced now would not
-/// stay balanced: the bed counts as shallow, its height along gravity cut below its other two
-/// extents. A packed bed or column keeps its box.
-std::pair<Vec3, Vec3> settled_bed(const ParticleStore& particles, std::pair<Vec3, Vec3> bed,
+/// Σ 4/3 π r³ over all ranks' shares [m³]. Collective.
+Real solid_volume(MPI_Comm comm, const ParticleStore& share) {
+  double solid = 0, all = 0;
+  for (const Real4& p : share.position_radius) solid += 4.0 / 3.0 * M_PI * p.w * p.w * p.w;
+  MPI_Allreduce(&solid, &all, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return Real(all);
+}
+
+/// The bed as auto dims judge it, from the bounding box `bed` and the spheres' volume `solid`.
+/// Particles that have yet to settle (their volume fills, at kSettledPacking over the bounding
+/// box's section across gravity, less height than the box has along gravity) will move along
+/// gravity, so cuts across gravity balanced now would not stay balanced: the bed counts as
+/// shallow, its height along gravity cut below its other two extents. A packed bed or column
+/// keeps its box.
+std::pair<Vec3, Vec3> settled_bed(Real solid, std::uint64_t count, std::pair<Vec3, Vec3> bed,
                                   Vec3 gravity) {
   int g = -1;
   for (int k = 0; k < 3; ++k)
     if (axis(gravity, k) != 0 && (g < 0 || std::abs(axis(gravity, k)) > std::abs(axis(gravity, g))))
       g = k;
-  if (g < 0 || particles.size() == 0) return bed;
+  if (g < 0 || count == 0) return bed;
   const Vec3 extent = bed.second - bed.first;
   const Real base = axis(extent, (g + 1) % 3) * axis(extent, (g + 2) % 3);
-  Real solid = 0;
-  for (const Real4& p : particles.position_radius)
-    solid += Real(4.0 / 3.0 * M_PI) * p.w * p.w * p.w;
   const Real settled = solid / (kSettledPacking * base);
   if (!(settled < axis(extent, g))) return bed;
   const Real across = std::min(axis(extent, (g + 1) % 3), axis(extent, (g + 2) % 3));
@@ -64,10 +78,13 @@ std::pair<Vec3, Vec3> settled_bed(const ParticleStore& particles, std::pair<Vec3
   return bed;
 }
 
-/// Particles per coarse cell.
-std::vector<double> particles_per_cell(const CoarseGrid& cells, const ParticleStore& particles) {
+/// Particles per coarse cell over all ranks' shares. Collective.
+std::vector<double> particles_per_cell(MPI_Comm comm, const CoarseGrid& cells,
+                                       const ParticleStore& share) {
   std::vector<double> work(cells.count(), 0.0);
-  for (const Real4& p : particles.position_radius) work[cells.cell_of(xyz(p))] += 1;
+  for (const Real4& p : share.position_radius) work[cells.cell_of(xyz(p))] += 1;
+  MPI_Allreduce(MPI_IN_PLACE, work.data(), static_cast<int>(work.size()), MPI_DOUBLE, MPI_SUM,
+                comm);
   return work;
 }
 
@@ -85,20 +102,22 @@ std::vector<int> metis_parts(const Scene& scene, const CoarseGrid& cells,
 }  // namespace
 
 std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi,
-                                       const ParticleStore& particles, const EngineSetup& setup,
+                                       const ParticleStore& share, const EngineSetup& setup,
                                        bool gpu_aware) {
   if (mpi.size() == 1) return nullptr;
-  const Real ghost_width = 2 * largest_radius(particles) + setup.skin;
+  const MPI_Comm comm = mpi.comm();
+  const Real ghost_width = 2 * largest_radius(comm, share) + setup.skin;
   const CoarseGrid cells = CoarseGrid::over(setup.box, ghost_width);
-  const std::vector<double> work = particles_per_cell(cells, particles);
+  const std::vector<double> work = particles_per_cell(comm, cells, share);
   const DecompositionSettings& settings = scene.decomposition;
   if (settings.method == DecompositionMethod::Metis)
     return std::make_unique<MpiDomain>(
         mpi.comm(),
         Decomposition::from_owners(cells, metis_parts(scene, cells, work, mpi.size()), mpi.size()),
         ghost_width, gpu_aware);
-  const auto [bed_lo, bed_hi] =
-      settled_bed(particles, bed_bounds(particles, setup.box), setup.gravity);
+  const std::uint64_t count = sum_over_ranks(comm, share.size());
+  const auto [bed_lo, bed_hi] = settled_bed(
+      solid_volume(comm, share), count, bed_bounds(comm, share, setup.box, count), setup.gravity);
   const std::array<int, 3> dims = choose_grid_dims(mpi.size(), bed_lo, bed_hi, setup.gravity, cells,
                                                    settings.dims, scene.file, settings.dims_line);
   return std::make_unique<MpiDomain>(mpi.comm(),

@@ -11,15 +11,15 @@
 
 namespace gpudem {
 
-/// This rank's part of the domain on mpi.size() ranks, or null on one rank. Coarse cells of
-/// edge at least the ghost width 2 r_max + skin (r_max over `particles`) are weighted by the
-/// particles they hold; "grid" cuts the particle bed into blocks of equal particle counts
-/// along each axis ("auto" dims judge the bed as it will settle under gravity), "metis"
-/// partitions the cell graph. Throws InputError for dims that do not multiply to the rank
-/// count or more ranks than coarse cells. gpu_aware: MPI accepts device buffers
-/// (GpuAwareMpi.hpp).
+/// This rank's part of the domain on mpi.size() ranks, or null on one rank, from every rank's
+/// `share` of the particles (collective). Coarse cells of edge at least the ghost width
+/// 2 r_max + skin (r_max over all particles) are weighted by the particles they hold; "grid" cuts
+/// the particle bed into blocks of equal particle counts along each axis ("auto" dims judge the bed
+/// as it will settle under gravity), "metis" partitions the cell graph. Throws InputError for dims
+/// that do not multiply to the rank count or more ranks than coarse cells. gpu_aware: MPI accepts
+/// device buffers (GpuAwareMpi.hpp).
 std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi,
-                                       const ParticleStore& particles, const EngineSetup& setup,
+                                       const ParticleStore& share, const EngineSetup& setup,
                                        bool gpu_aware);
 
 /// One line describing the decomposition (rank 0 prints it).

@@ -15,10 +15,12 @@
 #include "comm/Checkpoint.hpp"
 #include "comm/OutputDirectory.hpp"
 #include "comm/SnapshotQueue.hpp"
+#include "comm/StartupShares.hpp"
 #include "comm/TimeSeriesWriter.hpp"
 #include "core/ExactDecimal.hpp"
 #include "core/InputError.hpp"
 #include "core/ParticleSources.hpp"
+#include "core/RowShare.hpp"
 #include "core/SceneLoader.hpp"
 #include "core/SceneSetup.hpp"
 #include "core/Stopwatch.hpp"
@@ -138,12 +140,15 @@ void print_output_mode(const Scene& scene) {
 }
 
 /// The start-up summary; engine_bytes < 0 when no engine was made (--check).
-void print_summary(const Scene& scene, const ParticleStore& particles, const EngineSetup& setup,
-                   const StepEngine* engine, double engine_bytes, std::uint64_t steps) {
-  const TimeStepLimits limits = time_step_limits(scene, particles);
-  std::printf("scene %s: %zu particles, %zu materials, %zu walls, contact law %s\n",
-              scene.file.c_str(), particles.size(), scene.materials.size(), scene.walls.size(),
-              contact_model_name(setup.contact_model).c_str());
+/// `deciding`: the particles that set the time step (setup_deciding_particles over all ranks);
+/// `count`: the particles on all ranks.
+void print_summary(const Scene& scene, const ParticleStore& deciding, std::uint64_t count,
+                   const EngineSetup& setup, const StepEngine* engine, double engine_bytes,
+                   std::uint64_t steps) {
+  const TimeStepLimits limits = time_step_limits(scene, deciding);
+  std::printf("scene %s: %llu particles, %zu materials, %zu walls, contact law %s\n",
+              scene.file.c_str(), static_cast<unsigned long long>(count), scene.materials.size(),
+              scene.walls.size(), contact_model_name(setup.contact_model).c_str());
   std::printf(
       "dt = %.4g s (%s; contact duration %.4g s, Rayleigh time %.4g s, stable limit %.4g s), "
       "%llu steps to t = %.4g s, skin %.4g m\n",
@@ -162,7 +167,7 @@ void print_summary(const Scene& scene, const ParticleStore& particles, const Eng
     const std::string device =
         engine->backend_name() == "cuda" ? " (" + cuda::device_description() + ")" : "";
     std::printf("backend %s%s, %.1f bytes per particle\n", engine->backend_name().c_str(),
-                device.c_str(), particles.size() ? engine_bytes / particles.size() : 0.0);
+                device.c_str(), count ? engine_bytes / static_cast<double>(count) : 0.0);
   }
   std::fflush(stdout);
 }
@@ -425,18 +430,58 @@ void adopt_checkpoint_step(EngineSetup& setup, const Scene& scene, const Checkpo
                          " s: nothing to continue");
 }
 
-/// Hands the particles to the engine: a new run's evaluate their forces; a checkpoint's are
-/// restored with their forces, neighbour list order and contact history.
-void start_engine(StepEngine& engine, const ParticleStore& particles, const Checkpoint* checkpoint,
-                  const std::string& path) {
-  if (!checkpoint) {
-    engine.set_particles(particles);
+/// This rank's share of the particles a run starts with: the rows of its part of the
+/// checkpoint it restarts from (read by parts, so that no rank holds the whole file), or of the
+/// particles the scene's sources create (created on every rank, then all but the share dropped).
+struct StartShare {
+  std::optional<Checkpoint> checkpoint;  ///< this rank's part of it, on a restart
+  ParticleStore created;                 ///< this rank's share of a new run's particles
+
+  const ParticleStore& particles() const { return checkpoint ? checkpoint->particles : created; }
+
+  /// Frees the rows once the engine holds them; the checkpoint's step, time and snapshot table
+  /// stay.
+  void release_rows() {
+    created = ParticleStore{};
+    if (!checkpoint) return;
+    checkpoint->particles = ParticleStore{};
+    checkpoint->list_position_radius = std::vector<Real4>{};
+    checkpoint->history = ContactHistory{};
+  }
+};
+
+/// Reads or creates this rank's StartShare. A problem with the checkpoint found on any rank is
+/// an InputError on every rank. Collective.
+StartShare load_start_share(const Scene& scene, const RunOptions& options, const MpiContext& mpi,
+                            BedLoader& bed) {
+  StartShare start;
+  const int rank = mpi.rank(), ranks = mpi.size();
+  if (!options.restart_file.empty()) {
+    const std::string& path = options.restart_file;
+    start.checkpoint = agree_on_input(mpi.comm(), [&] {
+      Checkpoint part = read_checkpoint(path, FilePart{rank, ranks});
+      check_checkpoint_fits_scene(part, path, scene);
+      return part;
+    });
+  } else {
+    ParticleStore all;
+    create_particles(scene, all, bed.reader());
+    start.created = share_of(all, rank, ranks);
+  }
+  return start;
+}
+
+/// Hands this rank's share of the particles to the engine: a new run's evaluate their forces;
+/// a checkpoint's are restored with their forces, neighbour list order and contact history.
+void start_engine(StepEngine& engine, const StartShare& share, const std::string& path) {
+  if (!share.checkpoint) {
+    engine.set_particles(share.created);
     return;
   }
+  const Checkpoint& c = *share.checkpoint;
   try {
-    engine.restore_particles(particles, checkpoint->list_position_radius, checkpoint->removed,
-                             checkpoint->list_build_step);
-    engine.set_contact_history(checkpoint->history);
+    engine.restore_particles(c.particles, c.list_position_radius, c.removed, c.list_build_step);
+    engine.set_contact_history(c.history);
   } catch (const std::invalid_argument& e) {
     throw InputError(path, 0, "", e.what());
   }
@@ -460,20 +505,16 @@ int finish_preparation(const Scene& scene, const MpiContext& mpi, const StepEngi
 int run_scene(const RunOptions& options, const MpiContext& mpi) {
   Scene scene = load_scene(options.scene_file, options.overrides);
   if (!options.output_dir.empty()) scene.output.dir = options.output_dir;
-  std::optional<Checkpoint> checkpoint;
-  ParticleStore created;
   BedLoader bed;
-  if (!options.restart_file.empty()) {
-    checkpoint = read_checkpoint(options.restart_file);
-    check_checkpoint_fits_scene(*checkpoint, options.restart_file, scene);
-  } else {
-    create_particles(scene, created, bed.reader());
-  }
-  const ParticleStore& particles = checkpoint ? checkpoint->particles : created;
-  EngineSetup setup = make_engine_setup(scene, particles);
+  StartShare share = load_start_share(scene, options, mpi, bed);
+  const Checkpoint* checkpoint = share.checkpoint ? &*share.checkpoint : nullptr;
+  const ParticleStore deciding =
+      gather_particles(mpi.comm(), setup_deciding_particles(scene, share.particles()));
+  const std::uint64_t particle_count = sum_over_ranks(mpi.comm(), share.particles().size());
+  EngineSetup setup = make_engine_setup(scene, deciding);
   if (checkpoint) adopt_checkpoint_step(setup, scene, *checkpoint, options.restart_file);
   const std::unique_ptr<MpiDomain> domain =
-      make_domain(scene, mpi, particles, setup, use_gpu_aware_mpi(options.gpu_aware_mpi));
+      make_domain(scene, mpi, share.particles(), setup, use_gpu_aware_mpi(options.gpu_aware_mpi));
   setup.domain = domain.get();
   setup.exact_phase_times = options.exact_time_split;
   const std::uint64_t steps = step_count(scene.simulation.end_time, setup.dt);
@@ -485,7 +526,7 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
                 checkpoint->time, static_cast<unsigned long long>(checkpoint->step));
   if (options.check_only) {
     if (mpi.is_root()) {
-      print_summary(scene, particles, setup, nullptr, -1, steps);
+      print_summary(scene, deciding, particle_count, setup, nullptr, -1, steps);
       if (domain) print_decomposition(*domain);
       if (settle) print_preparation(scene, *settle, setup.dt);
       std::printf("scene is valid\n");
@@ -493,12 +534,14 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
     return kExitOk;
   }
   std::unique_ptr<StepEngine> engine = make_engine(options.backend, mpi, setup);
-  start_engine(*engine, particles, checkpoint ? &*checkpoint : nullptr, options.restart_file);
+  start_engine(*engine, share, options.restart_file);
+  share.release_rows();
   if (!checkpoint) bed.apply_history(scene, mpi, *engine);
   const std::string tuning = engine->tune_launches();
   prepare_output_directory(scene.output.dir);
   const std::vector<MemoryUse> memory = memory_over_ranks(mpi, *engine);
-  if (banner) print_summary(scene, particles, setup, engine.get(), total_bytes(memory), steps);
+  if (banner)
+    print_summary(scene, deciding, particle_count, setup, engine.get(), total_bytes(memory), steps);
   if (banner && options.verbose) {
     print_memory_report(memory, engine->particle_count());
     std::printf("%s\n", tuning.c_str());

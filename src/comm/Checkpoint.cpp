@@ -173,6 +173,9 @@ class QuietHdf5 {
   void* data_ = nullptr;
 };
 
+/// Datasets of one group and their row counts.
+using LengthGroup = std::vector<std::pair<const char*, std::size_t>>;
+
 /// Typed, checked reads of one checkpoint file; every problem is an InputError naming it.
 class Reader {
  public:
@@ -196,23 +199,21 @@ class Reader {
   }
 
   /// Dataset `name` as rows of type Row, each sizeof(Row)/sizeof(Value) values stored with
-  /// type `file_type` (1-D for one value per row, else rows × values).
+  /// type `file_type` (1-D for one value per row, else rows × values): the rows of `part`.
+  /// Adds the dataset's length (all its rows) to `lengths` when given.
   template <class Row, class Value>
-  std::vector<Row> rows(const char* name, hid_t file_type) const {
+  std::vector<Row> rows(const char* name, hid_t file_type, FilePart part = {},
+                        LengthGroup* lengths = nullptr) const {
     static_assert(sizeof(Row) % sizeof(Value) == 0, "a row holds whole values");
-    const H5Handle dataset = open_typed(name, file_type);
-    std::vector<Row> out(row_count(dataset.id(), name, sizeof(Row) / sizeof(Value)));
-    read_all(dataset.id(), name, native_type<Value>(), out.data(), out.size());
-    return out;
+    return read_part<Row>(name, file_type, native_type<Value>(), sizeof(Row) / sizeof(Value), part,
+                          lengths);
   }
 
-  /// Dataset `name` of f64 values, `width` per row (1-D for one), flattened row by row.
-  std::vector<Real> columns(const char* name, hsize_t width) const {
-    const H5Handle dataset = open_typed(name, H5T_IEEE_F64LE);
-    const hsize_t rows = row_count(dataset.id(), name, width);
-    std::vector<Real> out(rows * width);
-    read_all(dataset.id(), name, native_type<Real>(), out.data(), rows);
-    return out;
+  /// Dataset `name` of f64 values, `width` per row (1-D for one), flattened row by row: the
+  /// rows of `part`. Adds the dataset's length to `lengths`.
+  std::vector<Real> columns(const char* name, hsize_t width, FilePart part,
+                            LengthGroup& lengths) const {
+    return read_part<Real>(name, H5T_IEEE_F64LE, native_type<Real>(), width, part, &lengths);
   }
 
   /// Whether the file holds a link `name`.
@@ -224,7 +225,7 @@ class Reader {
   std::vector<std::uint8_t> bytes(const char* name) const {
     const H5Handle dataset = open_typed(name, H5T_STD_U8LE);
     std::vector<std::uint8_t> out(row_count(dataset.id(), name, 1));
-    read_all(dataset.id(), name, H5T_NATIVE_UINT8, out.data(), out.size());
+    read_rows(dataset.id(), name, H5T_NATIVE_UINT8, out.data(), {0, out.size()}, 1);
     return out;
   }
 
@@ -273,10 +274,31 @@ class Reader {
     return dataset;
   }
 
-  /// Reads the whole dataset, `rows` rows (none to read when 0), as `memory_type` into `out`.
-  void read_all(hid_t dataset, const char* name, hid_t memory_type, void* out,
-                std::size_t rows) const {
-    if (rows > 0 && H5Dread(dataset, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0)
+  /// The rows of `part` of dataset `name` (stored with `file_type`, `components` values per
+  /// row), read as `memory_type` into values of type T, `components` per row.
+  template <class T>
+  std::vector<T> read_part(const char* name, hid_t file_type, hid_t memory_type, hsize_t components,
+                           FilePart part, LengthGroup* lengths) const {
+    const H5Handle dataset = open_typed(name, file_type);
+    const hsize_t total = row_count(dataset.id(), name, components);
+    if (lengths) lengths->emplace_back(name, total);
+    const RowRange range = part.rows_of(total);
+    std::vector<T> out(range.count * components * H5Tget_size(memory_type) / sizeof(T));
+    read_rows(dataset.id(), name, memory_type, out.data(), range, components);
+    return out;
+  }
+
+  /// Reads rows `range` of a dataset with `components` values per row (none when empty) as
+  /// `memory_type` into `out`.
+  void read_rows(hid_t dataset, const char* name, hid_t memory_type, void* out, RowRange range,
+                 hsize_t components) const {
+    if (range.count == 0) return;
+    H5Handle file_space(H5Dget_space(dataset), H5Sclose);
+    const int dims = components > 1 ? 2 : 1;
+    const hsize_t start[2] = {range.first, 0}, count[2] = {range.count, components};
+    H5Handle memory_space(H5Screate_simple(dims, count, nullptr), H5Sclose);
+    if (H5Sselect_hyperslab(file_space.id(), H5S_SELECT_SET, start, nullptr, count, nullptr) < 0 ||
+        H5Dread(dataset, memory_type, memory_space.id(), file_space.id(), H5P_DEFAULT, out) < 0)
       reject(std::string("cannot read dataset '") + name + "'");
   }
 
@@ -298,9 +320,6 @@ class Reader {
   H5Handle file_;
 };
 
-/// Datasets of one group and their row counts.
-using LengthGroup = std::vector<std::pair<const char*, std::size_t>>;
-
 /// Rejects datasets of one group whose lengths differ from the first one's.
 void check_same_length(const Reader& reader, const LengthGroup& group) {
   for (const auto& [name, length] : group)
@@ -310,24 +329,20 @@ void check_same_length(const Reader& reader, const LengthGroup& group) {
                     std::to_string(group.front().second));
 }
 
-void read_particles(const Reader& r, Checkpoint& c) {
+/// The particle rows of `part`; the datasets must all have the same length.
+void read_particles(const Reader& r, FilePart part, Checkpoint& c) {
   ParticleStore& p = c.particles;
-  p.id = r.rows<ParticleId, ParticleId>("id", H5T_STD_U64LE);
-  p.position_radius = r.rows<Real4, Real>("position_radius", H5T_IEEE_F64LE);
-  p.velocity_inv_mass = r.rows<Real4, Real>("velocity_inv_mass", H5T_IEEE_F64LE);
-  p.angular_velocity = r.rows<Vec3, Real>("angular_velocity", H5T_IEEE_F64LE);
-  p.force = r.rows<Vec3, Real>("force", H5T_IEEE_F64LE);
-  p.torque = r.rows<Vec3, Real>("torque", H5T_IEEE_F64LE);
-  p.material = r.rows<MaterialId, MaterialId>("material", H5T_STD_U32LE);
-  c.list_position_radius = r.rows<Real4, Real>("list_position_radius", H5T_IEEE_F64LE);
-  check_same_length(r, {{"id", p.id.size()},
-                        {"position_radius", p.position_radius.size()},
-                        {"velocity_inv_mass", p.velocity_inv_mass.size()},
-                        {"angular_velocity", p.angular_velocity.size()},
-                        {"force", p.force.size()},
-                        {"torque", p.torque.size()},
-                        {"material", p.material.size()},
-                        {"list_position_radius", c.list_position_radius.size()}});
+  LengthGroup lengths;
+  p.id = r.rows<ParticleId, ParticleId>("id", H5T_STD_U64LE, part, &lengths);
+  p.position_radius = r.rows<Real4, Real>("position_radius", H5T_IEEE_F64LE, part, &lengths);
+  p.velocity_inv_mass = r.rows<Real4, Real>("velocity_inv_mass", H5T_IEEE_F64LE, part, &lengths);
+  p.angular_velocity = r.rows<Vec3, Real>("angular_velocity", H5T_IEEE_F64LE, part, &lengths);
+  p.force = r.rows<Vec3, Real>("force", H5T_IEEE_F64LE, part, &lengths);
+  p.torque = r.rows<Vec3, Real>("torque", H5T_IEEE_F64LE, part, &lengths);
+  p.material = r.rows<MaterialId, MaterialId>("material", H5T_STD_U32LE, part, &lengths);
+  c.list_position_radius =
+      r.rows<Real4, Real>("list_position_radius", H5T_IEEE_F64LE, part, &lengths);
+  check_same_length(r, lengths);
   const auto positive = [](Real v) { return std::isfinite(v) && v > 0; };
   for (std::size_t i = 0; i < p.size(); ++i)
     if (!positive(p.position_radius[i].w) || !positive(p.velocity_inv_mass[i].w))
@@ -335,34 +350,33 @@ void read_particles(const Reader& r, Checkpoint& c) {
                " has a radius or inverse mass that is not finite and > 0");
 }
 
-/// The history values of one kind of record, `width` per record, flat; none (and no dataset)
-/// at width 0. Adds the dataset's row count to the records' `group`.
+/// The history values of one kind of record, `width` per record, flat, for the rows of
+/// `part`; none (and no dataset) at width 0. Adds the dataset's length to `group`.
 std::vector<Real> read_history_values(const Reader& r, const char* name, std::uint32_t width,
-                                      LengthGroup& group) {
+                                      FilePart part, LengthGroup& group) {
   if (width == 0) return {};
-  std::vector<Real> values = r.columns(name, width);
-  group.emplace_back(name, values.size() / width);
-  return values;
+  return r.columns(name, width, part, group);
 }
 
-void read_history(const Reader& r, ContactHistory& h) {
+/// The records of `part` of each kind; the datasets of one kind must have the same length.
+void read_history(const Reader& r, FilePart part, ContactHistory& h) {
   h.width = r.attribute<std::uint32_t>("history_width", H5T_STD_U32LE);
-  h.pair_owner = r.rows<ParticleId, ParticleId>("pair_owner", H5T_STD_U64LE);
-  h.pair_partner = r.rows<ParticleId, ParticleId>("pair_partner", H5T_STD_U64LE);
-  LengthGroup pairs{{"pair_owner", h.pair_owner.size()}, {"pair_partner", h.pair_partner.size()}};
-  h.pair_values = read_history_values(r, "pair_history", h.width, pairs);
+  LengthGroup pairs;
+  h.pair_owner = r.rows<ParticleId, ParticleId>("pair_owner", H5T_STD_U64LE, part, &pairs);
+  h.pair_partner = r.rows<ParticleId, ParticleId>("pair_partner", H5T_STD_U64LE, part, &pairs);
+  h.pair_values = read_history_values(r, "pair_history", h.width, part, pairs);
   check_same_length(r, pairs);
-  h.wall_owner = r.rows<ParticleId, ParticleId>("wall_owner", H5T_STD_U64LE);
-  h.wall_index = r.rows<std::uint32_t, std::uint32_t>("wall_index", H5T_STD_U32LE);
-  LengthGroup walls{{"wall_owner", h.wall_owner.size()}, {"wall_index", h.wall_index.size()}};
-  h.wall_values = read_history_values(r, "wall_history", h.width, walls);
+  LengthGroup walls;
+  h.wall_owner = r.rows<ParticleId, ParticleId>("wall_owner", H5T_STD_U64LE, part, &walls);
+  h.wall_index = r.rows<std::uint32_t, std::uint32_t>("wall_index", H5T_STD_U32LE, part, &walls);
+  h.wall_values = read_history_values(r, "wall_history", h.width, part, walls);
   check_same_length(r, walls);
   if (!r.has("mesh_owner")) return;  // written before mesh records existed: none
-  h.mesh_owner = r.rows<ParticleId, ParticleId>("mesh_owner", H5T_STD_U64LE);
-  h.mesh_triangle = r.rows<std::uint32_t, std::uint32_t>("mesh_triangle", H5T_STD_U32LE);
-  LengthGroup meshes{{"mesh_owner", h.mesh_owner.size()},
-                     {"mesh_triangle", h.mesh_triangle.size()}};
-  h.mesh_values = read_history_values(r, "mesh_history", h.width, meshes);
+  LengthGroup meshes;
+  h.mesh_owner = r.rows<ParticleId, ParticleId>("mesh_owner", H5T_STD_U64LE, part, &meshes);
+  h.mesh_triangle =
+      r.rows<std::uint32_t, std::uint32_t>("mesh_triangle", H5T_STD_U32LE, part, &meshes);
+  h.mesh_values = read_history_values(r, "mesh_history", h.width, part, meshes);
   check_same_length(r, meshes);
 }
 
@@ -442,13 +456,13 @@ void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& c
                              (rank == 0 ? error : "rank 0 could not publish '" + path + "'"));
 }
 
-Checkpoint read_checkpoint(const std::string& path) {
+Checkpoint read_checkpoint(const std::string& path, FilePart part) {
   const QuietHdf5 quiet;
   const Reader reader(path);
   Checkpoint c;
   read_attributes(reader, c);  // the version first: other versions may lay datasets out otherwise
-  read_particles(reader, c);
-  read_history(reader, c.history);
+  read_particles(reader, part, c);
+  read_history(reader, part, c.history);
   read_snapshot_table(reader, c.snapshots);
   return c;
 }
@@ -469,8 +483,10 @@ void check_checkpoint_fits_scene(const Checkpoint& c, const std::string& path, c
                            " wall(s)");
   if (!c.history.mesh_owner.empty() && scene.meshes.empty())
     throw InputError(path, 0, "",
-                     "contact history holds " + std::to_string(c.history.mesh_owner.size()) +
-                         " particle-mesh contact(s) but the scene defines no mesh");
+                     "contact history holds particle-mesh contacts (particle id " +
+                         std::to_string(c.history.mesh_owner.front()) + " with triangle " +
+                         std::to_string(c.history.mesh_triangle.front()) +
+                         ") but the scene defines no mesh");
   const std::uint32_t width = contact_history_width(scene.contact.model);
   if (c.history.width != width)
     throw InputError(path, 0, "",

@@ -32,6 +32,7 @@
 #include "comm/XdmfDocument.hpp"
 #include "core/ContactHistory.hpp"
 #include "core/ParticleStore.hpp"
+#include "core/RowShare.hpp"
 #include "core/Scene.hpp"
 
 namespace gpudem {
@@ -63,13 +64,16 @@ std::string checkpoint_path(const std::string& dir);
 /// it was, and std::logic_error on every rank when the ranks' histories differ in width.
 void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& checkpoint);
 
-/// Reads a whole checkpoint on one rank (a run on several ranks will read its rows by slices).
-/// Throws InputError naming `path` and what is wrong: a missing file, a file that is not
+/// Reads part `part` of a checkpoint: the particle rows part.rows_of(N) and, of each kind of
+/// contact-history record, the records part.rows_of(count); the snapshot table and the
+/// attributes whole. The default part is the whole file; a run on P ranks reads part
+/// {rank, P} on each, so that no rank holds more than its share. Throws InputError naming
+/// `path` and what is wrong: a missing file, a file that is not
 /// HDF5, another format version, a missing or mistyped dataset or attribute, a history
 /// dataset without history_width columns, datasets of one group with different lengths, a
 /// radius, inverse mass or time step that is not finite and > 0, or a snapshot_rank_field
-/// value other than 0 and 1.
-Checkpoint read_checkpoint(const std::string& path);
+/// value other than 0 and 1. Particle values are checked in the part read.
+Checkpoint read_checkpoint(const std::string& path, FilePart part = {});
 
 /// Throws InputError naming `path` when `checkpoint` refers to a material or a wall that
 /// `scene` does not define, or holds another number of history values per contact than the

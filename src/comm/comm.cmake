@@ -7,6 +7,7 @@ add_library(gpudem_comm ${GPUDEM_LIBRARY_TYPE}
   comm/OutputDirectory.cpp
   comm/SnapshotQueue.cpp
   comm/SnapshotWriter.cpp
+  comm/StartupShares.cpp
   comm/TimeSeriesWriter.cpp)
 target_include_directories(gpudem_comm PUBLIC ${HDF5_INCLUDE_DIRS})
 target_compile_definitions(gpudem_comm PUBLIC ${HDF5_DEFINITIONS})

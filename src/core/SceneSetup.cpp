@@ -232,9 +232,9 @@ void set_hertz_limits(TimeStepLimits& limits, const Scene& scene, const Particle
   const double v = impact_speed(scene, particles);
   for (const HertzPair& p : hertz_extreme_pairs(scene, particles)) {
     limits.contact_duration = std::min(limits.contact_duration, hertz_contact_duration(p, v));
-    limits.stable = std::min(
-        limits.stable,
-        hertz_stable_step(p, v, scene.contact.model.tangential == TangentialLaw::Mindlin));
+    limits.stable =
+        std::min(limits.stable,
+                 hertz_stable_step(p, v, scene.contact.model.tangential == TangentialLaw::Mindlin));
   }
 }
 
@@ -376,6 +376,35 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
     s.dt = scene.simulation.dt;
   }
   return s;
+}
+
+ParticleStore setup_deciding_particles(const Scene& scene, const ParticleStore& particles) {
+  const std::size_t n = particles.size();
+  std::vector<std::size_t> chosen = smallest_particle_per_material(scene, particles);
+  std::size_t largest = n, lightest = n, fastest = n;
+  const auto radius = [&](std::size_t i) { return particles.position_radius[i].w; };
+  const auto inv_mass = [&](std::size_t i) { return particles.velocity_inv_mass[i].w; };
+  const auto speed2 = [&](std::size_t i) { return norm2(xyz(particles.velocity_inv_mass[i])); };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (largest == n || radius(i) > radius(largest)) largest = i;
+    if (lightest == n || inv_mass(i) > inv_mass(lightest)) lightest = i;
+    if (fastest == n || speed2(i) > speed2(fastest)) fastest = i;
+  }
+  chosen.insert(chosen.end(), {largest, lightest, fastest});
+  std::sort(chosen.begin(), chosen.end());
+  chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+  ParticleStore out;
+  for (const std::size_t i : chosen) {
+    if (i == n) continue;  // an absent material, or no particles
+    out.position_radius.push_back(particles.position_radius[i]);
+    out.velocity_inv_mass.push_back(particles.velocity_inv_mass[i]);
+    out.angular_velocity.push_back(particles.angular_velocity[i]);
+    out.id.push_back(particles.id[i]);
+    out.material.push_back(particles.material[i]);
+  }
+  out.force.resize(out.size());
+  out.torque.resize(out.size());
+  return out;
 }
 
 }  // namespace gpudem

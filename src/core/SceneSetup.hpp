@@ -41,4 +41,11 @@ TimeStepLimits time_step_limits(const Scene& scene, const ParticleStore& particl
 /// bounding-box centre to a vertex).
 EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles);
 
+/// The particles of `particles` that decide time_step_limits and make_engine_setup: of each
+/// material the first of smallest radius, and the first of largest radius, of largest inverse
+/// mass and of highest speed, in store order. Both functions give the same for them as for all
+/// the particles; and the selections of consecutive shares of a store, concatenated in order,
+/// give the same as the store's, so each rank selects from its share and the ranks gather.
+ParticleStore setup_deciding_particles(const Scene& scene, const ParticleStore& particles);
+
 }  // namespace gpudem

@@ -142,10 +142,12 @@ class SnapshotSource {
 
 class StepEngine : public SnapshotSource {
  public:
-  /// Replaces the engine's particles with those of `particles` this rank owns (copied into the
-  /// engine's space) and evaluates the initial forces. Collective, like every call below that
-  /// changes or reduces the state: all ranks make it at the same point.
-  virtual void set_particles(const ParticleStore& particles) = 0;
+  /// Replaces the engine's particles and evaluates the initial forces. Each rank passes a share
+  /// of the particles (any subset, all of them on one rank; the ranks' shares hold every particle
+  /// once); every particle goes to the rank that owns its position. Collective,
+  /// like every call below that changes or reduces the state: all ranks make it at the same
+  /// point.
+  virtual void set_particles(const ParticleStore& share) = 0;
   /// Copies this rank's owned particles back to the host, in the engine's order, with the
   /// forces and torques of the last evaluation.
   virtual void get_particles(ParticleStore& particles) const = 0;
@@ -154,26 +156,28 @@ class StepEngine : public SnapshotSource {
   /// whose record is not all zero, keyed by global ids.
   virtual void get_contact_history(ContactHistory& history) const = 0;
   /// Gives every contact listed in `history` its record and every other contact a zero
-  /// record; call after set_particles or restore_particles. On several ranks each takes the
-  /// records of the particles it owns. Throws std::invalid_argument for a history of another
-  /// width, an entry naming an unknown particle (on one rank), a pair that is not in the
-  /// neighbour list, or a wall index beyond the walls. Forces are not re-evaluated.
-  virtual void set_contact_history(const ContactHistory& history) = 0;
+  /// record; call after set_particles or restore_particles. Each rank passes a share of the
+  /// records, as for set_particles; every record goes to the rank that owns its owner
+  /// particle. Throws std::invalid_argument (on every rank, with the first rank's message) for
+  /// a history of another width, an entry naming an unknown particle, a pair that is not in
+  /// the neighbour list, or a wall index beyond the walls. Forces are not re-evaluated.
+  virtual void set_contact_history(const ContactHistory& share) = 0;
 
   /// Positions and radii at the last neighbour-list build, in the order of get_particles.
   virtual void get_list_positions(std::vector<Real4>& position_radius) const = 0;
   /// The step of the last neighbour-list build (the meshes' pose it was built with).
   virtual std::uint64_t list_build_step() const = 0;
   /// Replaces the particles to continue a saved run bit-for-bit, on any number of ranks:
-  /// `particles` and `list_positions` as get_particles and get_list_positions gave them on all
-  /// ranks of the saved run; each rank takes those whose list position it owns. Unlike
-  /// set_particles it keeps the forces and torques of `particles` (evaluated from half-step
+  /// `share` and `list_positions` a share (as for set_particles) of what get_particles and
+  /// get_list_positions gave on all ranks of the saved run; each particle goes to the rank
+  /// that owns its list position. Unlike
+  /// set_particles it keeps the forces and torques of `share` (evaluated from half-step
   /// velocities that the saved state no longer holds) and builds the neighbour list at the
   /// positions of the saved engine's last build, so that the list and the next rebuild follow
   /// the saved run (every sum runs in partner-id order, whatever the particle order), with the
   /// meshes at their pose of step `list_build_step`. Springs are zero until
   /// set_contact_history; removed_count() continues from `removed`.
-  virtual void restore_particles(const ParticleStore& particles,
+  virtual void restore_particles(const ParticleStore& share,
                                  const std::vector<Real4>& list_positions, std::uint64_t removed,
                                  std::uint64_t list_build_step) = 0;
   /// Particles on all ranks.

@@ -10,7 +10,6 @@
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
-#include <unordered_set>
 
 #include "core/Stopwatch.hpp"
 #include "kernels/ArrayKernels.hpp"
@@ -29,6 +28,7 @@
 #include "kernels/ParticleStaging.hpp"
 #include "kernels/Permute.hpp"
 #include "kernels/RankCells.hpp"
+#include "kernels/ShareRouting.hpp"
 #include "kernels/StepEngine.hpp"
 
 namespace gpudem {
@@ -159,29 +159,26 @@ class StepEngineImpl final : public StepEngine {
     if (!meshes_.empty()) meshes_.set_time(steps_ * setup.dt);
   }
 
-  void set_particles(const ParticleStore& all) override {
-    if (domain_.ranks() == 1)
-      upload_particles(all);
-    else
-      upload_particles(select(all, owned_indices(all.position_radius)));
-    count_particles(all.id);
+  void set_particles(const ParticleStore& share) override {
+    upload_particles(share);  // the first rebuild migrates each particle to its owner
+    count_particles(share.id);
     has_list_ = false;
     rebuild();
     compute_forces();
   }
 
-  void restore_particles(const ParticleStore& all, const std::vector<Real4>& list_positions,
+  void restore_particles(const ParticleStore& share, const std::vector<Real4>& list_positions,
                          std::uint64_t removed, std::uint64_t list_build_step) override {
-    if (list_positions.size() != all.size() || all.force.size() != all.size() ||
-        all.torque.size() != all.size())
+    if (list_positions.size() != share.size() || share.force.size() != share.size() ||
+        share.torque.size() != share.size())
       throw std::invalid_argument("restore_particles: arrays differ in length");
-    count_particles(all.id);
+    count_particles(share.id);
     list_build_step_ = list_build_step;
     if (domain_.ranks() == 1) {
-      restore_owned(all, list_positions);
+      restore_owned(share, list_positions);
     } else {
-      const std::vector<std::size_t> mine = owned_indices(list_positions);
-      restore_owned(select(all, mine), select(list_positions, mine));
+      const RoutedParticles mine = route_to_owners(share, list_positions, domain_);
+      restore_owned(mine.particles, mine.list_position_radius);
     }
     removed_ = removed;
   }
@@ -196,10 +193,10 @@ class StepEngineImpl final : public StepEngine {
     history = collect_history(contact_slots(), kHistoryWidth, values);
   }
 
-  void set_contact_history(const ContactHistory& history) override {
+  void set_contact_history(const ContactHistory& share) override {
     const ContactSlots slots = contact_slots();
-    const HistoryValues values = scatter_history(
-        slots, kHistoryWidth, domain_.ranks() > 1 ? records_of_owned(history, slots) : history);
+    const HistoryValues values = domain_.ranks() == 1 ? scatter_history(slots, kHistoryWidth, share)
+                                                      : scatter_routed(share, slots);
     if constexpr (kHistoryWidth > 0) {
       upload_states(values.pair, pair_history_);
       upload_states(values.wall, wall_history_);
@@ -366,59 +363,32 @@ class StepEngineImpl final : public StepEngine {
                              angular_velocity_.data(), id_.data(), material_.data()};
   }
 
-  /// Indices of the particles at `where` that this rank owns.
-  std::vector<std::size_t> owned_indices(const std::vector<Real4>& where) const {
-    std::vector<std::size_t> mine;
-    mine.reserve(where.size() / domain_.ranks());
-    for (std::size_t i = 0; i < where.size(); ++i)
-      if (domain_.owner_of(xyz(where[i])) == domain_.rank()) mine.push_back(i);
-    return mine;
+  /// scatter_history on several ranks for this rank's `share` of the records: each record is
+  /// sent to the rank that owns its owner particle first. A problem on any rank (another
+  /// width, an unknown particle, a pair not in the list) is thrown on every rank.
+  HistoryValues scatter_routed(const ContactHistory& share, const ContactSlots& slots) const {
+    std::string problem;
+    if (!share.empty() && share.width != kHistoryWidth)
+      problem = "contact history: it holds " + std::to_string(share.width) +
+                " values per contact but this contact law keeps " + std::to_string(kHistoryWidth);
+    throw_first_problem(problem, domain_);
+    const std::vector<ParticleId> owned(slots.id.begin(), slots.id.begin() + slots.rows);
+    const ContactHistory mine = route_history(share, kHistoryWidth, owned, domain_);
+    HistoryValues values;
+    try {
+      values = scatter_history(slots, kHistoryWidth, mine);
+    } catch (const std::invalid_argument& e) {
+      problem = e.what();
+    }
+    throw_first_problem(problem, domain_);
+    return values;
   }
 
-  template <class T>
-  static std::vector<T> select(const std::vector<T>& all, const std::vector<std::size_t>& rows) {
-    if (all.empty()) return all;
-    std::vector<T> out;
-    out.reserve(rows.size());
-    for (const std::size_t i : rows) out.push_back(all[i]);
-    return out;
-  }
-
-  static ParticleStore select(const ParticleStore& all, const std::vector<std::size_t>& rows) {
-    ParticleStore p;
-    p.position_radius = select(all.position_radius, rows);
-    p.velocity_inv_mass = select(all.velocity_inv_mass, rows);
-    p.angular_velocity = select(all.angular_velocity, rows);
-    p.force = select(all.force, rows);
-    p.torque = select(all.torque, rows);
-    p.id = select(all.id, rows);
-    p.material = select(all.material, rows);
-    return p;
-  }
-
-  /// The records of `history` whose owner is one of this rank's particles.
-  static ContactHistory records_of_owned(const ContactHistory& history, const ContactSlots& slots) {
-    const std::unordered_set<ParticleId> owned(slots.id.begin(), slots.id.begin() + slots.rows);
-    ContactHistory mine;
-    mine.width = history.width;
-    const std::uint32_t w = history.width;
-    for (std::size_t k = 0; k < history.pair_owner.size(); ++k)
-      if (owned.count(history.pair_owner[k]))
-        mine.add_pair(history.pair_owner[k], history.pair_partner[k], &history.pair_values[k * w]);
-    for (std::size_t k = 0; k < history.wall_owner.size(); ++k)
-      if (owned.count(history.wall_owner[k]))
-        mine.add_wall(history.wall_owner[k], history.wall_index[k], &history.wall_values[k * w]);
-    for (std::size_t k = 0; k < history.mesh_owner.size(); ++k)
-      if (owned.count(history.mesh_owner[k]))
-        mine.add_mesh(history.mesh_owner[k], history.mesh_triangle[k], &history.mesh_values[k * w]);
-    return mine;
-  }
-
-  /// The particle count over all ranks and the checksum of their ids, from `all_ids` (every
-  /// rank holds them all when the particles are set).
-  void count_particles(const std::vector<ParticleId>& all_ids) {
-    global_count_ = all_ids.size();
-    expected_id_sum_ = tally_of(all_ids).id_sum;
+  /// The particle count over all ranks and the checksum of their ids, from this rank's share
+  /// of the ids. Collective.
+  void count_particles(const std::vector<ParticleId>& share_ids) {
+    global_count_ = domain_.wrapping_sum(share_ids.size());
+    expected_id_sum_ = domain_.wrapping_sum(tally_of(share_ids).id_sum);
   }
 
   /// Checks that no particle was lost or duplicated between ranks against the expected tally;

@@ -15,8 +15,8 @@ struct RunResult {
   std::string output;  ///< stdout and stderr together
 };
 
-inline RunResult run_binary(const std::string& args) {
-  const std::string command = binary_path() + " " + args + " 2>&1";
+/// Runs `command` through the shell, stderr into stdout.
+inline RunResult run_command(const std::string& command) {
   RunResult r{-1, ""};
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return r;
@@ -25,6 +25,20 @@ inline RunResult run_binary(const std::string& args) {
   const int status = pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+inline RunResult run_binary(const std::string& args) {
+  return run_command(binary_path() + " " + args + " 2>&1");
+}
+
+/// The binary on `ranks` MPI ranks: mpirun from PATH, allowed as root and past the core
+/// count, one OpenMP thread per rank, and without the variables that make this test process
+/// an MPI process (under them mpirun would take itself for one of its ranks).
+inline RunResult run_binary_on_ranks(int ranks, const std::string& args) {
+  return run_command(
+      "for v in $(env | grep -Eo '^(OMPI|PMIX|OPAL)_[A-Za-z0-9_]*'); do unset \"$v\"; done; "
+      "OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np " +
+      std::to_string(ranks) + " " + binary_path() + " " + args + " 2>&1");
 }
 
 }  // namespace gpudem::test

@@ -205,6 +205,50 @@ TEST_F(CheckpointFile, RoundTripIsBitIdenticalAtThisRankCount) {
   if (comm_rank() == 0) expect_identical(read_checkpoint(path()), expected_whole(comm_size()));
 }
 
+/// The parts {0, parts} .. {parts - 1, parts} of `path`, concatenated in order; the table and
+/// attributes of part 0.
+Checkpoint concatenated_parts(const std::string& path, int parts) {
+  Checkpoint whole = read_checkpoint(path, FilePart{0, parts});
+  for (int k = 1; k < parts; ++k) {
+    const Checkpoint part = read_checkpoint(path, FilePart{k, parts});
+    EXPECT_EQ(part.snapshots.size(), whole.snapshots.size()) << "part " << k << " of " << parts;
+    EXPECT_EQ(part.step, whole.step) << "part " << k << " of " << parts;
+    append(whole.particles.position_radius, part.particles.position_radius);
+    append(whole.particles.velocity_inv_mass, part.particles.velocity_inv_mass);
+    append(whole.particles.angular_velocity, part.particles.angular_velocity);
+    append(whole.particles.force, part.particles.force);
+    append(whole.particles.torque, part.particles.torque);
+    append(whole.particles.id, part.particles.id);
+    append(whole.particles.material, part.particles.material);
+    append(whole.list_position_radius, part.list_position_radius);
+    append(whole.history.pair_owner, part.history.pair_owner);
+    append(whole.history.pair_partner, part.history.pair_partner);
+    append(whole.history.pair_values, part.history.pair_values);
+    append(whole.history.wall_owner, part.history.wall_owner);
+    append(whole.history.wall_index, part.history.wall_index);
+    append(whole.history.wall_values, part.history.wall_values);
+    append(whole.history.mesh_owner, part.history.mesh_owner);
+    append(whole.history.mesh_triangle, part.history.mesh_triangle);
+    append(whole.history.mesh_values, part.history.mesh_values);
+  }
+  return whole;
+}
+
+TEST_F(CheckpointFile, PartsReadInOrderMakeTheWholeFile) {
+  write_random();
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (comm_rank() != 0) return;
+  const Checkpoint whole = expected_whole(comm_size());
+  for (const int parts : {1, 2, 3, 5, 64}) {
+    SCOPED_TRACE(std::to_string(parts) + " parts");
+    expect_identical(concatenated_parts(path(), parts), whole);
+  }
+  const Checkpoint first = read_checkpoint(path(), FilePart{0, 3});
+  const RowRange rows = share_of_rows(whole.particles.size(), 0, 3);
+  ASSERT_EQ(first.particles.size(), rows.count);
+  EXPECT_LT(first.particles.size(), whole.particles.size());
+}
+
 TEST_F(CheckpointFile, RoundTripWithoutHistoryValuesStoresNoValueDatasets) {
   write_random(0);
   MPI_Barrier(MPI_COMM_WORLD);
@@ -326,6 +370,21 @@ TEST_F(DamagedCheckpoint, HistoryOfAnotherNumberOfRowsIsRejected) {
 TEST_F(DamagedCheckpoint, DatasetsOfDifferentLengthsAreRejected) {
   test::replace_u32_dataset(path(), "material", {0, 1, 2});
   expect_rejected("dataset 'material' has 3 rows but 'id' has " + std::to_string(particles_of(0)));
+}
+
+TEST_F(DamagedCheckpoint, DatasetsOfDifferentLengthsAreRejectedWhenTheirPartsAgree) {
+  // 40 ids and 41 materials: the first of two parts has 20 rows of each.
+  const std::size_t n = particles_of(0);
+  test::replace_u32_dataset(path(), "material", std::vector<std::uint32_t>(n + 1, 0));
+  try {
+    read_checkpoint(path(), FilePart{0, 2});
+    ADD_FAILURE() << "a part of datasets of different lengths was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("dataset 'material' has " + std::to_string(n + 1) +
+                                         " rows but 'id' has " + std::to_string(n)),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(DamagedCheckpoint, DatasetOfTheWrongTypeIsRejected) {

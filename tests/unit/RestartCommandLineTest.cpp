@@ -327,6 +327,25 @@ TEST_F(RefusedRestart, MaterialBeyondTheScene) {
   expect_refused("material index 3 but the scene defines 1 material");
 }
 
+TEST_F(RefusedRestart, ProblemInAnotherRanksPartIsRefusedOnEveryRank) {
+  // Two ranks read rows 0-24 and 25-49; only the last particle names a material beyond the
+  // scene, so only rank 1 finds it, and rank 0 must report it.
+  std::vector<std::uint32_t> materials(50, 0);
+  materials.back() = 3;
+  test::replace_u32_dataset(bad(), "material", materials);
+  const fs::path out = dir_ / "out";
+  const Result r =
+      test::run_binary_on_ranks(2, scene(kBedScene) + " --set insert.0.count=50 " + "--restart " +
+                                       bad() + " --output-dir " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const std::string needle = "has material index 3 but the scene defines 1 material";
+  const std::size_t first = r.output.find(needle);
+  EXPECT_NE(first, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(needle, first + 1), std::string::npos) << "reported twice:\n" << r.output;
+  EXPECT_NE(r.output.find(bad()), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "output written for a refused restart";
+}
+
 TEST_F(RefusedRestart, OtherTimeStep) {
   expect_refused("dt = 5e-05 s but the scene gives 1e-04 s", "--set simulation.dt=1e-4",
                  "scene.toml");

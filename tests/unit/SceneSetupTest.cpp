@@ -14,10 +14,12 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "core/InputError.hpp"
+#include "core/RowShare.hpp"
 #include "core/SceneLoader.hpp"
 #include "support/RunBinary.hpp"
 
@@ -344,6 +346,60 @@ TEST(TimeStep, AutoImpactSpeed) {
   EXPECT_EQ(impact_speed(s, ParticleStore{}), 1.0);
   s.simulation.impact_speed = 7;
   EXPECT_EQ(impact_speed(s, particles), 7.0);
+}
+
+/// 3000 particles of three materials with random radii and velocities, one much lighter than
+/// its size and material make it (as a saved bed's masses may be).
+ParticleStore varied_particles(const Scene& s) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> radius(1e-3, 5e-3), speed(-2, 2);
+  ParticleStore p;
+  for (int i = 0; i < 3000; ++i)
+    add_particle(p, s, static_cast<MaterialId>(i % 3), radius(rng),
+                 {speed(rng), speed(rng), speed(rng)});
+  p.velocity_inv_mass[1234].w *= 1e3;
+  return p;
+}
+
+TEST(TimeStep, DecidingParticlesGiveTheLimitsOfAllAndOfConcatenatedShares) {
+  Scene s = two_material_scene();
+  s.materials.push_back(material("clay", 1800, 5e6, 0.4));
+  s.simulation.dt_auto = true;
+  const ParticleStore all = varied_particles(s);
+  for (const NormalLaw law : {NormalLaw::Hooke, NormalLaw::Hertz}) {
+    s.contact.model.normal = law;
+    const ParticleStore deciding = setup_deciding_particles(s, all);
+    EXPECT_LE(deciding.size(), s.materials.size() + 3);
+    const TimeStepLimits expected = time_step_limits(s, all), got = time_step_limits(s, deciding);
+    EXPECT_EQ(got.rayleigh, expected.rayleigh);
+    EXPECT_EQ(got.contact_duration, expected.contact_duration);
+    EXPECT_EQ(got.stable, expected.stable);
+    EXPECT_EQ(impact_speed(s, deciding), impact_speed(s, all));
+    EXPECT_EQ(make_engine_setup(s, deciding).dt, make_engine_setup(s, all).dt);
+    EXPECT_EQ(make_engine_setup(s, deciding).skin, make_engine_setup(s, all).skin);
+    double r_max = 0, r_max_deciding = 0;
+    for (const Real4& q : all.position_radius) r_max = std::max(r_max, q.w);
+    for (const Real4& q : deciding.position_radius) r_max_deciding = std::max(r_max_deciding, q.w);
+    EXPECT_EQ(r_max_deciding, r_max);
+    for (const int ranks : {2, 3, 7}) {
+      ParticleStore gathered;
+      for (int r = 0; r < ranks; ++r) {
+        const ParticleStore part = setup_deciding_particles(s, share_of(all, r, ranks));
+        gathered.id.insert(gathered.id.end(), part.id.begin(), part.id.end());
+        gathered.position_radius.insert(gathered.position_radius.end(),
+                                        part.position_radius.begin(), part.position_radius.end());
+        gathered.velocity_inv_mass.insert(gathered.velocity_inv_mass.end(),
+                                          part.velocity_inv_mass.begin(),
+                                          part.velocity_inv_mass.end());
+        gathered.angular_velocity.insert(gathered.angular_velocity.end(),
+                                         part.angular_velocity.begin(),
+                                         part.angular_velocity.end());
+        gathered.material.insert(gathered.material.end(), part.material.begin(),
+                                 part.material.end());
+      }
+      EXPECT_EQ(setup_deciding_particles(s, gathered).id, deciding.id) << ranks << " shares";
+    }
+  }
 }
 
 TEST(TimeStep, AutoDtIsFractionOfCriticalStep) {

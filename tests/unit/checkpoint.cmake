@@ -9,7 +9,7 @@ gpudem_add_test(test_checkpoint
 add_test(NAME test_checkpoint_np2
   COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 ${MPIEXEC_PREFLAGS}
           $<TARGET_FILE:test_checkpoint> ${MPIEXEC_POSTFLAGS}
-          --gtest_filter=CheckpointFile.RoundTrip*:CheckpointFile.Empty*:CheckpointFile.Stale*:CheckpointFile.Snapshot*:CheckpointFile.Ranks*)
+          --gtest_filter=CheckpointFile.RoundTrip*:CheckpointFile.Parts*:CheckpointFile.Empty*:CheckpointFile.Stale*:CheckpointFile.Snapshot*:CheckpointFile.Ranks*)
 set_tests_properties(test_checkpoint_np2 PROPERTIES
   LABELS mpi
   TIMEOUT 120

@@ -1,0 +1,59 @@
+#include "comm/StartupShares.hpp"
+
+#include <numeric>
+#include <vector>
+
+namespace gpudem {
+namespace {
+
+/// Every rank's `part` concatenated in rank order, on every rank (T holds plain values).
+template <class T>
+std::vector<T> gather_rows(MPI_Comm comm, const std::vector<T>& part) {
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  const int bytes = static_cast<int>(part.size() * sizeof(T));
+  std::vector<int> counts(ranks), offsets(ranks, 0);
+  MPI_Allgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  std::partial_sum(counts.begin(), counts.end() - 1, offsets.begin() + 1);
+  std::vector<T> all((offsets.back() + counts.back()) / sizeof(T));
+  MPI_Allgatherv(part.data(), bytes, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE,
+                 comm);
+  return all;
+}
+
+}  // namespace
+
+void throw_first_input_error(MPI_Comm comm, const std::string& message) {
+  int ranks = 1, rank = 0;
+  MPI_Comm_size(comm, &ranks);
+  MPI_Comm_rank(comm, &rank);
+  const int mine = message.empty() ? ranks : rank;
+  int first = ranks;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == ranks) return;
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, first, comm);
+  std::string text = rank == first ? message : std::string(static_cast<std::size_t>(length), ' ');
+  MPI_Bcast(text.data(), length, MPI_CHAR, first, comm);
+  throw InputError("", 0, "", text);
+}
+
+ParticleStore gather_particles(MPI_Comm comm, const ParticleStore& share) {
+  ParticleStore all;
+  all.position_radius = gather_rows(comm, share.position_radius);
+  all.velocity_inv_mass = gather_rows(comm, share.velocity_inv_mass);
+  all.angular_velocity = gather_rows(comm, share.angular_velocity);
+  all.force = gather_rows(comm, share.force);
+  all.torque = gather_rows(comm, share.torque);
+  all.id = gather_rows(comm, share.id);
+  all.material = gather_rows(comm, share.material);
+  return all;
+}
+
+std::uint64_t sum_over_ranks(MPI_Comm comm, std::uint64_t value) {
+  std::uint64_t sum = 0;
+  MPI_Allreduce(&value, &sum, 1, MPI_UINT64_T, MPI_SUM, comm);
+  return sum;
+}
+
+}  // namespace gpudem
