@@ -73,7 +73,7 @@ part_tests() {
   : > "$LOGS/tests/results"
   local at_once=$(( $(nproc) / 4 > 1 ? $(nproc) / 4 : 1 ))
   export OMP_NUM_THREADS=1  # as scripts/test.sh: ranks and tests share the cores
-  export GPUDEM_SOURCE_DIR=$SRC GPUDEM_BINARY=$BUNDLE/bin/gpudem-mpi
+  export GPUDEM_SOURCE_DIR=$SRC GPUDEM_BINARY=$BUNDLE/bin/gpudem-mpi GPUDEM_MPIEXEC=mpirun
   export GPUDEM_SNAPSHOT_FIXTURE_DIR=$WORK/snapshot_fixture PYTHON
   local lines line fixture='^run_test test_snapshot_writer |snapshot_fixture'
   mapfile -t lines < <(awk -v names="^($TESTS)\$" '$1 == "run_test" && $2 ~ names' gpu-bundle/tests.sh)

@@ -116,8 +116,10 @@ std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi
         Decomposition::from_owners(cells, metis_parts(scene, cells, work, mpi.size()), mpi.size()),
         ghost_width, gpu_aware);
   const std::uint64_t count = sum_over_ranks(comm, share.size());
-  const auto [bed_lo, bed_hi] = settled_bed(
-      solid_volume(comm, share), count, bed_bounds(comm, share, setup.box, count), setup.gravity);
+  // Collectives one by one: the order of evaluation within one argument list is unspecified.
+  const Real volume = solid_volume(comm, share);
+  const auto bounds = bed_bounds(comm, share, setup.box, count);
+  const auto [bed_lo, bed_hi] = settled_bed(volume, count, bounds, setup.gravity);
   const std::array<int, 3> dims = choose_grid_dims(mpi.size(), bed_lo, bed_hi, setup.gravity, cells,
                                                    settings.dims, scene.file, settings.dims_line);
   return std::make_unique<MpiDomain>(mpi.comm(),

@@ -1,5 +1,6 @@
 #include "comm/MpiDomain.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cstdint>
 #include <memory>
@@ -106,23 +107,31 @@ void MpiDomain::exchange(const RankBuffers& outgoing, RankBuffers& incoming) con
 }
 
 void MpiDomain::exchange_known(const RankBuffers& outgoing, RankBuffers& incoming) const {
+  // A buffer goes as messages of at most max_message_bytes_; both sides split it alike, and MPI
+  // matches the messages of one sender and tag in the order they were posted.
   std::vector<MPI_Request> requests;
-  requests.reserve(2 * static_cast<std::size_t>(size_));
+  const auto for_each_chunk = [&](std::size_t bytes, auto&& post) {
+    for (std::size_t at = 0; at < bytes; at += max_message_bytes_) {
+      requests.emplace_back();
+      post(at, message_size(std::min(max_message_bytes_, bytes - at)), &requests.back());
+    }
+  };
   for (int q = 0; q < size_; ++q) {
     if (q == rank_) {
       incoming[q] = outgoing[q];
       continue;
     }
-    if (incoming[q].empty()) continue;
-    requests.emplace_back();
-    MPI_Irecv(incoming[q].data(), message_size(incoming[q].size()), MPI_BYTE, q, kBuffersTag, comm_,
-              &requests.back());
+    char* data = incoming[q].data();
+    for_each_chunk(incoming[q].size(), [&](std::size_t at, int count, MPI_Request* request) {
+      MPI_Irecv(data + at, count, MPI_BYTE, q, kBuffersTag, comm_, request);
+    });
   }
   for (int q = 0; q < size_; ++q) {
-    if (q == rank_ || outgoing[q].empty()) continue;
-    requests.emplace_back();
-    MPI_Isend(outgoing[q].data(), message_size(outgoing[q].size()), MPI_BYTE, q, kBuffersTag, comm_,
-              &requests.back());
+    if (q == rank_) continue;
+    const char* data = outgoing[q].data();
+    for_each_chunk(outgoing[q].size(), [&](std::size_t at, int count, MPI_Request* request) {
+      MPI_Isend(data + at, count, MPI_BYTE, q, kBuffersTag, comm_, request);
+    });
   }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
 }

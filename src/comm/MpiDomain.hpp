@@ -51,6 +51,9 @@ class MpiDomain final : public DomainLink {
   Real ghost_width() const { return ghost_width_; }
   /// Whether buffers in device memory may go to MPI as they are.
   bool gpu_aware() const { return gpu_aware_; }
+  /// The largest message exchange() posts (MPI counts are ints); a longer buffer travels as
+  /// several messages of at most this many bytes. 2^30 unless lowered (tests).
+  void limit_message_bytes(std::size_t bytes) { max_message_bytes_ = bytes; }
 
  private:
   /// Throws std::invalid_argument unless `d` is for this rank count and every coarse cell edge
@@ -71,6 +74,7 @@ class MpiDomain final : public DomainLink {
   bool gpu_aware_;
   BinRegion region_;
   CellOwnership ownership_;  ///< of decomposition_ for this rank
+  std::size_t max_message_bytes_ = std::size_t(1) << 30;
 };
 
 }  // namespace gpudem

@@ -1,6 +1,7 @@
 #include "comm/StartupShares.hpp"
 
 #include <numeric>
+#include <stdexcept>
 #include <vector>
 
 namespace gpudem {
@@ -23,19 +24,21 @@ std::vector<T> gather_rows(MPI_Comm comm, const std::vector<T>& part) {
 
 }  // namespace
 
-void throw_first_input_error(MPI_Comm comm, const std::string& message) {
+void throw_first_failure(MPI_Comm comm, const RankFailure& failure) {
   int ranks = 1, rank = 0;
   MPI_Comm_size(comm, &ranks);
   MPI_Comm_rank(comm, &rank);
-  const int mine = message.empty() ? ranks : rank;
+  const int mine = failure.message.empty() ? ranks : rank;
   int first = ranks;
   MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
   if (first == ranks) return;
-  int length = static_cast<int>(message.size());
-  MPI_Bcast(&length, 1, MPI_INT, first, comm);
-  std::string text = rank == first ? message : std::string(static_cast<std::size_t>(length), ' ');
-  MPI_Bcast(text.data(), length, MPI_CHAR, first, comm);
-  throw InputError("", 0, "", text);
+  int header[2] = {static_cast<int>(failure.message.size()), failure.input ? 1 : 0};
+  MPI_Bcast(header, 2, MPI_INT, first, comm);
+  std::string text =
+      rank == first ? failure.message : std::string(static_cast<std::size_t>(header[0]), ' ');
+  MPI_Bcast(text.data(), header[0], MPI_CHAR, first, comm);
+  if (header[1]) throw InputError("", 0, "", text);
+  throw std::runtime_error(text);
 }
 
 ParticleStore gather_particles(MPI_Comm comm, const ParticleStore& share) {

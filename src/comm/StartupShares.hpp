@@ -6,6 +6,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <exception>
 #include <optional>
 #include <string>
 #include <utility>
@@ -15,23 +16,32 @@
 
 namespace gpudem {
 
-/// Throws InputError(message) of the lowest rank whose `message` is not empty on every rank;
-/// returns when none has one. Collective.
-void throw_first_input_error(MPI_Comm comm, const std::string& message);
+/// A failure of one rank, to be thrown on every rank.
+struct RankFailure {
+  std::string message;  ///< empty: no failure
+  bool input = false;   ///< an InputError (exit 2), else a std::runtime_error (exit 1)
+};
 
-/// What `attempt()` returns, when it throws an InputError on no rank; else every rank throws
-/// the lowest failing rank's error, so that rank 0 reports it and no rank is left waiting in
-/// a collective. Collective.
+/// Throws the failure of the lowest rank that has one on every rank: InputError(message) or
+/// std::runtime_error(message); returns when no rank has one. Collective.
+void throw_first_failure(MPI_Comm comm, const RankFailure& failure);
+
+/// What `attempt()` returns, when it throws on no rank; else every rank throws the lowest
+/// failing rank's error (an InputError as such, any other std::exception as a
+/// std::runtime_error with its message), so that rank 0 reports it and no rank is left waiting
+/// in a collective. Collective.
 template <class Attempt>
 auto agree_on_input(MPI_Comm comm, Attempt&& attempt) -> decltype(attempt()) {
   std::optional<decltype(attempt())> result;
-  std::string message;
+  RankFailure failure;
   try {
     result.emplace(attempt());
   } catch (const InputError& e) {
-    message = e.what();
+    failure = {e.what(), true};
+  } catch (const std::exception& e) {
+    failure = {e.what(), false};
   }
-  throw_first_input_error(comm, message);
+  throw_first_failure(comm, failure);
   return std::move(*result);
 }
 

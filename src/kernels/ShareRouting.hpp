@@ -3,8 +3,9 @@
 /// and of their contact history (any subset; the shares together hold each particle and each
 /// record once, e.g. the rows of a file that each rank reads by slices), and this host code
 /// sends every particle to the rank that owns it and every history record to the rank that
-/// owns the record's owner particle, over DomainLink::exchange. No rank ever holds more than
-/// its share and what it owns.
+/// owns the record's owner particle, over DomainLink::exchange. Besides its share and what it
+/// owns, a rank holds only the records passing through it as the directory rank of their owner
+/// id (about a P-th of all when ids are spread evenly), each buffer freed once it is read.
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -78,11 +79,11 @@ template <class Visit>
 void for_each_record(const ContactHistory& h, Visit&& visit) {
   const std::uint32_t w = h.width;
   for (std::size_t k = 0; k < h.pair_owner.size(); ++k)
-    visit(RecordKind::pair, h.pair_owner[k], h.pair_partner[k], &h.pair_values[k * w]);
+    visit(RecordKind::pair, h.pair_owner[k], h.pair_partner[k], h.pair_values.data() + k * w);
   for (std::size_t k = 0; k < h.wall_owner.size(); ++k)
-    visit(RecordKind::wall, h.wall_owner[k], h.wall_index[k], &h.wall_values[k * w]);
+    visit(RecordKind::wall, h.wall_owner[k], h.wall_index[k], h.wall_values.data() + k * w);
   for (std::size_t k = 0; k < h.mesh_owner.size(); ++k)
-    visit(RecordKind::mesh, h.mesh_owner[k], h.mesh_triangle[k], &h.mesh_values[k * w]);
+    visit(RecordKind::mesh, h.mesh_owner[k], h.mesh_triangle[k], h.mesh_values.data() + k * w);
 }
 
 /// Calls visit(kind, owner, key, values) for every record packed in `in`.
@@ -155,14 +156,18 @@ inline RoutedParticles route_to_owners(const ParticleStore& share,
   for (std::size_t i = 0; i < share.size(); ++i)
     share_detail::pack_particle(share, list_positions, i, outgoing[domain.owner_of(xyz(where[i]))]);
   domain.exchange(outgoing, incoming);
+  RankBuffers().swap(outgoing);
   RoutedParticles routed;
-  for (const std::vector<char>& bytes : incoming)
+  for (std::vector<char>& bytes : incoming) {
     share_detail::unpack_particles(bytes, with_list, routed);
+    std::vector<char>().swap(bytes);
+  }
   return routed;
 }
 
 /// The records of every rank's `share` (`width` values per record on every rank) whose owner
-/// particle is one of `owned` (this rank's particles), in the order of the sending ranks. Each
+/// particle is one of `owned` (this rank's particles), ordered by the directory rank they came
+/// through, then by sending rank, then as in the sender's share. Each
 /// record first goes to the directory rank of its owner id (id mod ranks), which has learned from
 /// every rank the ids it owns and forwards the record to the owner's rank. The caller makes sure
 /// every non-empty share has `width` values per record (on every rank, or the records cannot be
@@ -178,27 +183,33 @@ inline ContactHistory route_history(const ContactHistory& share, std::uint32_t w
     pack_record(kind, owner, key, v, width, to_directory[directory_rank(owner, domain.ranks())]);
   });
   domain.exchange(to_directory, at_directory);
+  RankBuffers().swap(to_directory);
   RankBuffers to_owner(domain.ranks()), at_owner;
   std::string problem;
-  for (const std::vector<char>& bytes : at_directory)
+  for (std::vector<char>& bytes : at_directory) {
     for_each_packed_record(
         bytes, width, [&](RecordKind kind, ParticleId owner, std::uint64_t key, const Real* v) {
           const auto found = directory.find(owner);
-          if (found == directory.end())
+          if (found != directory.end())
+            pack_record(kind, owner, key, v, width, to_owner[found->second]);
+          else if (problem.empty())
             problem =
                 "contact history: particle id " + std::to_string(owner) + " is not in the engine";
-          else
-            pack_record(kind, owner, key, v, width, to_owner[found->second]);
         });
+    std::vector<char>().swap(bytes);
+  }
   throw_first_problem(problem, domain);
   domain.exchange(to_owner, at_owner);
+  RankBuffers().swap(to_owner);
   ContactHistory mine;
   mine.width = width;
-  for (const std::vector<char>& bytes : at_owner)
+  for (std::vector<char>& bytes : at_owner) {
     for_each_packed_record(
         bytes, width, [&](RecordKind kind, ParticleId owner, std::uint64_t key, const Real* v) {
           add_record(mine, kind, owner, key, v);
         });
+    std::vector<char>().swap(bytes);
+  }
   return mine;
 }
 

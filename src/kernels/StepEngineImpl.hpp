@@ -365,12 +365,15 @@ class StepEngineImpl final : public StepEngine {
 
   /// scatter_history on several ranks for this rank's `share` of the records: each record is
   /// sent to the rank that owns its owner particle first. A problem on any rank (another
-  /// width, an unknown particle, a pair not in the list) is thrown on every rank.
+  /// width, arrays of different lengths, an unknown particle, a pair not in the list) is thrown
+  /// on every rank.
   HistoryValues scatter_routed(const ContactHistory& share, const ContactSlots& slots) const {
     std::string problem;
     if (!share.empty() && share.width != kHistoryWidth)
       problem = "contact history: it holds " + std::to_string(share.width) +
                 " values per contact but this contact law keeps " + std::to_string(kHistoryWidth);
+    else if (!share.lengths_agree())
+      problem = "contact history: the arrays of one kind of contact differ in length";
     throw_first_problem(problem, domain_);
     const std::vector<ParticleId> owned(slots.id.begin(), slots.id.begin() + slots.rows);
     const ContactHistory mine = route_history(share, kHistoryWidth, owned, domain_);

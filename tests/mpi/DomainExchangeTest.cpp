@@ -94,6 +94,25 @@ TEST(DomainExchange, UnevenAndZeroMessagesArriveInRankOrder) {
   }
 }
 
+TEST(DomainExchange, BuffersLongerThanTheMessageLimitArriveWhole) {
+  MpiDomain domain = world_domain();
+  domain.limit_message_bytes(5);  // buffers of 0 to 36 bytes: up to 8 messages each
+  for (int round = 0; round < 3; ++round) {
+    RankBuffers outgoing(comm_size()), incoming;
+    for (int q = 0; q < comm_size(); ++q)
+      for (std::size_t k = 0; k < 3 * message_bytes(comm_rank(), q, round); ++k)
+        outgoing[q].push_back(message_byte(comm_rank(), q, round, k));
+    domain.exchange(outgoing, incoming);
+    ASSERT_EQ(incoming.size(), static_cast<std::size_t>(comm_size()));
+    for (int q = 0; q < comm_size(); ++q) {
+      std::vector<char> expected;
+      for (std::size_t k = 0; k < 3 * message_bytes(q, comm_rank(), round); ++k)
+        expected.push_back(message_byte(q, comm_rank(), round, k));
+      EXPECT_EQ(incoming[q], expected) << "from rank " << q << " round " << round;
+    }
+  }
+}
+
 TEST(DomainExchange, TwoExchangesInFlightCompleteInOrder) {
   const MpiDomain domain = world_domain();
   std::vector<std::size_t> send_bytes[2], receive_bytes[2];

@@ -75,16 +75,15 @@ bool same(Real4 a, Real4 b) { return a.x == b.x && a.y == b.y && a.z == b.z && a
 bool same(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
 /// Checks that `routed` holds exactly the particles of `all` whose place (`where`) this rank
-/// owns, each with all its fields (and its list position when `list` is given).
+/// owns, in the order of `all` (the shares in rank order, each in its order), each with all its
+/// fields (and its list position when `list` is given).
 void expect_owned_particles(const ParticleStore& all, const std::vector<Real4>& where,
                             const std::vector<Real4>* list, const RoutedParticles& routed,
                             const MpiDomain& domain) {
-  std::vector<ParticleId> expected, got = routed.particles.id;
+  std::vector<ParticleId> expected;
   for (std::size_t i = 0; i < all.size(); ++i)
     if (domain.owner_of(xyz(where[i])) == comm_rank()) expected.push_back(all.id[i]);
-  std::sort(expected.begin(), expected.end());
-  std::sort(got.begin(), got.end());
-  ASSERT_EQ(got, expected);
+  ASSERT_EQ(routed.particles.id, expected);
   const std::map<ParticleId, std::size_t> index = index_by_id(all);
   const ParticleStore& p = routed.particles;
   ASSERT_EQ(routed.list_position_radius.size(), list ? p.size() : 0);
@@ -119,23 +118,32 @@ TEST(RowShare, SharesCoverEveryRowOnceInRankOrder) {
   EXPECT_EQ(share_of_rows(huge, 2, 4).first, huge / 2);
 }
 
+/// Particle counts to route: many, fewer than four ranks (some shares empty), none.
+constexpr std::size_t kParticleCounts[] = {500, 3, 0};
+
 TEST(ShareRouting, ParticlesReachTheOwnerOfTheirPosition) {
   const MpiDomain domain = world_domain();
-  std::vector<Real4> list;
-  const ParticleStore all = random_particles(500, list);
-  const RoutedParticles routed =
-      route_to_owners(share_of(all, comm_rank(), comm_size()), {}, domain);
-  expect_owned_particles(all, all.position_radius, nullptr, routed, domain);
+  for (const std::size_t n : kParticleCounts) {
+    SCOPED_TRACE(std::to_string(n) + " particles");
+    std::vector<Real4> list;
+    const ParticleStore all = random_particles(n, list);
+    const RoutedParticles routed =
+        route_to_owners(share_of(all, comm_rank(), comm_size()), {}, domain);
+    expect_owned_particles(all, all.position_radius, nullptr, routed, domain);
+  }
 }
 
 TEST(ShareRouting, RestoredParticlesReachTheOwnerOfTheirListPosition) {
   const MpiDomain domain = world_domain();
-  std::vector<Real4> list;
-  const ParticleStore all = random_particles(500, list);
-  const RowRange mine = share_of_rows(all.size(), comm_rank(), comm_size());
-  const RoutedParticles routed =
-      route_to_owners(share_of(all, comm_rank(), comm_size()), rows_of(list, mine), domain);
-  expect_owned_particles(all, list, &list, routed, domain);
+  for (const std::size_t n : kParticleCounts) {
+    SCOPED_TRACE(std::to_string(n) + " particles");
+    std::vector<Real4> list;
+    const ParticleStore all = random_particles(n, list);
+    const RowRange mine = share_of_rows(all.size(), comm_rank(), comm_size());
+    const RoutedParticles routed =
+        route_to_owners(share_of(all, comm_rank(), comm_size()), rows_of(list, mine), domain);
+    expect_owned_particles(all, list, &list, routed, domain);
+  }
 }
 
 TEST(ShareRouting, SharesWithoutForcesArriveWithZeroForces) {
@@ -188,20 +196,23 @@ std::vector<Record> records(const ContactHistory& h) {
 
 TEST(ShareRouting, HistoryRecordsReachTheRankOfTheirOwner) {
   const MpiDomain domain = world_domain();
-  std::vector<Real4> list;
-  const ParticleStore all = random_particles(400, list);
-  const ContactHistory history = history_of(all.id);
-  std::vector<ParticleId> owned;
-  for (std::size_t i = 0; i < all.size(); ++i)
-    if (domain.owner_of(xyz(all.position_radius[i])) == comm_rank()) owned.push_back(all.id[i]);
-  const ContactHistory mine =
-      route_history(share_of(history, comm_rank(), comm_size()), history.width, owned, domain);
-  EXPECT_EQ(mine.width, history.width);
-  ASSERT_TRUE(mine.lengths_agree());
-  std::vector<Record> expected;
-  for (const Record& r : records(history))
-    if (std::count(owned.begin(), owned.end(), std::get<1>(r))) expected.push_back(r);
-  EXPECT_EQ(records(mine), expected);
+  for (const std::size_t n : kParticleCounts) {
+    SCOPED_TRACE(std::to_string(n) + " particles");
+    std::vector<Real4> list;
+    const ParticleStore all = random_particles(n, list);
+    const ContactHistory history = history_of(all.id);
+    std::vector<ParticleId> owned;
+    for (std::size_t i = 0; i < all.size(); ++i)
+      if (domain.owner_of(xyz(all.position_radius[i])) == comm_rank()) owned.push_back(all.id[i]);
+    const ContactHistory mine =
+        route_history(share_of(history, comm_rank(), comm_size()), history.width, owned, domain);
+    EXPECT_EQ(mine.width, history.width);
+    ASSERT_TRUE(mine.lengths_agree());
+    std::vector<Record> expected;
+    for (const Record& r : records(history))
+      if (std::count(owned.begin(), owned.end(), std::get<1>(r))) expected.push_back(r);
+    EXPECT_EQ(records(mine), expected);
+  }
 }
 
 TEST(ShareRouting, RecordOfAParticleNoRankOwnsIsRefusedOnEveryRank) {
@@ -235,7 +246,7 @@ TEST(ShareRouting, FirstProblemIsThrownOnEveryRank) {
   EXPECT_NO_THROW(throw_first_problem("", domain));
 }
 
-TEST(StartupShares, InputErrorOfTheLowestFailingRankIsThrownOnEveryRank) {
+TEST(StartupShares, ErrorOfTheLowestFailingRankIsThrownOnEveryRank) {
   const int last = comm_size() - 1;
   try {
     agree_on_input(MPI_COMM_WORLD, [&] {
@@ -248,23 +259,36 @@ TEST(StartupShares, InputErrorOfTheLowestFailingRankIsThrownOnEveryRank) {
     EXPECT_EQ(std::string(e.what()), "bed.h5: rank " + std::to_string(last));
   }
   EXPECT_EQ(agree_on_input(MPI_COMM_WORLD, [] { return comm_rank() + 10; }), comm_rank() + 10);
+  try {  // any other exception travels as a runtime_error, not as an input error
+    agree_on_input(MPI_COMM_WORLD, [&] {
+      if (comm_rank() == last) throw std::length_error("too long");
+      return 1;
+    });
+    ADD_FAILURE() << "no exception on rank " << comm_rank();
+  } catch (const InputError& e) {
+    ADD_FAILURE() << "an input error: " << e.what();
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "too long");
+  }
 }
 
 TEST(StartupShares, GatheredParticlesAreEveryRanksShareInRankOrder) {
-  std::vector<Real4> list;
-  const ParticleStore all = random_particles(37, list);
-  const ParticleStore gathered =
-      gather_particles(MPI_COMM_WORLD, share_of(all, comm_rank(), comm_size()));
-  EXPECT_EQ(gathered.id, all.id);
-  ASSERT_EQ(gathered.size(), all.size());
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    EXPECT_TRUE(same(gathered.position_radius[i], all.position_radius[i]));
-    EXPECT_TRUE(same(gathered.velocity_inv_mass[i], all.velocity_inv_mass[i]));
-    EXPECT_TRUE(same(gathered.torque[i], all.torque[i]));
-    EXPECT_EQ(gathered.material[i], all.material[i]);
+  for (const std::size_t n : {37, 3, 0}) {
+    SCOPED_TRACE(std::to_string(n) + " particles");
+    std::vector<Real4> list;
+    const ParticleStore all = random_particles(n, list);
+    const ParticleStore share = share_of(all, comm_rank(), comm_size());
+    const ParticleStore gathered = gather_particles(MPI_COMM_WORLD, share);
+    EXPECT_EQ(gathered.id, all.id);
+    ASSERT_EQ(gathered.size(), all.size());
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      EXPECT_TRUE(same(gathered.position_radius[i], all.position_radius[i]));
+      EXPECT_TRUE(same(gathered.velocity_inv_mass[i], all.velocity_inv_mass[i]));
+      EXPECT_TRUE(same(gathered.torque[i], all.torque[i]));
+      EXPECT_EQ(gathered.material[i], all.material[i]);
+    }
+    EXPECT_EQ(sum_over_ranks(MPI_COMM_WORLD, share.size()), all.size());
   }
-  EXPECT_EQ(sum_over_ranks(MPI_COMM_WORLD, share_of(all, comm_rank(), comm_size()).size()),
-            all.size());
 }
 
 }  // namespace

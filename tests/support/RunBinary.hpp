@@ -31,14 +31,15 @@ inline RunResult run_binary(const std::string& args) {
   return run_command(binary_path() + " " + args + " 2>&1");
 }
 
-/// The binary on `ranks` MPI ranks: mpirun from PATH, allowed as root and past the core
-/// count, one OpenMP thread per rank, and without the variables that make this test process
-/// an MPI process (under them mpirun would take itself for one of its ranks).
+/// The binary on `ranks` MPI ranks: mpiexec_path(), allowed as root and past the core count,
+/// one OpenMP thread per rank, and without the variables that make this test process an MPI
+/// process (under them the launcher would take itself for one of its ranks).
 inline RunResult run_binary_on_ranks(int ranks, const std::string& args) {
   return run_command(
       "for v in $(env | grep -Eo '^(OMPI|PMIX|OPAL)_[A-Za-z0-9_]*'); do unset \"$v\"; done; "
-      "OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np " +
-      std::to_string(ranks) + " " + binary_path() + " " + args + " 2>&1");
+      "OMP_NUM_THREADS=1 " +
+      mpiexec_path() + " --allow-run-as-root --oversubscribe -np " + std::to_string(ranks) + " " +
+      binary_path() + " " + args + " 2>&1");
 }
 
 }  // namespace gpudem::test

@@ -1,7 +1,8 @@
 #pragma once
 // Where the tests find the source tree's data and the gpudem-mpi binary under test, and where
 // they leave fixtures: the paths of the build, unless the environment names others
-// (GPUDEM_SOURCE_DIR, GPUDEM_BINARY, GPUDEM_SNAPSHOT_FIXTURE_DIR), as it does when the tests
+// (GPUDEM_SOURCE_DIR, GPUDEM_BINARY, GPUDEM_MPIEXEC, GPUDEM_SNAPSHOT_FIXTURE_DIR), as it does
+// when the tests
 // run from a bundle copied to another machine (scripts/gpu_check.sh).
 #include <cstdlib>
 #include <string>
@@ -21,5 +22,10 @@ inline std::string source_dir() {
 
 /// The gpudem-mpi binary under test.
 inline std::string binary_path() { return path_from_environment("GPUDEM_BINARY", GPUDEM_BINARY); }
+
+/// The MPI launcher the build found, which starts the binary on several ranks.
+inline std::string mpiexec_path() {
+  return path_from_environment("GPUDEM_MPIEXEC", GPUDEM_MPIEXEC);
+}
 
 }  // namespace gpudem::test

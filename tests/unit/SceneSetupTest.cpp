@@ -361,13 +361,25 @@ ParticleStore varied_particles(const Scene& s) {
   return p;
 }
 
+/// `p` followed by a heavier twin of each of its deciding particles (same radius, material and
+/// velocity, twice the mass): ties that a later share sees and an earlier one decides.
+ParticleStore with_heavier_twins(const Scene& s, ParticleStore p) {
+  const ParticleStore deciding = setup_deciding_particles(s, p);
+  for (std::size_t k = 0; k < deciding.size(); ++k) {
+    const Real4 v = deciding.velocity_inv_mass[k];
+    add_particle(p, s, deciding.material[k], deciding.position_radius[k].w, {v.x, v.y, v.z});
+    p.velocity_inv_mass.back().w = v.w / 2;
+  }
+  return p;
+}
+
 TEST(TimeStep, DecidingParticlesGiveTheLimitsOfAllAndOfConcatenatedShares) {
   Scene s = two_material_scene();
   s.materials.push_back(material("clay", 1800, 5e6, 0.4));
   s.simulation.dt_auto = true;
-  const ParticleStore all = varied_particles(s);
   for (const NormalLaw law : {NormalLaw::Hooke, NormalLaw::Hertz}) {
     s.contact.model.normal = law;
+    const ParticleStore all = with_heavier_twins(s, varied_particles(s));
     const ParticleStore deciding = setup_deciding_particles(s, all);
     EXPECT_LE(deciding.size(), s.materials.size() + 3);
     const TimeStepLimits expected = time_step_limits(s, all), got = time_step_limits(s, deciding);

@@ -22,3 +22,4 @@ gpudem_add_test(test_restart_cli
   LABELS unit
   TIMEOUT 120)
 add_dependencies(test_restart_cli gpudem-mpi)
+set_tests_properties(test_restart_cli PROPERTIES PROCESSORS 2)  # one case runs on 2 ranks
