@@ -6,6 +6,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/BedPreparation.hpp"
 #include "app/DomainSetup.hpp"
@@ -471,20 +473,25 @@ StartShare load_start_share(const Scene& scene, const RunOptions& options, const
   return start;
 }
 
-/// Hands this rank's share of the particles to the engine: a new run's evaluate their forces;
-/// a checkpoint's are restored with their forces, neighbour list order and contact history.
-void start_engine(StepEngine& engine, const StartShare& share, const std::string& path) {
+/// Hands this rank's share of the particles to the engine, then frees it: a new run's evaluate
+/// their forces; a checkpoint's are restored with their forces, neighbour list order and
+/// contact history (the particle rows freed before the history is routed).
+void start_engine(StepEngine& engine, StartShare& share, const std::string& path) {
   if (!share.checkpoint) {
     engine.set_particles(share.created);
+    share.release_rows();
     return;
   }
-  const Checkpoint& c = *share.checkpoint;
+  Checkpoint& c = *share.checkpoint;
   try {
     engine.restore_particles(c.particles, c.list_position_radius, c.removed, c.list_build_step);
-    engine.set_contact_history(c.history);
+    c.particles = ParticleStore{};
+    c.list_position_radius = std::vector<Real4>{};
+    engine.set_contact_history(std::move(c.history));
   } catch (const std::invalid_argument& e) {
     throw InputError(path, 0, "", e.what());
   }
+  share.release_rows();
 }
 
 /// Ends a bed preparation: saves the trimmed bed when it settled, else reports why not.
@@ -535,7 +542,6 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   }
   std::unique_ptr<StepEngine> engine = make_engine(options.backend, mpi, setup);
   start_engine(*engine, share, options.restart_file);
-  share.release_rows();
   if (!checkpoint) bed.apply_history(scene, mpi, *engine);
   const std::string tuning = engine->tune_launches();
   prepare_output_directory(scene.output.dir);

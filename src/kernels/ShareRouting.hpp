@@ -5,7 +5,8 @@
 /// sends every particle to the rank that owns it and every history record to the rank that
 /// owns the record's owner particle, over DomainLink::exchange. Besides its share and what it
 /// owns, a rank holds only the records passing through it as the directory rank of their owner
-/// id (about a P-th of all when ids are spread evenly), each buffer freed once it is read.
+/// id (about a P-th of all when ids are spread evenly); buffers are sized exactly and freed once
+/// read.
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -46,6 +47,26 @@ inline void pack_particle(const ParticleStore& share, const std::vector<Real4>& 
   if (!list.empty()) put(out, list[i]);
 }
 
+/// Bytes of one particle as pack_particle writes it.
+inline std::size_t particle_bytes(bool with_list) {
+  return 2 * sizeof(Real4) + 3 * sizeof(Vec3) + sizeof(ParticleId) + sizeof(MaterialId) +
+         (with_list ? sizeof(Real4) : 0);
+}
+
+/// Makes room in `out` for `count` more particles.
+inline void reserve_particles(std::size_t count, bool with_list, RoutedParticles& out) {
+  ParticleStore& p = out.particles;
+  const std::size_t n = p.size() + count;
+  p.position_radius.reserve(n);
+  p.velocity_inv_mass.reserve(n);
+  p.angular_velocity.reserve(n);
+  p.force.reserve(n);
+  p.torque.reserve(n);
+  p.id.reserve(n);
+  p.material.reserve(n);
+  if (with_list) out.list_position_radius.reserve(n);
+}
+
 /// Appends the particles packed in `in` to `out`.
 inline void unpack_particles(const std::vector<char>& in, bool with_list, RoutedParticles& out) {
   ParticleStore& p = out.particles;
@@ -74,6 +95,18 @@ inline void pack_record(RecordKind kind, ParticleId owner, std::uint64_t key, co
   for (std::uint32_t k = 0; k < width; ++k) put(out, values[k]);
 }
 
+/// Bytes of one record as pack_record writes it.
+inline std::size_t record_bytes(std::uint32_t width) {
+  return sizeof(RecordKind) + sizeof(ParticleId) + sizeof(std::uint64_t) + width * sizeof(Real);
+}
+
+/// Sizes each buffer of `buffers` for `counts[q]` more items of `bytes` each.
+inline void reserve_buffers(RankBuffers& buffers, const std::vector<std::size_t>& counts,
+                            std::size_t bytes) {
+  for (std::size_t q = 0; q < buffers.size(); ++q)
+    buffers[q].reserve(buffers[q].size() + counts[q] * bytes);
+}
+
 /// Calls visit(kind, owner, key, values) for every record of `history`.
 template <class Visit>
 void for_each_record(const ContactHistory& h, Visit&& visit) {
@@ -98,6 +131,29 @@ void for_each_packed_record(const std::vector<char>& in, std::uint32_t width, Vi
     for (std::uint32_t k = 0; k < width; ++k) values[k] = take<Real>(in, at);
     visit(kind, owner, key, values.data());
   }
+}
+
+/// Makes room in `h` for the records packed in `buffers`, counted by kind.
+inline void reserve_records(ContactHistory& h, const RankBuffers& buffers, std::uint32_t width) {
+  std::size_t count[3] = {0, 0, 0};
+  const std::size_t stride = record_bytes(width);
+  for (const std::vector<char>& bytes : buffers)
+    for (std::size_t at = 0; at < bytes.size(); at += stride) {
+      std::size_t kind_at = at;
+      ++count[static_cast<int>(take<RecordKind>(bytes, kind_at))];
+    }
+  const auto pair = static_cast<std::size_t>(RecordKind::pair);
+  const auto wall = static_cast<std::size_t>(RecordKind::wall);
+  const auto mesh = static_cast<std::size_t>(RecordKind::mesh);
+  h.pair_owner.reserve(count[pair]);
+  h.pair_partner.reserve(count[pair]);
+  h.pair_values.reserve(count[pair] * width);
+  h.wall_owner.reserve(count[wall]);
+  h.wall_index.reserve(count[wall]);
+  h.wall_values.reserve(count[wall] * width);
+  h.mesh_owner.reserve(count[mesh]);
+  h.mesh_triangle.reserve(count[mesh]);
+  h.mesh_values.reserve(count[mesh] * width);
 }
 
 inline void add_record(ContactHistory& h, RecordKind kind, ParticleId owner, std::uint64_t key,
@@ -152,12 +208,21 @@ inline RoutedParticles route_to_owners(const ParticleStore& share,
   if (with_list && list_positions.size() != share.size())
     throw std::invalid_argument("route_to_owners: list positions and particles differ in number");
   const std::vector<Real4>& where = with_list ? list_positions : share.position_radius;
+  const std::size_t bytes_each = share_detail::particle_bytes(with_list);
+  std::vector<int> owner(share.size());
+  std::vector<std::size_t> count(domain.ranks(), 0);
+  for (std::size_t i = 0; i < share.size(); ++i) ++count[owner[i] = domain.owner_of(xyz(where[i]))];
   RankBuffers outgoing(domain.ranks()), incoming;
+  share_detail::reserve_buffers(outgoing, count, bytes_each);
   for (std::size_t i = 0; i < share.size(); ++i)
-    share_detail::pack_particle(share, list_positions, i, outgoing[domain.owner_of(xyz(where[i]))]);
+    share_detail::pack_particle(share, list_positions, i, outgoing[owner[i]]);
+  std::vector<int>().swap(owner);
   domain.exchange(outgoing, incoming);
   RankBuffers().swap(outgoing);
   RoutedParticles routed;
+  std::size_t arriving = 0;
+  for (const std::vector<char>& bytes : incoming) arriving += bytes.size() / bytes_each;
+  share_detail::reserve_particles(arriving, with_list, routed);
   for (std::vector<char>& bytes : incoming) {
     share_detail::unpack_particles(bytes, with_list, routed);
     std::vector<char>().swap(bytes);
@@ -167,42 +232,61 @@ inline RoutedParticles route_to_owners(const ParticleStore& share,
 
 /// The records of every rank's `share` (`width` values per record on every rank) whose owner
 /// particle is one of `owned` (this rank's particles), ordered by the directory rank they came
-/// through, then by sending rank, then as in the sender's share. Each
-/// record first goes to the directory rank of its owner id (id mod ranks), which has learned from
-/// every rank the ids it owns and forwards the record to the owner's rank. The caller makes sure
-/// every non-empty share has `width` values per record (on every rank, or the records cannot be
-/// read back). Throws std::invalid_argument on every rank when a record's owner is a particle no
-/// rank owns. Collective.
-inline ContactHistory route_history(const ContactHistory& share, std::uint32_t width,
+/// through, then by sending rank, then as in the sender's share. Each record first goes to the
+/// directory rank of its owner id (id mod ranks), which has learned from every rank the ids it
+/// owns and forwards the record to the owner's rank. `share` is taken by value and freed once
+/// packed, and every buffer is sized exactly and freed once read, so that a rank holds at most
+/// about two copies of its share's records at a time. The caller makes sure every non-empty
+/// share has `width` values per record (on every rank, or the records cannot be read back).
+/// Throws std::invalid_argument on every rank when a record's owner is a particle no rank
+/// owns. Collective.
+inline ContactHistory route_history(ContactHistory share, std::uint32_t width,
                                     const std::vector<ParticleId>& owned,
                                     const DomainLink& domain) {
   using namespace share_detail;
+  const std::size_t bytes_each = record_bytes(width);
   const std::unordered_map<ParticleId, int> directory = owner_directory(owned, domain);
+  std::vector<std::size_t> count(domain.ranks(), 0);
+  for_each_record(share, [&](RecordKind, ParticleId owner, std::uint64_t, const Real*) {
+    ++count[directory_rank(owner, domain.ranks())];
+  });
   RankBuffers to_directory(domain.ranks()), at_directory;
+  reserve_buffers(to_directory, count, bytes_each);
   for_each_record(share, [&](RecordKind kind, ParticleId owner, std::uint64_t key, const Real* v) {
     pack_record(kind, owner, key, v, width, to_directory[directory_rank(owner, domain.ranks())]);
   });
+  share = ContactHistory{};
   domain.exchange(to_directory, at_directory);
   RankBuffers().swap(to_directory);
-  RankBuffers to_owner(domain.ranks()), at_owner;
+
   std::string problem;
-  for (std::vector<char>& bytes : at_directory) {
+  count.assign(domain.ranks(), 0);
+  for (const std::vector<char>& bytes : at_directory)
     for_each_packed_record(
-        bytes, width, [&](RecordKind kind, ParticleId owner, std::uint64_t key, const Real* v) {
+        bytes, width, [&](RecordKind, ParticleId owner, std::uint64_t, const Real*) {
           const auto found = directory.find(owner);
           if (found != directory.end())
-            pack_record(kind, owner, key, v, width, to_owner[found->second]);
+            ++count[found->second];
           else if (problem.empty())
             problem =
                 "contact history: particle id " + std::to_string(owner) + " is not in the engine";
         });
+  throw_first_problem(problem, domain);
+  RankBuffers to_owner(domain.ranks()), at_owner;
+  reserve_buffers(to_owner, count, bytes_each);
+  for (std::vector<char>& bytes : at_directory) {
+    for_each_packed_record(
+        bytes, width, [&](RecordKind kind, ParticleId owner, std::uint64_t key, const Real* v) {
+          pack_record(kind, owner, key, v, width, to_owner[directory.at(owner)]);
+        });
     std::vector<char>().swap(bytes);
   }
-  throw_first_problem(problem, domain);
   domain.exchange(to_owner, at_owner);
   RankBuffers().swap(to_owner);
+
   ContactHistory mine;
   mine.width = width;
+  reserve_records(mine, at_owner, width);
   for (std::vector<char>& bytes : at_owner) {
     for_each_packed_record(
         bytes, width, [&](RecordKind kind, ParticleId owner, std::uint64_t key, const Real* v) {

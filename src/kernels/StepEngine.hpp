@@ -160,8 +160,9 @@ class StepEngine : public SnapshotSource {
   /// records, as for set_particles; every record goes to the rank that owns its owner
   /// particle. Throws std::invalid_argument (on every rank, with the first rank's message) for
   /// a history of another width, an entry naming an unknown particle, a pair that is not in
-  /// the neighbour list, or a wall index beyond the walls. Forces are not re-evaluated.
-  virtual void set_contact_history(const ContactHistory& share) = 0;
+  /// the neighbour list, or a wall index beyond the walls. Forces are not re-evaluated. Takes
+  /// `share` by value: a caller that moves it in lets the records be freed as they are sent.
+  virtual void set_contact_history(ContactHistory share) = 0;
 
   /// Positions and radii at the last neighbour-list build, in the order of get_particles.
   virtual void get_list_positions(std::vector<Real4>& position_radius) const = 0;

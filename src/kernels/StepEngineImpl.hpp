@@ -10,6 +10,7 @@
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 #include "core/Stopwatch.hpp"
 #include "kernels/ArrayKernels.hpp"
@@ -193,10 +194,8 @@ class StepEngineImpl final : public StepEngine {
     history = collect_history(contact_slots(), kHistoryWidth, values);
   }
 
-  void set_contact_history(const ContactHistory& share) override {
-    const ContactSlots slots = contact_slots();
-    const HistoryValues values = domain_.ranks() == 1 ? scatter_history(slots, kHistoryWidth, share)
-                                                      : scatter_routed(share, slots);
+  void set_contact_history(ContactHistory share) override {
+    const HistoryValues values = scatter_share(std::move(share), contact_slots());
     if constexpr (kHistoryWidth > 0) {
       upload_states(values.pair, pair_history_);
       upload_states(values.wall, wall_history_);
@@ -363,11 +362,12 @@ class StepEngineImpl final : public StepEngine {
                              angular_velocity_.data(), id_.data(), material_.data()};
   }
 
-  /// scatter_history on several ranks for this rank's `share` of the records: each record is
-  /// sent to the rank that owns its owner particle first. A problem on any rank (another
-  /// width, arrays of different lengths, an unknown particle, a pair not in the list) is thrown
-  /// on every rank.
-  HistoryValues scatter_routed(const ContactHistory& share, const ContactSlots& slots) const {
+  /// scatter_history for this rank's `share` of the records (freed on return): on several
+  /// ranks each record is sent to the rank that owns its owner particle first, and a problem on
+  /// any rank (another width, arrays of different lengths, an unknown particle, a pair not in
+  /// the list) is thrown on every rank.
+  HistoryValues scatter_share(ContactHistory share, const ContactSlots& slots) const {
+    if (domain_.ranks() == 1) return scatter_history(slots, kHistoryWidth, share);
     std::string problem;
     if (!share.empty() && share.width != kHistoryWidth)
       problem = "contact history: it holds " + std::to_string(share.width) +
@@ -376,10 +376,10 @@ class StepEngineImpl final : public StepEngine {
       problem = "contact history: the arrays of one kind of contact differ in length";
     throw_first_problem(problem, domain_);
     const std::vector<ParticleId> owned(slots.id.begin(), slots.id.begin() + slots.rows);
-    const ContactHistory mine = route_history(share, kHistoryWidth, owned, domain_);
     HistoryValues values;
     try {
-      values = scatter_history(slots, kHistoryWidth, mine);
+      values = scatter_history(slots, kHistoryWidth,
+                               route_history(std::move(share), kHistoryWidth, owned, domain_));
     } catch (const std::invalid_argument& e) {
       problem = e.what();
     }
