@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "comm/StartupShares.hpp"
 #include "core/ContactModel.hpp"
 #include "core/InputError.hpp"
 #include "core/RowShare.hpp"
@@ -243,33 +244,38 @@ void save_bed(const Scene& scene, const MpiContext& mpi, Checkpoint state) {
   if (mpi.is_root()) print_bed_summary(scene, result, state.time, path);
 }
 
-BedReader BedLoader::reader() {
-  return [this](const std::string& path) {
-    Checkpoint bed = read_checkpoint(path);
+BedReader BedLoader::reader(FilePart part) {
+  return [this, part](const std::string& path) {
+    Checkpoint bed = read_checkpoint(path, part);
     path_ = path;
+    part_ = part;
     history_ = std::move(bed.history);
     return std::move(bed.particles);
   };
 }
 
-void BedLoader::apply_history(const Scene& scene, const MpiContext& mpi, StepEngine& engine) const {
+void BedLoader::apply_history(const Scene& scene, const MpiContext& mpi, StepEngine& engine) {
   if (!history_) return;
+  ContactHistory history = std::move(*history_);
+  history_.reset();
   const std::uint32_t width = contact_history_width(scene.contact.model);
-  if (history_->width != width) {
+  if (history.width != width) {
     if (mpi.is_root())
       std::printf(
           "bed %s: its contact history keeps %u values per contact but this contact law keeps "
           "%u; the bed starts with zero contact history\n",
-          path_.c_str(), history_->width, width);
+          path_.c_str(), history.width, width);
     return;
   }
-  ContactHistory history = *history_;
-  const std::size_t dropped = keep_known_walls(history, scene.walls.size());
+  if (part_.count != mpi.size()) history = share_of(history, mpi.rank(), mpi.size());
+  const std::uint64_t dropped =
+      sum_over_ranks(mpi.comm(), keep_known_walls(history, scene.walls.size()));
   if (dropped > 0 && mpi.is_root())
-    std::printf("bed %s: %zu wall contact record(s) name walls this scene does not have; dropped\n",
-                path_.c_str(), dropped);
+    std::printf(
+        "bed %s: %llu wall contact record(s) name walls this scene does not have; dropped\n",
+        path_.c_str(), static_cast<unsigned long long>(dropped));
   try {
-    engine.set_contact_history(share_of(history, mpi.rank(), mpi.size()));
+    engine.set_contact_history(std::move(history));
   } catch (const std::invalid_argument& e) {
     throw InputError(path_, 0, "", e.what());
   }

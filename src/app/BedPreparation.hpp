@@ -9,6 +9,7 @@
 #include "comm/MpiContext.hpp"
 #include "core/ContactHistory.hpp"
 #include "core/ParticleSources.hpp"
+#include "core/RowShare.hpp"
 #include "core/Scene.hpp"
 #include "kernels/StepEngine.hpp"
 
@@ -51,20 +52,23 @@ void report_unsettled(const Scene& scene, const MpiContext& mpi, double time, co
 /// Collective.
 void save_bed(const Scene& scene, const MpiContext& mpi, Checkpoint state);
 
-/// Reads the bed file of a scene's bed source (for create_particles) and keeps its contact
-/// history to give to the engine.
+/// Reads the bed file of a scene's bed source (for create_particles), whole or this rank's part
+/// of its rows, and keeps the contact history it read to give to the engine.
 class BedLoader {
  public:
-  /// Reads a bed file; its errors are InputErrors naming the file.
-  BedReader reader();
+  /// Reads a bed file, whole or the rows of `part` (of the particles and of each kind of
+  /// history record, as read_checkpoint); its errors are InputErrors naming the file.
+  BedReader reader(FilePart part = {});
   /// Gives `engine` the bed's contact history when the scene's contact law keeps as many values
   /// per contact (otherwise says on rank 0 that the bed starts without history) and
-  /// re-evaluates the forces with it. Wall records are kept by wall index, for the walls the
-  /// scene has. Nothing happens when no bed was read.
-  void apply_history(const Scene& scene, const MpiContext& mpi, StepEngine& engine) const;
+  /// re-evaluates the forces with it, then frees it. Each rank gives its part when the bed was
+  /// read by parts, else its share of the whole. Wall records are kept by wall index, for the
+  /// walls the scene has. Nothing happens when no bed was read. Collective.
+  void apply_history(const Scene& scene, const MpiContext& mpi, StepEngine& engine);
 
  private:
   std::string path_;
+  FilePart part_;
   std::optional<ContactHistory> history_;
 };
 

@@ -433,8 +433,9 @@ void adopt_checkpoint_step(EngineSetup& setup, const Scene& scene, const Checkpo
 }
 
 /// This rank's share of the particles a run starts with: the rows of its part of the
-/// checkpoint it restarts from (read by parts, so that no rank holds the whole file), or of the
-/// particles the scene's sources create (created on every rank, then all but the share dropped).
+/// checkpoint it restarts from, or of the bed file that is the scene's only source (both read by
+/// parts, so that no rank holds the whole file), or of the particles the scene's other sources
+/// create (created on every rank, then all but the share dropped).
 struct StartShare {
   std::optional<Checkpoint> checkpoint;  ///< this rank's part of it, on a restart
   ParticleStore created;                 ///< this rank's share of a new run's particles
@@ -452,8 +453,14 @@ struct StartShare {
   }
 };
 
-/// Reads or creates this rank's StartShare. A problem with the checkpoint found on any rank is
-/// an InputError on every rank. Collective.
+/// Whether the scene's particles all come from one bed file: then each rank reads its part of
+/// the rows, which are the particles' rows in creation order.
+bool bed_is_the_only_source(const Scene& scene) {
+  return scene.sources.size() == 1 && scene.sources[0].kind == SourceKind::Bed;
+}
+
+/// Reads or creates this rank's StartShare. A problem with the checkpoint or bed file that any
+/// rank finds in its part is thrown on every rank. Collective.
 StartShare load_start_share(const Scene& scene, const RunOptions& options, const MpiContext& mpi,
                             BedLoader& bed) {
   StartShare start;
@@ -463,6 +470,12 @@ StartShare load_start_share(const Scene& scene, const RunOptions& options, const
     start.checkpoint = agree_on_input(mpi.comm(), [&] {
       Checkpoint part = read_checkpoint(path, FilePart{rank, ranks});
       check_checkpoint_fits_scene(part, path, scene);
+      return part;
+    });
+  } else if (bed_is_the_only_source(scene)) {
+    start.created = agree_on_input(mpi.comm(), [&] {
+      ParticleStore part;
+      create_particles(scene, part, bed.reader(FilePart{rank, ranks}));
       return part;
     });
   } else {

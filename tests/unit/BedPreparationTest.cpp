@@ -36,8 +36,7 @@ constexpr double kRemoveAbove = 0.012;
 const double kFirstCheckTime = std::sqrt(2 * 0.1 / 9.81);
 
 /// 300 frictional grains dropped on a floor; they rest by t ≈ 0.3 s.
-const std::string kPreparationScene =
-    test::sand_bin_scene(0.6, 0.1, test::kSandGrains, R"([output]
+const std::string kPreparationScene = test::sand_bin_scene(0.6, 0.1, test::kSandGrains, R"([output]
 timeseries_every = 0.005
 
 [checkpoint]
@@ -59,6 +58,12 @@ radius = 0.0025
 material = "sand"
 )",
                                                        "");
+
+/// A scene whose only source is the bed file BED: each rank reads its part of the rows.
+const std::string kBedAloneScene = test::sand_bin_scene(0.01, 0.1, R"([[insert]]
+bed = "BED"
+)",
+                                                        "");
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {
   return text.replace(text.find(from), from.size(), to);
@@ -296,6 +301,28 @@ TEST_F(BedPreparation, BedMaterialBeyondTheSceneIsRefused) {
                           " has material index 1 but the scene defines 1 material(s)"),
             std::string::npos)
       << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(BedPreparation, ProblemInAnotherRanksPartOfABedAloneIsRefusedOnEveryRank) {
+  // Two ranks read the first and the second half of the rows; only the last particle names a
+  // material beyond the scene, so only rank 1 finds it, and rank 0 must report it.
+  const fs::path copy = dir_ / "bed.h5";
+  fs::copy_file(bed(), copy);
+  const std::size_t n = read_checkpoint(copy.string()).particles.size();
+  std::vector<std::uint32_t> materials(n, 0);
+  materials.back() = 1;
+  test::replace_u32_dataset(copy.string(), "material", materials);
+  const ParticleId id = read_checkpoint(copy.string()).particles.id.back();
+  const fs::path out = dir_ / "out";
+  const test::RunResult r = test::run_binary_on_ranks(
+      2, scene(replace(kBedAloneScene, "BED", copy.string())) + " --output-dir " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const std::string needle = "key 'insert[0].bed': bed file '" + copy.string() + "': particle id " +
+                             std::to_string(id) + " has material index 1";
+  const std::size_t first = r.output.find(needle);
+  EXPECT_NE(first, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(needle, first + 1), std::string::npos) << "reported twice:\n" << r.output;
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -6,3 +6,4 @@ gpudem_add_test(test_bed_preparation
   LABELS unit
   TIMEOUT 120)
 add_dependencies(test_bed_preparation gpudem-mpi)
+set_tests_properties(test_bed_preparation PROPERTIES PROCESSORS 2)  # one case runs on 2 ranks

@@ -50,7 +50,10 @@ CASE is one of:
   bed           tests/mpi/scenes/settle.toml as a bed preparation (settle, trim at 0.03 m, save)
                 at N = 1 and 3: the two bed files hold the same particles and the same pair and
                 wall springs (also of pairs split between ranks) bit for bit, and both runs
-                print the same summary line with the counts over all ranks.
+                print the same summary line with the counts over all ranks. Then
+                tests/mpi/scenes/bed_start.toml starts from the N = 1 bed as its only source
+                (each rank reads its part of the rows and springs) at N = 1, 2 and 3: the same
+                final state bit for bit and the same time series.
   cuda          tests/mpi/scenes/settle.toml on the CUDA backend (ranks sharing the one GPU) at
                 N = 1, 2 slabs and 2 x 2 blocks: the final states equal N = 1 on the device bit
                 for bit; against the host backend at N = 1, whose arithmetic rounds otherwise
@@ -569,6 +572,20 @@ def bed(runner):
                         f"{b[name].shape})")
     print(f"bed: {len(a['id'])} particles, {len(a['pair_owner'])} pair springs, "
           f"{len(a['wall_owner'])} wall springs")
+    bed_start(runner, runner.work / "bed_n1" / "bed.h5")
+
+
+def bed_start(runner, bed_file):
+    """A scene whose only source is `bed_file`: each rank reads its part of the bed's rows and
+    springs, and 2 and 3 ranks must end where one rank does."""
+    scene = SCENES / "bed_start.toml"
+    source = f'insert.0.bed="{bed_file}"'
+    reference = runner.run("bed_start_n1", scene, 1, source)
+    for ranks in (2, 3):
+        name = f"bed_start_n{ranks}"
+        out = runner.run(name, scene, ranks, source)
+        compare_states(runner, name, reference, out)
+        compare_series(runner, name, reference, out)
 
 
 def read_bed(path):
