@@ -8,7 +8,6 @@
 #include <utility>
 #include <vector>
 
-#include "comm/StartupShares.hpp"
 #include "core/InputError.hpp"
 
 namespace gpudem {
@@ -102,8 +101,8 @@ std::vector<int> metis_parts(const Scene& scene, const CoarseGrid& cells,
 }  // namespace
 
 std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi,
-                                       const ParticleStore& share, const EngineSetup& setup,
-                                       bool gpu_aware) {
+                                       const ParticleStore& share, std::uint64_t count,
+                                       const EngineSetup& setup, bool gpu_aware) {
   if (mpi.size() == 1) return nullptr;
   const MPI_Comm comm = mpi.comm();
   const Real ghost_width = 2 * largest_radius(comm, share) + setup.skin;
@@ -115,7 +114,6 @@ std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi
         mpi.comm(),
         Decomposition::from_owners(cells, metis_parts(scene, cells, work, mpi.size()), mpi.size()),
         ghost_width, gpu_aware);
-  const std::uint64_t count = sum_over_ranks(comm, share.size());
   // Collectives one by one: the order of evaluation within one argument list is unspecified.
   const Real volume = solid_volume(comm, share);
   const auto bounds = bed_bounds(comm, share, setup.box, count);

@@ -534,7 +534,8 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   EngineSetup setup = make_engine_setup(scene, deciding);
   if (checkpoint) adopt_checkpoint_step(setup, scene, *checkpoint, options.restart_file);
   const std::unique_ptr<MpiDomain> domain =
-      make_domain(scene, mpi, share.particles(), setup, use_gpu_aware_mpi(options.gpu_aware_mpi));
+      make_domain(scene, mpi, share.particles(), particle_count, setup,
+                  use_gpu_aware_mpi(options.gpu_aware_mpi));
   setup.domain = domain.get();
   setup.exact_phase_times = options.exact_time_split;
   const std::uint64_t steps = step_count(scene.simulation.end_time, setup.dt);

@@ -90,28 +90,33 @@ void append(std::vector<T>& to, const std::vector<T>& from) {
   to.insert(to.end(), from.begin(), from.end());
 }
 
+/// Appends the particle rows and history records of `part` to those of `whole`.
+void append_rows(Checkpoint& whole, const Checkpoint& part) {
+  append(whole.particles.position_radius, part.particles.position_radius);
+  append(whole.particles.velocity_inv_mass, part.particles.velocity_inv_mass);
+  append(whole.particles.angular_velocity, part.particles.angular_velocity);
+  append(whole.particles.force, part.particles.force);
+  append(whole.particles.torque, part.particles.torque);
+  append(whole.particles.id, part.particles.id);
+  append(whole.particles.material, part.particles.material);
+  append(whole.list_position_radius, part.list_position_radius);
+  append(whole.history.pair_owner, part.history.pair_owner);
+  append(whole.history.pair_partner, part.history.pair_partner);
+  append(whole.history.pair_values, part.history.pair_values);
+  append(whole.history.wall_owner, part.history.wall_owner);
+  append(whole.history.wall_index, part.history.wall_index);
+  append(whole.history.wall_values, part.history.wall_values);
+  append(whole.history.mesh_owner, part.history.mesh_owner);
+  append(whole.history.mesh_triangle, part.history.mesh_triangle);
+  append(whole.history.mesh_values, part.history.mesh_values);
+}
+
 /// What the file must hold: every rank's rows in rank order, rank 0's table and attributes.
 Checkpoint expected_whole(int ranks, std::uint32_t width = kSpringWidth) {
   Checkpoint whole = random_part(0, width);
   for (int r = 1; r < ranks; ++r) {
     const Checkpoint part = random_part(r, width);
-    append(whole.particles.position_radius, part.particles.position_radius);
-    append(whole.particles.velocity_inv_mass, part.particles.velocity_inv_mass);
-    append(whole.particles.angular_velocity, part.particles.angular_velocity);
-    append(whole.particles.force, part.particles.force);
-    append(whole.particles.torque, part.particles.torque);
-    append(whole.particles.id, part.particles.id);
-    append(whole.particles.material, part.particles.material);
-    append(whole.list_position_radius, part.list_position_radius);
-    append(whole.history.pair_owner, part.history.pair_owner);
-    append(whole.history.pair_partner, part.history.pair_partner);
-    append(whole.history.pair_values, part.history.pair_values);
-    append(whole.history.wall_owner, part.history.wall_owner);
-    append(whole.history.wall_index, part.history.wall_index);
-    append(whole.history.wall_values, part.history.wall_values);
-    append(whole.history.mesh_owner, part.history.mesh_owner);
-    append(whole.history.mesh_triangle, part.history.mesh_triangle);
-    append(whole.history.mesh_values, part.history.mesh_values);
+    append_rows(whole, part);
   }
   return whole;
 }
@@ -213,23 +218,7 @@ Checkpoint concatenated_parts(const std::string& path, int parts) {
     const Checkpoint part = read_checkpoint(path, FilePart{k, parts});
     EXPECT_EQ(part.snapshots.size(), whole.snapshots.size()) << "part " << k << " of " << parts;
     EXPECT_EQ(part.step, whole.step) << "part " << k << " of " << parts;
-    append(whole.particles.position_radius, part.particles.position_radius);
-    append(whole.particles.velocity_inv_mass, part.particles.velocity_inv_mass);
-    append(whole.particles.angular_velocity, part.particles.angular_velocity);
-    append(whole.particles.force, part.particles.force);
-    append(whole.particles.torque, part.particles.torque);
-    append(whole.particles.id, part.particles.id);
-    append(whole.particles.material, part.particles.material);
-    append(whole.list_position_radius, part.list_position_radius);
-    append(whole.history.pair_owner, part.history.pair_owner);
-    append(whole.history.pair_partner, part.history.pair_partner);
-    append(whole.history.pair_values, part.history.pair_values);
-    append(whole.history.wall_owner, part.history.wall_owner);
-    append(whole.history.wall_index, part.history.wall_index);
-    append(whole.history.wall_values, part.history.wall_values);
-    append(whole.history.mesh_owner, part.history.mesh_owner);
-    append(whole.history.mesh_triangle, part.history.mesh_triangle);
-    append(whole.history.mesh_values, part.history.mesh_values);
+    append_rows(whole, part);
   }
   return whole;
 }

@@ -25,18 +25,7 @@ set_tests_properties(check_snapshot_xdmf check_snapshot_xdmf_catches_errors PROP
   LABELS unit
   TIMEOUT 60)
 
-# The same read-back checks, and the snapshot queue's, at 2 and 4 ranks (rank 1 holds no particle). Open MPI runs as root
-# and past the core count only when told so; these variables do that and other MPIs ignore them.
-set(GPUDEM_OPEN_MPI_TEST_ENV
-  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1)
-foreach(ranks 2 4)
-  add_test(NAME test_snapshot_writer_np${ranks}
-    COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${ranks} ${MPIEXEC_PREFLAGS}
-            $<TARGET_FILE:test_snapshot_writer> ${MPIEXEC_POSTFLAGS}
-            --gtest_filter=SnapshotWriterTest.*:SnapshotQueueTest.*)
-  set_tests_properties(test_snapshot_writer_np${ranks} PROPERTIES
-    LABELS mpi
-    TIMEOUT 120
-    PROCESSORS ${ranks}
-    ENVIRONMENT "${GPUDEM_OPEN_MPI_TEST_ENV}")
-endforeach()
+# The same read-back checks, and the snapshot queue's, at 2 and 4 ranks (rank 1 holds no
+# particle).
+gpudem_add_test_on_ranks(test_snapshot_writer RANKS 2 4
+  FILTER "SnapshotWriterTest.*:SnapshotQueueTest.*")
