@@ -26,6 +26,49 @@ struct Fill {
   GPUDEM_HD void operator()(std::size_t k) const { out[k] = value; }
 };
 
+/// value[i], for reductions.
+struct ReadValue {
+  const Real* value;
+  GPUDEM_HD Real operator()(std::size_t i) const { return value[i]; }
+};
+
+/// out[k] = k.
+struct Iota {
+  std::uint32_t* out;
+  GPUDEM_HD void operator()(std::size_t k) const { out[k] = static_cast<std::uint32_t>(k); }
+};
+
+/// out[k] = first + k.
+struct IotaFrom {
+  std::uint32_t* out;
+  std::uint32_t first;
+  GPUDEM_HD void operator()(std::size_t k) const { out[k] = first + static_cast<std::uint32_t>(k); }
+};
+
+/// out row k = in row order[k], rows of `width` values (per-particle wall histories).
+template <class T>
+struct GatherRows {
+  const std::uint32_t* order;
+  const T* in;
+  T* out;
+  std::uint32_t width;
+  GPUDEM_HD void operator()(std::size_t k) const {
+    for (std::uint32_t w = 0; w < width; ++w) out[k * width + w] = in[order[k] * width + w];
+  }
+};
+
+/// Swaps the first n values of two arrays.
+template <class T>
+struct SwapValues {
+  T* a;
+  T* b;
+  GPUDEM_HD void operator()(std::size_t k) const {
+    const T t = a[k];
+    a[k] = b[k];
+    b[k] = t;
+  }
+};
+
 /// Resizes `out` (in Space memory) to n values and copies the n values at `in` (also in Space
 /// memory, not in `out`) into it.
 template <class Space, class T>

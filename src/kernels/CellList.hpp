@@ -22,6 +22,7 @@
 #include "kernels/BinRegion.hpp"
 #include "kernels/DeviceArray.hpp"
 #include "kernels/ParallelFor.hpp"
+#include "kernels/ParticleStateKernels.hpp"
 #include "kernels/PeriodicBox.hpp"
 #include "kernels/SizeClassGrid.hpp"
 
@@ -30,12 +31,6 @@ namespace gpudem {
 namespace cell_list_kernels {
 
 // The kernels read positions and radii held in scalar P (the engine's state) and work in Real.
-
-template <class P>
-struct Radius {
-  const Vec4T<P>* position_radius;
-  GPUDEM_HD Real operator()(std::size_t i) const { return position_radius[i].w; }
-};
 
 template <class P>
 struct NegativeRadius {
@@ -122,7 +117,7 @@ class CellList {
     n_ = n;
     Real r_min = 0, r_max = 0;
     if (n > 0) {
-      r_max = reduce_max(Space{}, n, Real(0), cell_list_kernels::Radius<P>{position_radius});
+      r_max = reduce_max(Space{}, n, Real(0), Radius<P>{position_radius});
       r_min =
           -reduce_max(Space{}, n, -r_max, cell_list_kernels::NegativeRadius<P>{position_radius});
     }

@@ -12,40 +12,54 @@
 #include "kernels/CoarseGrid.hpp"
 #include "kernels/DeviceArray.hpp"
 #include "kernels/ParallelFor.hpp"
+#include "kernels/PeriodicBox.hpp"
 #include "kernels/Permute.hpp"
 
 namespace gpudem {
 
-/// CellOwnership as kernels read it (pointers into Space memory).
+/// CellOwnership as kernels read it (pointers into Space memory); owner null on one rank.
 struct RankCellsView {
   CoarseGrid grid;
-  const int* owner;
-  const std::uint8_t* near_other;
-  int rank;  ///< this rank
+  const int* owner = nullptr;
+  const std::uint8_t* near_other = nullptr;
+  int rank = 0;  ///< this rank
 };
 
 namespace rank_cell_kernels {
 
-/// key[i] = 0 when this rank owns particle i's position, else 1 + its owner; index[i] = i. A
-/// stable sort by these keys keeps the staying particles first in their order and groups the
-/// leaving ones by destination.
+/// The relocation key of owned particle i at a rebuild: `removed` when it lies outside the
+/// non-periodic box, else 0 when this rank owns its position and 1 + its owner otherwise;
+/// index[i] = i. `removed` is the rank count + 1, above every owner's key, so a stable sort by
+/// these keys keeps the staying particles first in their order, groups the leaving ones by
+/// destination after them and puts the removed ones last. A view without an owner map (one
+/// rank) owns every cell.
 template <class P>
-struct DestinationKey {
+struct RelocationKey {
   RankCellsView cells;
+  PeriodicBox box;
+  std::uint64_t removed;
   const Vec4T<P>* position_radius;
   std::uint64_t* key;
   std::uint32_t* index;
   GPUDEM_HD void operator()(std::size_t i) const {
-    const int owner = cells.owner[cells.grid.cell_of(vec_cast<Real>(xyz(position_radius[i])))];
-    key[i] = owner == cells.rank ? 0 : 1 + static_cast<std::uint64_t>(owner);
+    const Vec3 x = vec_cast<Real>(xyz(position_radius[i]));
+    std::uint64_t k = 0;
+    if (box.outside(x)) {
+      k = removed;
+    } else if (cells.owner != nullptr) {
+      const int owner = cells.owner[cells.grid.cell_of(x)];
+      k = owner == cells.rank ? 0 : 1 + static_cast<std::uint64_t>(owner);
+    }
+    key[i] = k;
     index[i] = static_cast<std::uint32_t>(i);
   }
 };
 
-/// 1 for a non-zero key, for reduce_sum.
-struct NonZero {
+/// 1 for a key at least `least`, else 0, for reduce_sum.
+struct KeyAtLeast {
   const std::uint64_t* key;
-  GPUDEM_HD Real operator()(std::size_t i) const { return key[i] != 0 ? Real(1) : Real(0); }
+  std::uint64_t least;
+  GPUDEM_HD Real operator()(std::size_t i) const { return key[i] >= least ? Real(1) : Real(0); }
 };
 
 /// flag[i] = 1 when particle i (i < n) lies in a cell near another rank's, else 0; flag[n] = 0.

@@ -21,121 +21,20 @@
 #include "kernels/DomainLink.hpp"
 #include "kernels/GhostExchange.hpp"
 #include "kernels/HistoryCarryOver.hpp"
+#include "kernels/HostCopies.hpp"
 #include "kernels/Integrators.hpp"
 #include "kernels/LaunchTuning.hpp"
 #include "kernels/MeshWalls.hpp"
 #include "kernels/NeighborList.hpp"
 #include "kernels/ParticleMigration.hpp"
 #include "kernels/ParticleStaging.hpp"
+#include "kernels/ParticleStateKernels.hpp"
 #include "kernels/Permute.hpp"
 #include "kernels/RankCells.hpp"
 #include "kernels/ShareRouting.hpp"
 #include "kernels/StepEngine.hpp"
 
 namespace gpudem {
-
-// The per-particle kernels below read positions held in the engine's state scalar P.
-
-/// 1 for particles outside the non-periodic box, else 0 (sort key that moves leavers last).
-template <class P>
-struct LeaverKey {
-  const Vec4T<P>* position_radius;
-  PeriodicBox box;
-  std::uint64_t* key;
-  std::uint32_t* index;
-  GPUDEM_HD void operator()(std::size_t i) const {
-    key[i] = box.outside(vec_cast<Real>(xyz(position_radius[i]))) ? 1 : 0;
-    index[i] = static_cast<std::uint32_t>(i);
-  }
-};
-
-template <class P>
-struct IsLeaver {
-  const Vec4T<P>* position_radius;
-  PeriodicBox box;
-  GPUDEM_HD Real operator()(std::size_t i) const {
-    return box.outside(vec_cast<Real>(xyz(position_radius[i]))) ? Real(1) : Real(0);
-  }
-};
-
-/// Maps positions into the box along periodic axes.
-template <class P>
-struct WrapPositions {
-  Vec4T<P>* position_radius;
-  PeriodicBox box;
-  GPUDEM_HD void operator()(std::size_t i) const {
-    const Vec3T<P> p = box.wrap_rounded<P>(vec_cast<Real>(xyz(position_radius[i])));
-    position_radius[i].x = p.x;
-    position_radius[i].y = p.y;
-    position_radius[i].z = p.z;
-  }
-};
-
-/// out[i] = in[i] in Real.
-template <class P>
-struct CopyInReal {
-  const Vec4T<P>* in;
-  Real4* out;
-  GPUDEM_HD void operator()(std::size_t i) const { out[i] = vec4_cast<Real>(in[i]); }
-};
-
-template <class P>
-struct Radius {
-  const Vec4T<P>* position_radius;
-  GPUDEM_HD Real operator()(std::size_t i) const { return position_radius[i].w; }
-};
-
-struct ReadValue {
-  const Real* value;
-  GPUDEM_HD Real operator()(std::size_t i) const { return value[i]; }
-};
-
-struct Iota {
-  std::uint32_t* out;
-  GPUDEM_HD void operator()(std::size_t k) const { out[k] = static_cast<std::uint32_t>(k); }
-};
-
-/// out[k] = first + k.
-struct IotaFrom {
-  std::uint32_t* out;
-  std::uint32_t first;
-  GPUDEM_HD void operator()(std::size_t k) const { out[k] = first + static_cast<std::uint32_t>(k); }
-};
-
-/// out row k = in row order[k], rows of `width` values (per-particle wall histories).
-template <class T>
-struct GatherRows {
-  const std::uint32_t* order;
-  const T* in;
-  T* out;
-  std::uint32_t width;
-  GPUDEM_HD void operator()(std::size_t k) const {
-    for (std::uint32_t w = 0; w < width; ++w) out[k * width + w] = in[order[k] * width + w];
-  }
-};
-
-/// slot_of[i] = the cell-order slot of owned particle i (index_of_slot[slot] = i).
-struct SlotOfOwned {
-  const std::uint32_t* index_of_slot;
-  std::size_t owned;
-  std::uint32_t* slot_of;
-  GPUDEM_HD void operator()(std::size_t slot) const {
-    const std::uint32_t i = index_of_slot[slot];
-    if (i < owned) slot_of[i] = static_cast<std::uint32_t>(slot);
-  }
-};
-
-/// Swaps the first n values of two arrays.
-template <class T>
-struct SwapValues {
-  T* a;
-  T* b;
-  GPUDEM_HD void operator()(std::size_t k) const {
-    const T t = a[k];
-    a[k] = b[k];
-    b[k] = t;
-  }
-};
 
 /// The engine of one backend (Space) and contact law, with the particle state (positions,
 /// velocities, spins) held in scalar P: Real in the double and mixed policies, float in the
@@ -188,18 +87,18 @@ class StepEngineImpl final : public StepEngine {
 
   void get_contact_history(ContactHistory& history) const override {
     HistoryValues values;
-    values.pair = flat_values(pair_history_);
-    values.wall = flat_values(wall_history_);
-    values.mesh = flat_values(meshes_.entry_history());
+    values.pair = flat_values<kHistoryWidth>(pair_history_);
+    values.wall = flat_values<kHistoryWidth>(wall_history_);
+    values.mesh = flat_values<kHistoryWidth>(meshes_.entry_history());
     history = collect_history(contact_slots(), kHistoryWidth, values);
   }
 
   void set_contact_history(ContactHistory share) override {
     const HistoryValues values = scatter_share(std::move(share), contact_slots());
     if constexpr (kHistoryWidth > 0) {
-      upload_states(values.pair, pair_history_);
-      upload_states(values.wall, wall_history_);
-      if (!meshes_.empty()) meshes_.set_history(states_of(values.mesh));
+      pair_history_.upload(states_of<kHistoryWidth, State>(values.pair));
+      wall_history_.upload(states_of<kHistoryWidth, State>(values.wall));
+      if (!meshes_.empty()) meshes_.set_history(states_of<kHistoryWidth, State>(values.mesh));
     }
   }
 
@@ -410,10 +309,10 @@ class StepEngineImpl final : public StepEngine {
   /// restore_particles for this rank's particles `p` and their list positions.
   void restore_owned(const ParticleStore& p, const std::vector<Real4>& list_positions) {
     upload_particles(p);
-    upload_in_state_scalar(list_positions, position_at_build_);
+    upload_rounded(list_positions, position_at_build_);
     DeviceArray<ForceVec, Space> saved_force, saved_torque;
-    upload_vec3(p.force, saved_force);
-    upload_vec3(p.torque, saved_torque);
+    upload_rounded(p.force, saved_force);
+    upload_rounded(p.torque, saved_torque);
     build_list_at_saved_positions(saved_force, saved_torque);
     compute_forces();  // for the overlap ratios; the forces and history it leaves are replaced
     force_.swap(saved_force);
@@ -425,9 +324,9 @@ class StepEngineImpl final : public StepEngine {
   /// work arrays; torques zero (a law without spin never writes them, and a grown device
   /// array's new rows hold whatever its memory held), wall histories zero.
   void upload_particles(const ParticleStore& p) {
-    upload_in_state_scalar(p.position_radius, position_radius_);
-    upload_in_state_scalar(p.velocity_inv_mass, velocity_inv_mass_);
-    upload_in_state_scalar(p.angular_velocity, angular_velocity_);
+    upload_rounded(p.position_radius, position_radius_);
+    upload_rounded(p.velocity_inv_mass, velocity_inv_mass_);
+    upload_rounded(p.angular_velocity, angular_velocity_);
     id_.upload(p.id);
     material_.upload(p.material);
     owned_ = p.size();
@@ -481,47 +380,6 @@ class StepEngineImpl final : public StepEngine {
   void zero_history() {
     parallel_for(Space{}, pair_history_.size(), Fill<State>{pair_history_.data(), State{}});
     parallel_for(Space{}, wall_history_.size(), Fill<State>{wall_history_.data(), State{}});
-  }
-
-  /// `host` with f applied to each element.
-  template <class T, class F>
-  static auto converted(const std::vector<T>& host, F f) {
-    std::vector<decltype(f(host.front()))> out;
-    out.reserve(host.size());
-    for (const T& value : host) out.push_back(f(value));
-    return out;
-  }
-
-  static void upload_vec3(const std::vector<Vec3>& host, DeviceArray<ForceVec, Space>& a) {
-    a.upload(converted(host, vec_cast<typename Law::Scalar, Real>));
-  }
-
-  /// Host copy of a history array as kHistoryWidth values per contact.
-  static std::vector<Real> flat_values(const DeviceArray<State, Space>& states) {
-    std::vector<State> host;
-    states.download(host);
-    return flat_values(host);
-  }
-
-  /// Host copy of a history array as kHistoryWidth values per contact.
-  static std::vector<Real> flat_values(const std::vector<State>& host) {
-    std::vector<Real> values;
-    values.reserve(host.size() * kHistoryWidth);
-    for (const State& s : host) values.insert(values.end(), s.value, s.value + kHistoryWidth);
-    return values;
-  }
-
-  /// kHistoryWidth values per contact as states.
-  static std::vector<State> states_of(const std::vector<Real>& values) {
-    std::vector<State> host(values.size() / kHistoryWidth);
-    for (std::size_t k = 0; k < host.size(); ++k)
-      for (std::uint32_t v = 0; v < kHistoryWidth; ++v)
-        host[k].value[v] = values[k * kHistoryWidth + v];
-    return host;
-  }
-
-  static void upload_states(const std::vector<Real>& values, DeviceArray<State, Space>& states) {
-    states.upload(states_of(values));
   }
 
   /// Host copies of the ids (owned, then ghosts) and the owned particles' neighbour list,
@@ -775,8 +633,7 @@ class StepEngineImpl final : public StepEngine {
     times_.neighbors += lap(watch);
     resize_shared(owned_);  // the ghosts are planned anew
     parallel_for(Space{}, owned_, WrapPositions<P>{position_radius_.data(), setup_.box});
-    remove_leavers();
-    if (domain_.ranks() > 1) migrate_particles();
+    relocate_particles();
 #ifndef NDEBUG
     check_particles_conserved();
 #endif
@@ -814,31 +671,59 @@ class StepEngineImpl final : public StepEngine {
   /// The key of each entry of the current neighbour list: its partner's global id.
   PartnerIdKey partner_ids() const { return PartnerIdKey{neighbors_.neighbors(), id_.data()}; }
 
-  /// Particles that another rank owns go there with their state and history. The device sorts
-  /// the leaving ones to the end, grouped by destination (the others keep their order); only
-  /// they travel through the host, and those that arrive are appended.
-  void migrate_particles() {
-    rank_cells_.update(domain_.cell_ownership(), domain_.rank());
+  /// Removes the owned particles outside the box (removed_ counts them over all ranks) and
+  /// sends those that another rank owns there with their state and history. One stable sort by
+  /// RelocationKey moves both to the end, the leaving ones grouped by destination and the
+  /// removed ones last (the others keep their order); only they are read back, and the
+  /// particles that arrive are appended.
+  void relocate_particles() {
+    const bool several = domain_.ranks() > 1;
+    if (several) rank_cells_.update(domain_.cell_ownership(), domain_.rank());
     const std::size_t n = owned_;
+    const auto removed_key = static_cast<std::uint64_t>(domain_.ranks()) + 1;
     DeviceArray<std::uint64_t, Space> key(n);
     DeviceArray<std::uint32_t, Space> index(n);
     parallel_for(Space{}, n,
-                 rank_cell_kernels::DestinationKey<P>{rank_cells_.view(), position_radius_.data(),
-                                                      key.data(), index.data()});
-    const auto leaving = static_cast<std::size_t>(
-        std::llround(reduce_sum(Space{}, n, rank_cell_kernels::NonZero{key.data()})));
-    std::vector<int> destination;
-    if (leaving > 0) {
-      sort_by_key(Space{}, key.data(), index.data(), n, bits_for(domain_.ranks()));
+                 rank_cell_kernels::RelocationKey<P>{
+                     several ? rank_cells_.view() : RankCellsView{}, setup_.box, removed_key,
+                     position_radius_.data(), key.data(), index.data()});
+    const std::size_t moving = count_keys_from(key, 1);
+    const std::size_t removed = count_keys_from(key, removed_key);
+    if (moving > 0) {
+      sort_by_key(Space{}, key.data(), index.data(), n, bits_for(removed_key));
       reorder(index.data(), n);
-      for (const std::uint64_t k : download_values<Space>(key.data() + (n - leaving), leaving))
-        destination.push_back(static_cast<int>(k - 1));
     }
+    drop_last(removed);
+    if (!several) return;
+    const std::size_t leaving = moving - removed;
+    std::vector<int> destination;
+    for (const std::uint64_t k : download_values<Space>(key.data() + (owned_ - leaving), leaving))
+      destination.push_back(static_cast<int>(k - 1));
     const std::uint32_t walls = kHistoryWidth > 0 ? wall_count() : 0;
     const MigratingParticles<State, P> arrived =
-        exchange_migrants(owned_from(n - leaving, walls), destination, walls, domain_);
-    resize_owned(n - leaving);
+        exchange_migrants(owned_from(owned_ - leaving, walls), destination, walls, domain_);
+    resize_owned(owned_ - leaving);
     append_owned(arrived, walls);
+  }
+
+  /// How many of the keys are at least `least`.
+  std::size_t count_keys_from(const DeviceArray<std::uint64_t, Space>& key,
+                              std::uint64_t least) const {
+    return static_cast<std::size_t>(std::llround(
+        reduce_sum(Space{}, key.size(), rank_cell_kernels::KeyAtLeast{key.data(), least})));
+  }
+
+  /// Drops the last `count` owned particles, which left the box; removed_ and the expected
+  /// particle count and id checksum follow the removals on all ranks. Collective.
+  void drop_last(std::size_t count) {
+    const std::uint64_t all_removed = domain_.wrapping_sum(count);
+    removed_ += all_removed;
+    global_count_ -= all_removed;
+    if (all_removed == 0) return;
+    const std::uint64_t removed_ids =
+        tally_of(download_values<Space>(id_.data() + (owned_ - count), count)).id_sum;
+    resize_owned(owned_ - count);
+    expected_id_sum_ -= domain_.wrapping_sum(removed_ids);
   }
 
   /// Host copies of the owned particles [first, owned_) with their kept history rows.
@@ -958,28 +843,6 @@ class StepEngineImpl final : public StepEngine {
     has_list_ = true;
   }
 
-  /// Removes the owned particles outside the box; removed_ counts them over all ranks.
-  void remove_leavers() {
-    const std::size_t n = owned_;
-    const auto leavers = static_cast<std::size_t>(
-        std::llround(reduce_sum(Space{}, n, IsLeaver<P>{position_radius_.data(), setup_.box})));
-    const std::uint64_t all_leavers = domain_.wrapping_sum(leavers);
-    removed_ += all_leavers;
-    global_count_ -= all_leavers;
-    std::uint64_t leaver_ids = 0;
-    if (leavers > 0) {
-      DeviceArray<std::uint64_t, Space> key(n);
-      DeviceArray<std::uint32_t, Space> index(n);
-      parallel_for(Space{}, n,
-                   LeaverKey<P>{position_radius_.data(), setup_.box, key.data(), index.data()});
-      sort_by_key(Space{}, key.data(), index.data(), n, bits_for(1));  // keys 0, 1
-      reorder(index.data(), n);
-      leaver_ids = tally_of(download_values<Space>(id_.data() + (n - leavers), leavers)).id_sum;
-      resize_owned(n - leavers);
-    }
-    if (all_leavers > 0) expected_id_sum_ -= domain_.wrapping_sum(leaver_ids);
-  }
-
   /// Applies the permutation `order` (slot k takes particle order[k]) to every per-particle
   /// array of the owned particles whose value must survive a rebuild (forces are recomputed
   /// right after).
@@ -1015,28 +878,6 @@ class StepEngineImpl final : public StepEngine {
       parallel_for(Space{}, owned_, CopyInReal<P>{position_radius_.data(), scratch.data()});
       return scratch.data();
     }
-  }
-
-  /// Host copy of a state array, in Real.
-  template <class T>
-  static auto download_in_real(const DeviceArray<T, Space>& a) {
-    std::vector<T> host;
-    a.download(host);
-    if constexpr (std::is_same_v<T, State4>)
-      return converted(host, vec4_cast<Real, P>);
-    else
-      return converted(host, vec_cast<Real, P>);
-  }
-
-  /// Uploads host values in Real (Real4 or Vec3) into a state array, rounded to P.
-  template <class T, class Q>
-  static void upload_in_state_scalar(const std::vector<T>& host, DeviceArray<Q, Space>& a) {
-    if constexpr (std::is_same_v<T, Q>)
-      a.upload(host);
-    else if constexpr (std::is_same_v<Q, State4>)
-      a.upload(converted(host, vec4_cast<P, Real>));
-    else
-      a.upload(converted(host, vec_cast<P, Real>));
   }
 
   static void iota(DeviceArray<std::uint32_t, Space>& a, std::size_t n) {

@@ -1,9 +1,10 @@
 // The device side of a rebuild on several ranks on the CUDA backend against the host backend
-// (skipped without a device): destination keys and the selection of particles near another
+// (skipped without a device): relocation keys and the selection of particles near another
 // rank's cells at random points and at cell corners nudged by one ulp either way (where the
 // cell lookup rounds), and CsrRows read-out and append, including empty cases.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -91,16 +92,20 @@ TEST(CudaRankCells, KeysAndSelectionMatchTheHost) {
 
     DeviceArray<std::uint64_t, HostSpace> host_key(n);
     DeviceArray<std::uint32_t, HostSpace> host_index(n);
+    const std::uint64_t removed = 3 + 1;
     parallel_for(HostSpace{}, n,
-                 rank_cell_kernels::DestinationKey<Real>{host_cells.view(), host_position.data(),
-                                                         host_key.data(), host_index.data()});
+                 rank_cell_kernels::RelocationKey<Real>{host_cells.view(), Scene::box(), removed,
+                                                        host_position.data(), host_key.data(),
+                                                        host_index.data()});
     DeviceArray<std::uint64_t, CudaSpace> key(n);
     DeviceArray<std::uint32_t, CudaSpace> index(n);
-    parallel_for(CudaSpace{}, n,
-                 rank_cell_kernels::DestinationKey<Real>{
-                     device_cells.view(), device_position.data(), key.data(), index.data()});
+    parallel_for(
+        CudaSpace{}, n,
+        rank_cell_kernels::RelocationKey<Real>{device_cells.view(), Scene::box(), removed,
+                                               device_position.data(), key.data(), index.data()});
     std::vector<std::uint64_t> host_keys(host_key.data(), host_key.data() + n);
     EXPECT_EQ(to_host(key), host_keys);
+    EXPECT_NE(std::count(host_keys.begin(), host_keys.end(), removed), 0);
 
     std::vector<std::uint32_t> host_selected, selected;
     std::vector<Real4> host_near, near;

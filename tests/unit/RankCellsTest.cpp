@@ -1,8 +1,8 @@
 // The device side of a rebuild on several ranks, on the host backend: CsrRows reads out chosen
 // rows of a CSR table and appends rows after the last one (the history rows of migrating
 // particles), RankCells selects the particles in cells near another rank's, and
-// DestinationKey sorts the leaving particles to the end by destination; each checked against
-// a plain host computation.
+// RelocationKey sorts the leaving particles to the end by destination and the particles that
+// left the box after them; each checked against a plain host computation.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -172,9 +172,27 @@ TEST(RankCells, SelectsExactlyTheParticlesInCellsNearAnotherRank) {
   }
 }
 
-TEST(RankCells, DestinationKeysMatchTheOwnersAndSortLeaversByDestination) {
+/// Whether p lies outside the slab scene's box along y or z (x is periodic), by hand.
+bool outside_slab_box(const Real4& p) { return p.y < 0 || p.y > 1 || p.z < 0 || p.z > 1; }
+
+/// The relocation keys of `position` for `view` with the removed key `removed`, sorted
+/// stably; checks the order and that the keys of each group are in index order.
+void sort_and_check(DeviceArray<std::uint64_t, HostSpace>& key,
+                    DeviceArray<std::uint32_t, HostSpace>& index, std::uint64_t removed) {
+  const std::size_t n = key.size();
+  sort_by_key(HostSpace{}, key.data(), index.data(), n, bits_for(removed));
+  for (std::size_t k = 1; k < n; ++k) {
+    ASSERT_LE(key.data()[k - 1], key.data()[k]);
+    if (key.data()[k - 1] == key.data()[k]) {
+      EXPECT_LT(index.data()[k - 1], index.data()[k]);  // stable: each group in index order
+    }
+  }
+}
+
+TEST(RankCells, RelocationKeysRemoveWhatLeftTheBoxAndSortLeaversByDestination) {
   const SlabScene scene(3000);
   const int rank = 1;
+  const std::uint64_t removed = 3 + 1;  // three ranks
   RankCells<HostSpace> cells;
   cells.update(scene.d.ownership(rank, 1), rank);
   DeviceArray<Real4, HostSpace> device_position;
@@ -182,25 +200,54 @@ TEST(RankCells, DestinationKeysMatchTheOwnersAndSortLeaversByDestination) {
   const std::size_t n = scene.position.size();
   DeviceArray<std::uint64_t, HostSpace> key(n);
   DeviceArray<std::uint32_t, HostSpace> index(n);
-  parallel_for(HostSpace{}, n,
-               rank_cell_kernels::DestinationKey<Real>{cells.view(), device_position.data(),
-                                                       key.data(), index.data()});
-  std::size_t leaving = 0;
+  parallel_for(
+      HostSpace{}, n,
+      rank_cell_kernels::RelocationKey<Real>{cells.view(), SlabScene::make_box(), removed,
+                                             device_position.data(), key.data(), index.data()});
+  std::size_t leaving = 0, outside = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const int owner = scene.d.owner_of(xyz(scene.position[i]));
-    EXPECT_EQ(key.data()[i], owner == rank ? 0u : 1u + static_cast<std::uint64_t>(owner)) << i;
-    leaving += owner != rank;
+    const bool out = outside_slab_box(scene.position[i]);
+    const std::uint64_t expected = out             ? removed
+                                   : owner == rank ? 0u
+                                                   : 1u + static_cast<std::uint64_t>(owner);
+    EXPECT_EQ(key.data()[i], expected) << i;
+    leaving += !out && owner != rank;
+    outside += out;
   }
-  EXPECT_EQ(reduce_sum(HostSpace{}, n, rank_cell_kernels::NonZero{key.data()}), Real(leaving));
-  sort_by_key(HostSpace{}, key.data(), index.data(), n, bits_for(3));
-  for (std::size_t k = 1; k < n; ++k) {
-    ASSERT_LE(key.data()[k - 1], key.data()[k]);
-    if (key.data()[k - 1] == key.data()[k]) {
-      EXPECT_LT(index.data()[k - 1], index.data()[k]);  // stable: each group in index order
-    }
-  }
+  const auto count_from = [&](std::uint64_t least) {
+    return reduce_sum(HostSpace{}, n, rank_cell_kernels::KeyAtLeast{key.data(), least});
+  };
+  EXPECT_EQ(count_from(1), Real(leaving + outside));
+  EXPECT_EQ(count_from(removed), Real(outside));
+  sort_and_check(key, index, removed);
+  for (std::size_t k = n - outside; k < n; ++k)
+    EXPECT_TRUE(outside_slab_box(scene.position[index.data()[k]])) << k;
   EXPECT_GT(leaving, 1000u);
-  EXPECT_LT(leaving, n);
+  EXPECT_GT(outside, 100u);
+  EXPECT_LT(leaving + outside, n);
+}
+
+TEST(RankCells, OnOneRankOnlyWhatLeftTheBoxIsKeyed) {
+  const SlabScene scene(2000);
+  const std::uint64_t removed = 1 + 1;
+  DeviceArray<Real4, HostSpace> device_position;
+  device_position.upload(scene.position);
+  const std::size_t n = scene.position.size();
+  DeviceArray<std::uint64_t, HostSpace> key(n);
+  DeviceArray<std::uint32_t, HostSpace> index(n);
+  parallel_for(
+      HostSpace{}, n,
+      rank_cell_kernels::RelocationKey<Real>{RankCellsView{}, SlabScene::make_box(), removed,
+                                             device_position.data(), key.data(), index.data()});
+  std::size_t outside = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool out = outside_slab_box(scene.position[i]);
+    EXPECT_EQ(key.data()[i], out ? removed : 0u) << i;
+    outside += out;
+  }
+  sort_and_check(key, index, removed);
+  EXPECT_GT(outside, 100u);
 }
 
 }  // namespace

@@ -32,6 +32,11 @@ CASE is one of:
                 each grain's only force) to 1e-9 of the force. The N = 2 run writes its
                 snapshots on a writer thread (its banner says so); again with
                 output.asynchronous = false, every snapshot and particles.xmf are the same.
+  leaving       tests/mpi/scenes/leaking_gas.toml (particles streaming across the cuts of a box
+                open along x and z, many leaving it) at N = 1, 2 slabs, 4 slabs and 2 x 2
+                blocks: final states equal bit for bit, and the particle count and removed
+                count of every time-series row equal one rank's; between a fifth and four
+                fifths of the particles are removed, in more than one row's interval.
   killed-checkpoint
                 tests/mpi/scenes/periodic_gas.toml checkpointed every step, alternately on 2
                 and 3 ranks; each round is killed (SIGKILL to every process group of its
@@ -255,6 +260,26 @@ def momentum(runner):
         runner.fail(f"gas_n4: momentum changed by {drift:.3e} (total |p| {totals[0][1]:.3e})")
     else:
         print(f"gas_n4: momentum change {drift:.3e} of total |p| {totals[0][1]:.3e}")
+
+def leaving(runner):
+    scene = SCENES / "leaking_gas.toml"
+    reference = runner.run("leaking_n1", scene, 1)
+    rows = series(reference)
+    start, removed = int(rows[0]["particles"]), int(rows[-1]["removed"])
+    growing = sum(int(a["removed"]) < int(b["removed"]) for a, b in zip(rows, rows[1:]))
+    print(f"leaking_n1: {removed} of {start} particles removed, in {growing} row intervals")
+    if not (start / 5 < removed < 4 * start / 5 and growing > 1):
+        runner.fail(f"leaking_n1: {removed} of {start} removed in {growing} row intervals; the "
+                    "scene no longer removes a fifth to four fifths over several rows")
+    for name, ranks, dims in (("leaking_slabs_n2", 2, "[2,1,1]"),
+                              ("leaking_slabs_n4", 4, "[4,1,1]"),
+                              ("leaking_blocks_2x2", 4, "[2,2,1]")):
+        out = runner.run(name, scene, ranks, f"decomposition.dims={dims}")
+        compare_states(runner, name, reference, out)
+        compare_series(runner, name, reference, out)
+        counts = [(r["particles"], r["removed"]) for r in series(out)]
+        if counts != [(r["particles"], r["removed"]) for r in rows]:
+            runner.fail(f"{name}: particle or removed counts differ from one rank's")
 
 # ---- sliding-pair ---------------------------------------------------------------------------
 
@@ -656,13 +681,14 @@ def main():
     parser.add_argument("--mpirun", required=True)
     parser.add_argument("--work", required=True)
     parser.add_argument("case", choices=["same-physics", "restart", "balance", "momentum",
-                                         "sliding-pair", "killed-checkpoint", "tool", "bed", "cuda"])
+                                         "leaving", "sliding-pair", "killed-checkpoint", "tool",
+                                         "bed", "cuda"])
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     runner = Runner(args.binary, args.mpirun, args.work)
     cases = {"same-physics": same_physics, "restart": restart, "balance": balance,
-             "momentum": momentum, "sliding-pair": sliding_pair,
+             "momentum": momentum, "leaving": leaving, "sliding-pair": sliding_pair,
              "killed-checkpoint": killed_checkpoint, "tool": tool, "bed": bed, "cuda": cuda}
     if cases[args.case](runner) == SKIPPED:
         return SKIPPED
