@@ -18,7 +18,11 @@
 # Usage: scripts/gpu_check.sh PART... (default: mps tests sanitizer)
 # Environment: OUT (results), BENCH_ARGS (replace the bench's default arguments), PYTHON (a
 # Python 3 with h5py and numpy, default python3), TESTS (an extended regular expression: only
-# the tests whose whole name it matches, e.g. 'test_settling|mpi_.*'; default all).
+# the tests whose whole name it matches, e.g. 'test_settling|mpi_.*'; default all), FIRST (a
+# regular expression: the tests it matches start first; default the host-versus-CUDA
+# comparisons, the CUDA unit tests, precision and the rank-count runs), BUDGET
+# (seconds for all parts, default 480, so that one device call of 540 s holds them: every
+# command is stopped when the budget runs out, and what it did not reach is listed as such).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 SRC=$PWD
@@ -27,6 +31,8 @@ WORK=${WORK:-/tmp/gpudem-work}
 BUNDLE=/tmp/gpudem-gpu
 PYTHON=${PYTHON:-python3}
 TESTS=${TESTS:-.*}
+FIRST=${FIRST:-mpi_cuda|test_backend_agreement|.*_cuda|test_portable_cuda|test_precision|mpi_.*}
+BUDGET=${BUDGET:-480}
 LOGS=$WORK/logs
 rm -rf "$LOGS"
 mkdir -p "$OUT" "$WORK" "$LOGS"
@@ -53,6 +59,12 @@ describe_device() {
   summary+=("device: $(nvidia-smi --query-gpu=name --format=csv,noheader 2>/dev/null | head -1), bundle of $(paste -sd ' ' gpu-bundle/commit)")
 }
 
+# Seconds left of the budget, at least 1 (bash counts SECONDS from the start, in subshells too).
+left() { local l=$(( BUDGET - SECONDS )); echo $(( l > 1 ? l : 1 )); }
+
+# within LIMIT: the smaller of LIMIT and the seconds left.
+within() { local l; l=$(left); echo $(( $1 < l ? $1 : l )); }
+
 # run_test NAME TIMEOUT SKIP_CODE [VAR=VALUE...] -- COMMAND...: one line of gpu-bundle/tests.sh.
 run_test() {
   local name=$1 limit=$2 skip=$3
@@ -60,11 +72,13 @@ run_test() {
   local env=()
   while [ "$1" != "--" ]; do env+=("$1"); shift; done
   shift
-  local log="$LOGS/tests/$name.log" rc
-  (cd "$WORK" && env "${env[@]}" timeout "$limit" "$@") > "$log" 2>&1
+  local log="$LOGS/tests/$name.log" rc cut=false
+  [ "$(left)" -le "$limit" ] && cut=true
+  (cd "$WORK" && env "${env[@]}" timeout "$(within "$limit")" "$@") > "$log" 2>&1
   rc=$?
   if [ $rc -eq 0 ]; then echo "passed $name" >> "$LOGS/tests/results"
   elif [ $rc -eq "$skip" ]; then echo "skipped $name" >> "$LOGS/tests/results"
+  elif [ $rc -eq 124 ] && $cut; then echo "cut $name (the budget ran out)" >> "$LOGS/tests/results"
   else echo "FAILED $name (exit $rc)" >> "$LOGS/tests/results"; fi
 }
 
@@ -76,20 +90,28 @@ part_tests() {
   export GPUDEM_SOURCE_DIR=$SRC GPUDEM_BINARY=$BUNDLE/bin/gpudem-mpi GPUDEM_MPIEXEC=mpirun
   export GPUDEM_SNAPSHOT_FIXTURE_DIR=$WORK/snapshot_fixture PYTHON
   local lines line fixture='^run_test test_snapshot_writer |snapshot_fixture'
-  mapfile -t lines < <(awk -v names="^($TESTS)\$" '$1 == "run_test" && $2 ~ names' gpu-bundle/tests.sh)
+  # The tests FIRST names lead, the others follow in ctest's order.
+  mapfile -t lines < <(awk -v names="^($TESTS)\$" -v first="^($FIRST)\$" '
+    $1 == "run_test" && $2 ~ names { if ($2 ~ first) print; else later[n++] = $0 }
+    END { for (i = 0; i < n; ++i) print later[i] }' gpu-bundle/tests.sh)
   # The snapshot fixture's writer and readers in order, then the rest, one test per 4 cores.
   for line in "${lines[@]}"; do [[ $line =~ $fixture ]] && eval "$line"; done
   for line in "${lines[@]}"; do
     [[ $line =~ $fixture ]] && continue
     while [ "$(jobs -rp | wc -l)" -ge "$at_once" ]; do wait -n; publish; done
+    if [ "$(left)" -le 5 ]; then
+      echo "not reached $(awk '{ print $2 }' <<< "$line")" >> "$LOGS/tests/results"
+      continue
+    fi
     eval "$line" &
   done
   wait
   # GoogleTest's own count of the cases that skipped inside a passing executable.
   local skipped failed
   skipped=$(grep -h "^\[  SKIPPED \] [A-Za-z]" "$LOGS"/tests/*.log | sort -u | wc -l)
-  summary+=("tests: $(grep -c '^passed' "$LOGS/tests/results") passed, $(grep -c '^skipped' "$LOGS/tests/results") skipped, $(grep -c '^FAILED' "$LOGS/tests/results") failed; $skipped GoogleTest cases skipped inside them")
-  mapfile -t failed < <(grep '^FAILED' "$LOGS/tests/results")
+  local results=$LOGS/tests/results
+  summary+=("tests: $(grep -c '^passed' "$results") passed, $(grep -c '^skipped' "$results") skipped, $(grep -c '^FAILED' "$results") failed, $(grep -cE '^(cut|not reached)' "$results") cut or not reached by the budget; $skipped GoogleTest cases skipped inside them")
+  mapfile -t failed < <(grep -E '^(FAILED|cut|not reached)' "$results")
   for line in "${failed[@]}"; do summary+=("  $line"); done
 }
 
@@ -97,7 +119,8 @@ part_tests() {
 sanitize() {
   local tool=$1 ranks=$2 scene=$3 end=$4
   local name="$tool-np$ranks-$(basename "$scene" .toml)" rc
-  mpirun -np "$ranks" compute-sanitizer --tool "$tool" --error-exitcode 99 --print-limit 20 \
+  if [ "$(left)" -le 20 ]; then summary+=("sanitizer $name: not reached (budget)"); return; fi
+  timeout "$(left)" mpirun -np "$ranks" compute-sanitizer --tool "$tool" --error-exitcode 99 --print-limit 20 \
     "$BUNDLE/bin/gpudem-mpi" "$scene" --backend cuda --set simulation.end_time="$end" \
     --output-dir "$WORK/$name" --quiet > "$LOGS/sanitizer/$name.log" 2>&1
   rc=$?
@@ -150,7 +173,7 @@ trap stop_mps EXIT
 part_bench() {
   local args=${BENCH_ARGS:---backend cuda --sizes 1e5,1e6,1e7 --precisions mixed,double,float --largest}
   # shellcheck disable=SC2086
-  "$BUNDLE/bin/gpudem-bench-soil" $args > "$OUT/bench_soil.md" 2>&1
+  timeout "$(left)" "$BUNDLE/bin/gpudem-bench-soil" $args > "$OUT/bench_soil.md" 2>&1
   summary+=("bench: exit $?, $OUT/bench_soil.md")
   summary+=("$(grep '^|' "$OUT/bench_soil.md")")
 }
@@ -166,7 +189,7 @@ part_split() {
   every=$(awk -v dt="$dt" 'BEGIN { printf "%.17g", dt * 50 }')
   for ranks in 1 2 4; do
     echo "== $ranks rank(s)" >> "$LOGS/split.log"
-    OMP_NUM_THREADS=$(( $(nproc) / ranks )) \
+    OMP_NUM_THREADS=$(( $(nproc) / ranks )) timeout "$(left)" \
       mpirun -np "$ranks" "$BUNDLE/bin/gpudem-mpi" "$WORK/split/scene.toml" --backend cuda \
       --exact-time-split --set simulation.end_time="$end" --set output.every="$every" \
       --set "decomposition.dims=[$ranks,1,1]" --output-dir "$WORK/split/n$ranks" \
@@ -177,16 +200,22 @@ part_split() {
   summary+=("${lines[@]}")
 }
 
-unpack
-source "$BUNDLE/env.sh"
-export PATH=$PATH:/usr/local/cuda/bin  # compute-sanitizer
-describe_device
 parts=("$@")
 [ ${#parts[@]} -gt 0 ] || parts=(mps tests sanitizer)
 for part in "${parts[@]}"; do
   case $part in
-    mps | tests | sanitizer | bench | split) "part_$part"; publish ;;
+    mps | tests | sanitizer | bench | split) ;;
     *) echo "gpu_check: unknown part '$part' (mps, tests, sanitizer, bench, split)" >&2; exit 2 ;;
   esac
 done
+unpack
+source "$BUNDLE/env.sh"
+export PATH=$PATH:/usr/local/cuda/bin  # compute-sanitizer
+describe_device
+for part in "${parts[@]}"; do
+  if [ "$(left)" -le 10 ]; then summary+=("$part: not reached (budget)"); continue; fi
+  "part_$part"
+  publish
+done
+publish
 cat "$OUT/summary.txt"
