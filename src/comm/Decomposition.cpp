@@ -322,14 +322,31 @@ bool preferred_on_tie(const std::array<int, 3>& a, const std::array<int, 3>& b, 
 
 }  // namespace
 
-CoarseGrid CoarseGrid::over(const PeriodicBox& box, Real min_side) {
+CoarseGrid CoarseGrid::over(const PeriodicBox& box, Real min_side, std::size_t max_cells) {
   if (!(min_side > 0)) throw std::invalid_argument("coarse cell side must be > 0");
-  CoarseGrid g;
-  g.lo = box.lo;
-  g.length = box.length;
+  if (max_cells < 1) throw std::invalid_argument("coarse cells: at most 0 cells asked for");
+  const auto cells_of_side = [&box](Real side) {
+    CoarseGrid g;
+    g.lo = box.lo;
+    g.length = box.length;
+    for (int k = 0; k < 3; ++k) {
+      g.n[k] = most_cells(axis(box.length, k), side);
+      g.periodic[k] = box.periodic[k];
+    }
+    return g;
+  };
+  Real natural = 1, volume = 1;  // in floating point: the natural counts may not fit an int
   for (int k = 0; k < 3; ++k) {
-    g.n[k] = most_cells(axis(box.length, k), min_side);
-    g.periodic[k] = box.periodic[k];
+    natural *= std::max(Real(1), axis(box.length, k) / min_side);
+    volume *= axis(box.length, k);
+  }
+  Real side = min_side;
+  if (natural > static_cast<Real>(max_cells))
+    side = std::max(min_side, std::cbrt(volume / static_cast<Real>(max_cells)));
+  CoarseGrid g = cells_of_side(side);
+  while (g.count() > max_cells) {
+    side *= Real(1.0625);
+    g = cells_of_side(side);
   }
   return g;
 }

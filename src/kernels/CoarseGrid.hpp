@@ -15,10 +15,18 @@
 
 namespace gpudem {
 
-/// The coarse cells of the global box: n[k] = max(1, floor(L_k / min_side)) per axis, edge
-/// L_k / n[k] (so the edge is >= min_side whenever L_k >= min_side; where L_k / min_side rounds
-/// across an integer, n[k] is the one for which the edge, as computed, is). Cells numbered x
-/// fastest.
+/// The most coarse cells a box is cut into: every rank holds the cell -> rank map (5 bytes a
+/// cell in its engine's memory, 9 on the host), so its size must not grow with the bed. 2^22
+/// cells are 20 MiB in the engine; a bed of 10^9 spheres in a box of their ghost width's cells
+/// would need about 4 × 10^8.
+constexpr std::size_t kMaxCoarseCells = std::size_t(1) << 22;
+
+/// The coarse cells of the global box: n[k] = max(1, floor(L_k / s)) per axis, edge L_k / n[k]
+/// (so the edge is >= s whenever L_k >= s; where L_k / s rounds across an integer, n[k] is the
+/// one for which the edge, as computed, is). The side s is min_side, or where that gives more
+/// than max_cells cells (Π max(1, L_k / min_side) > max_cells), the least of
+/// max(min_side, (Π L_k / max_cells)^(1/3)) × 1.0625^j, j = 0, 1, ..., that gives at most
+/// max_cells. Cells numbered x fastest.
 struct CoarseGrid {
   Vec3 lo;      ///< [m] lower corner of the box
   Vec3 length;  ///< [m] edge lengths of the box
@@ -26,7 +34,8 @@ struct CoarseGrid {
   bool periodic[3] = {false, false, false};
 
   /// Defined with the decomposition (comm/Decomposition.cpp).
-  static CoarseGrid over(const PeriodicBox& box, Real min_side);
+  static CoarseGrid over(const PeriodicBox& box, Real min_side,
+                         std::size_t max_cells = kMaxCoarseCells);
 
   std::size_t count() const {
     return static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) *

@@ -163,7 +163,8 @@ TEST(CoarseGrid, EdgeIsAtLeastMinSideAndAsSmallAsAllowed) {
     double x = multiple(rng) * s;
     for (int ulps = 0; ulps < trial % 3; ++ulps) x = std::nextafter(x, 0.0);
     const Vec3 L{x, 0.7, 0.3};
-    const CoarseGrid g = CoarseGrid::over(make_box({0, 0, 0}, L), s);
+    const CoarseGrid g =
+        CoarseGrid::over(make_box({0, 0, 0}, L), s, std::numeric_limits<std::size_t>::max());
     for (int k = 0; k < 3; ++k) {
       const double Lk = axis(L, k);
       if (Lk < s) {
@@ -174,6 +175,39 @@ TEST(CoarseGrid, EdgeIsAtLeastMinSideAndAsSmallAsAllowed) {
       EXPECT_LT(Lk / (g.n[k] + 1), s) << "L = " << Lk << ", s = " << s;
     }
   }
+}
+
+TEST(CoarseGrid, ALargeBoxTakesWiderCellsUpToTheLimit) {
+  const std::size_t limit = kMaxCoarseCells;
+  // Boxes of 4.6e9, 1.2e10 (a thin sheet, one cell deep) and 5.8e14 cells of the side: each
+  // capped near the limit, with edges wider than the side.
+  const std::array<Vec3, 3> lengths{Vec3{100, 40, 2}, Vec3{1000, 1000, 0.02}, Vec3{1e4, 1e4, 10}};
+  const double side = 0.012;
+  for (const Vec3& L : lengths) {
+    const CoarseGrid g = CoarseGrid::over(make_box({0, 0, 0}, L), side);
+    EXPECT_LE(g.count(), limit) << L.x;
+    EXPECT_GT(g.count(), limit / 4) << L.x;
+    for (int k = 0; k < 3; ++k) EXPECT_GE(g.edge(k), side) << L.x << " axis " << k;
+  }
+  // The thin sheet stays one cell deep; the others have cubic-ish cells.
+  const CoarseGrid sheet = CoarseGrid::over(make_box({0, 0, 0}, lengths[1]), side);
+  EXPECT_EQ(sheet.n[2], 1);
+  const CoarseGrid bed = CoarseGrid::over(make_box({0, 0, 0}, lengths[0]), side);
+  EXPECT_NEAR(bed.edge(0) / bed.edge(1), 1, 0.05);
+  // A small limit, counted exactly: 1 x 0.5 x 0.25 m in 0.01 m cells (1.25e5) at most 1000.
+  const CoarseGrid small = CoarseGrid::over(make_box({0, 0, 0}, {1, 0.5, 0.25}), 0.01, 1000);
+  EXPECT_LE(small.count(), 1000u);
+  EXPECT_GT(small.count(), 250u);
+  EXPECT_THROW(CoarseGrid::over(make_box({0, 0, 0}, {1, 1, 1}), 0.1, 0), std::invalid_argument);
+}
+
+TEST(CoarseGrid, ABoxWithinTheLimitKeepsCellsOfTheSide) {
+  // 1.6 x 1 x 0.5 m in 0.01 m cells: 8e5 cells, below the limit.
+  const PeriodicBox box = make_box({0, 0, 0}, {1.6, 1.0, 0.5});
+  const CoarseGrid g = CoarseGrid::over(box, 0.01);
+  const CoarseGrid unlimited = CoarseGrid::over(box, 0.01, std::numeric_limits<std::size_t>::max());
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(g.n[k], unlimited.n[k]);
+  EXPECT_NEAR(static_cast<double>(g.count()), 8e5, 1e4);
 }
 
 TEST(CoarseGrid, CoordinateClampsOrWraps) {
