@@ -175,16 +175,33 @@ TEST(RankCells, SelectsExactlyTheParticlesInCellsNearAnotherRank) {
 /// Whether p lies outside the slab scene's box along y or z (x is periodic), by hand.
 bool outside_slab_box(const Real4& p) { return p.y < 0 || p.y > 1 || p.z < 0 || p.z > 1; }
 
-/// The relocation keys of `position` for `view` with the removed key `removed`, sorted
-/// stably; checks the order and that the keys of each group are in index order.
-void sort_and_check(DeviceArray<std::uint64_t, HostSpace>& key,
-                    DeviceArray<std::uint32_t, HostSpace>& index, std::uint64_t removed) {
-  const std::size_t n = key.size();
-  sort_by_key(HostSpace{}, key.data(), index.data(), n, bits_for(removed));
-  for (std::size_t k = 1; k < n; ++k) {
-    ASSERT_LE(key.data()[k - 1], key.data()[k]);
-    if (key.data()[k - 1] == key.data()[k]) {
-      EXPECT_LT(index.data()[k - 1], index.data()[k]);  // stable: each group in index order
+/// The relocation keys of a scene's particles and their indices.
+struct Keyed {
+  DeviceArray<std::uint64_t, HostSpace> key;
+  DeviceArray<std::uint32_t, HostSpace> index;
+};
+
+/// RelocationKey over the slab scene's particles for `view`, `removed` the removed key.
+Keyed relocation_keys(const SlabScene& scene, const RankCellsView& view, std::uint64_t removed) {
+  DeviceArray<Real4, HostSpace> position;
+  position.upload(scene.position);
+  const std::size_t n = scene.position.size();
+  Keyed k{DeviceArray<std::uint64_t, HostSpace>(n), DeviceArray<std::uint32_t, HostSpace>(n)};
+  parallel_for(
+      HostSpace{}, n,
+      rank_cell_kernels::RelocationKey<Real>{view, SlabScene::make_box(), removed, position.data(),
+                                             k.key.data(), k.index.data()});
+  return k;
+}
+
+/// Sorts the keys stably and checks the order and that each group is in index order.
+void sort_and_check(Keyed& k, std::uint64_t removed) {
+  const std::size_t n = k.key.size();
+  sort_by_key(HostSpace{}, k.key.data(), k.index.data(), n, bits_for(removed));
+  for (std::size_t i = 1; i < n; ++i) {
+    ASSERT_LE(k.key.data()[i - 1], k.key.data()[i]);
+    if (k.key.data()[i - 1] == k.key.data()[i]) {
+      EXPECT_LT(k.index.data()[i - 1], k.index.data()[i]);  // stable: each group in index order
     }
   }
 }
@@ -195,15 +212,9 @@ TEST(RankCells, RelocationKeysRemoveWhatLeftTheBoxAndSortLeaversByDestination) {
   const std::uint64_t removed = 3 + 1;  // three ranks
   RankCells<HostSpace> cells;
   cells.update(scene.d.ownership(rank, 1), rank);
-  DeviceArray<Real4, HostSpace> device_position;
-  device_position.upload(scene.position);
+  Keyed k = relocation_keys(scene, cells.view(), removed);
   const std::size_t n = scene.position.size();
-  DeviceArray<std::uint64_t, HostSpace> key(n);
-  DeviceArray<std::uint32_t, HostSpace> index(n);
-  parallel_for(
-      HostSpace{}, n,
-      rank_cell_kernels::RelocationKey<Real>{cells.view(), SlabScene::make_box(), removed,
-                                             device_position.data(), key.data(), index.data()});
+  const std::uint64_t* key = k.key.data();
   std::size_t leaving = 0, outside = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const int owner = scene.d.owner_of(xyz(scene.position[i]));
@@ -211,18 +222,18 @@ TEST(RankCells, RelocationKeysRemoveWhatLeftTheBoxAndSortLeaversByDestination) {
     const std::uint64_t expected = out             ? removed
                                    : owner == rank ? 0u
                                                    : 1u + static_cast<std::uint64_t>(owner);
-    EXPECT_EQ(key.data()[i], expected) << i;
+    EXPECT_EQ(key[i], expected) << i;
     leaving += !out && owner != rank;
     outside += out;
   }
   const auto count_from = [&](std::uint64_t least) {
-    return reduce_sum(HostSpace{}, n, rank_cell_kernels::KeyAtLeast{key.data(), least});
+    return reduce_sum(HostSpace{}, n, rank_cell_kernels::KeyAtLeast{key, least});
   };
   EXPECT_EQ(count_from(1), Real(leaving + outside));
   EXPECT_EQ(count_from(removed), Real(outside));
-  sort_and_check(key, index, removed);
-  for (std::size_t k = n - outside; k < n; ++k)
-    EXPECT_TRUE(outside_slab_box(scene.position[index.data()[k]])) << k;
+  sort_and_check(k, removed);
+  for (std::size_t i = n - outside; i < n; ++i)
+    EXPECT_TRUE(outside_slab_box(scene.position[k.index.data()[i]])) << i;
   EXPECT_GT(leaving, 1000u);
   EXPECT_GT(outside, 100u);
   EXPECT_LT(leaving + outside, n);
@@ -231,22 +242,15 @@ TEST(RankCells, RelocationKeysRemoveWhatLeftTheBoxAndSortLeaversByDestination) {
 TEST(RankCells, OnOneRankOnlyWhatLeftTheBoxIsKeyed) {
   const SlabScene scene(2000);
   const std::uint64_t removed = 1 + 1;
-  DeviceArray<Real4, HostSpace> device_position;
-  device_position.upload(scene.position);
+  Keyed k = relocation_keys(scene, RankCellsView{}, removed);
   const std::size_t n = scene.position.size();
-  DeviceArray<std::uint64_t, HostSpace> key(n);
-  DeviceArray<std::uint32_t, HostSpace> index(n);
-  parallel_for(
-      HostSpace{}, n,
-      rank_cell_kernels::RelocationKey<Real>{RankCellsView{}, SlabScene::make_box(), removed,
-                                             device_position.data(), key.data(), index.data()});
   std::size_t outside = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const bool out = outside_slab_box(scene.position[i]);
-    EXPECT_EQ(key.data()[i], out ? removed : 0u) << i;
+    EXPECT_EQ(k.key.data()[i], out ? removed : 0u) << i;
     outside += out;
   }
-  sort_and_check(key, index, removed);
+  sort_and_check(k, removed);
   EXPECT_GT(outside, 100u);
 }
 

@@ -60,11 +60,13 @@ CASE is one of:
                 (each rank reads its part of the rows and springs) at N = 1, 2 and 3: the same
                 final state bit for bit and the same time series.
   cuda          tests/mpi/scenes/settle.toml on the CUDA backend (ranks sharing the one GPU) at
-                N = 1, 2 slabs and 2 x 2 blocks: the final states equal N = 1 on the device bit
-                for bit; against the host backend at N = 1, whose arithmetic rounds otherwise
-                (fused multiply-adds), the final gravitational potential energy agrees within
-                1 % of the energy the fall released and the contact count within 5 %. Exits 77
-                (skipped) where this build has no CUDA backend or no device is visible.
+                N = 1, 2 slabs and 2 x 2 blocks, and leaking_gas.toml at N = 1 and 2 slabs: the
+                final states equal N = 1 on the device bit for bit (and leaking_gas's particle
+                counts at every row); against the host backend at N = 1, whose arithmetic
+                rounds otherwise (fused multiply-adds), the final gravitational potential
+                energy agrees within 1 % of the energy the fall released and the contact count
+                within 5 %. Exits 77 (skipped) where this build has no CUDA backend or no
+                device is visible.
 Exit status 0 when all holds, 1 with one line per failure otherwise, 77 when skipped.
 """
 import argparse
@@ -662,6 +664,12 @@ def cuda(runner):
     for name, ranks, dims in (("cuda_slabs_n2", 2, "[2,1,1]"), ("cuda_blocks_2x2", 4, "[2,2,1]")):
         out = runner.run(name, scene, ranks, f"decomposition.dims={dims}", backend="cuda")
         compare_states(runner, name, device, out)
+    leaking = SCENES / "leaking_gas.toml"
+    leaking_n1 = runner.run("cuda_leaking_n1", leaking, 1, backend="cuda")
+    out = runner.run("cuda_leaking_slabs_n2", leaking, 2, "decomposition.dims=[2,1,1]",
+                     backend="cuda")
+    compare_states(runner, "cuda_leaking_slabs_n2", leaking_n1, out)
+    compare_series(runner, "cuda_leaking_slabs_n2", leaking_n1, out)
     start = float(series(host)[0]["potential_gravity"])
     h, d = final_row(host), final_row(device)
     fall = start - float(h["potential_gravity"])
