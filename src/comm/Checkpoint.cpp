@@ -105,12 +105,15 @@ void write_snapshot_table(MPI_Comm comm, const H5Calls& h5, const ParallelFile& 
   std::vector<char> names(rows.size() * width, '\0');
   std::vector<double> times;
   std::vector<std::uint64_t> counts;
-  std::vector<std::uint8_t> rank_fields;
+  std::vector<std::uint8_t> rank_fields, precisions;
+  std::vector<std::uint32_t> fields;
   for (std::size_t k = 0; k < rows.size(); ++k) {
     std::memcpy(names.data() + k * width, rows[k].h5_file.data(), rows[k].h5_file.size());
     times.push_back(rows[k].time);
     counts.push_back(rows[k].count);
     rank_fields.push_back(rows[k].rank_field ? 1 : 0);
+    fields.push_back(rows[k].fields);
+    precisions.push_back(static_cast<std::uint8_t>(real_precision(rows[k])));
   }
   H5Handle text = h5.handle(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy(snapshot_file)");
   h5.check(H5Tset_size(text.id(), width), "H5Tset_size(snapshot_file)");
@@ -119,6 +122,10 @@ void write_snapshot_table(MPI_Comm comm, const H5Calls& h5, const ParallelFile& 
   file.write_dataset(id_rows("snapshot_count", counts.data()), slice);
   file.write_dataset(
       {"snapshot_rank_field", rank_fields.data(), H5T_NATIVE_UINT8, H5T_STD_U8LE, 1, 1, 0}, slice);
+  file.write_dataset({"snapshot_fields", fields.data(), H5T_NATIVE_UINT32, H5T_STD_U32LE, 1, 1, 0},
+                     slice);
+  file.write_dataset(
+      {"snapshot_precision", precisions.data(), H5T_NATIVE_UINT8, H5T_STD_U8LE, 1, 1, 0}, slice);
 }
 
 void write_attributes(const ParallelFile& file, const Checkpoint& c) {
@@ -391,18 +398,48 @@ std::vector<std::uint8_t> read_rank_field_flags(const Reader& r, std::size_t sna
   return flags;
 }
 
+/// The field set of each of the table's `snapshots` (a subset of kAllSnapshotFields); every
+/// field when the table has no snapshot_fields (written before it existed).
+std::vector<std::uint32_t> read_field_sets(const Reader& r, std::size_t snapshots) {
+  if (!r.has("snapshot_fields")) return std::vector<std::uint32_t>(snapshots, kAllSnapshotFields);
+  std::vector<std::uint32_t> sets =
+      r.rows<std::uint32_t, std::uint32_t>("snapshot_fields", H5T_STD_U32LE);
+  for (const std::uint32_t set : sets)
+    if ((set & ~kAllSnapshotFields) != 0)
+      r.reject("dataset 'snapshot_fields' holds " + std::to_string(set) + "; expected a set of " +
+               std::to_string(kSnapshotFields.size()) + " fields, below " +
+               std::to_string(kAllSnapshotFields + 1));
+  return sets;
+}
+
+/// The bytes per real value of each of the table's `snapshots` (8 or 4); 8 when the table has
+/// no snapshot_precision (written before it existed).
+std::vector<std::uint8_t> read_precisions(const Reader& r, std::size_t snapshots) {
+  if (!r.has("snapshot_precision")) return std::vector<std::uint8_t>(snapshots, 8);
+  std::vector<std::uint8_t> bytes = r.bytes("snapshot_precision");
+  for (const std::uint8_t b : bytes)
+    if (b != 4 && b != 8)
+      r.reject("dataset 'snapshot_precision' holds " + std::to_string(b) + "; expected 4 or 8");
+  return bytes;
+}
+
 void read_snapshot_table(const Reader& r, std::vector<XdmfSnapshot>& table) {
   const std::vector<std::string> files = r.strings("snapshot_file");
   const std::vector<double> times = r.rows<double, double>("snapshot_time", H5T_IEEE_F64LE);
   const std::vector<std::uint64_t> counts =
       r.rows<std::uint64_t, std::uint64_t>("snapshot_count", H5T_STD_U64LE);
   const std::vector<std::uint8_t> rank_fields = read_rank_field_flags(r, files.size());
+  const std::vector<std::uint32_t> fields = read_field_sets(r, files.size());
+  const std::vector<std::uint8_t> precisions = read_precisions(r, files.size());
   check_same_length(r, {{"snapshot_file", files.size()},
                         {"snapshot_time", times.size()},
                         {"snapshot_count", counts.size()},
-                        {"snapshot_rank_field", rank_fields.size()}});
+                        {"snapshot_rank_field", rank_fields.size()},
+                        {"snapshot_fields", fields.size()},
+                        {"snapshot_precision", precisions.size()}});
   for (std::size_t k = 0; k < files.size(); ++k)
-    table.push_back({files[k], times[k], counts[k], rank_fields[k] == 1});
+    table.push_back(
+        {files[k], times[k], counts[k], rank_fields[k] == 1, fields[k], precisions[k] == 4});
 }
 
 void read_attributes(const Reader& r, Checkpoint& c) {

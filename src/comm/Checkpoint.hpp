@@ -18,8 +18,11 @@
 /// mesh records.
 /// Snapshot table, written by rank 0: snapshot_file (S fixed-length strings), snapshot_time
 /// (S f64), snapshot_count (S u64), snapshot_rank_field (S u8: 1 when that snapshot holds the
-/// dataset "rank", else 0). snapshot_rank_field is always written but optional when read:
-/// without it (a checkpoint written before it existed) no snapshot has the rank field.
+/// dataset "rank", else 0), snapshot_fields (S u32: the set of kSnapshotFields it holds, bit k
+/// for field k), snapshot_precision (S u8: bytes per real value of its particle datasets, 8
+/// or 4). The last three are always written but optional when read: without them (a
+/// checkpoint written before they existed) no snapshot has the rank field, and each holds
+/// every field in double precision.
 /// Attributes: format_version, history_width (u32), time, dt, dt_fraction, skin (f64), step,
 /// removed, list_build_step (u64; the step of the last neighbour-list build, optional when
 /// read: the step when missing).
@@ -71,8 +74,9 @@ void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& c
 /// `path` and what is wrong: a missing file, a file that is not
 /// HDF5, another format version, a missing or mistyped dataset or attribute, a history
 /// dataset without history_width columns, datasets of one group with different lengths, a
-/// radius, inverse mass or time step that is not finite and > 0, or a snapshot_rank_field
-/// value other than 0 and 1. Particle values are checked in the part read.
+/// radius, inverse mass or time step that is not finite and > 0, a snapshot_rank_field
+/// value other than 0 and 1, a snapshot_fields value with a bit beyond the fields or a
+/// snapshot_precision other than 4 and 8. Particle values are checked in the part read.
 Checkpoint read_checkpoint(const std::string& path, FilePart part = {});
 
 /// Throws InputError naming `path` when `checkpoint` refers to a material or a wall that

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <set>
 #include <stdexcept>
@@ -20,16 +21,25 @@ namespace {
 static_assert(sizeof(Real4) == 4 * sizeof(Real) && sizeof(Vec3) == 3 * sizeof(Real),
               "snapshot memory selections assume Real4 and Vec3 hold their values unpadded");
 
-std::vector<FieldSource> field_sources(const ParticleStore& p) {
+/// The datasets of a snapshot of `p` with field set `fields`: "position", then the fields of
+/// kSnapshotFields in the set. Real values are stored as float64, or float32 with
+/// `single_precision` (HDF5 rounds them as it writes).
+std::vector<FieldSource> field_sources(const ParticleStore& p, std::uint32_t fields,
+                                       bool single_precision) {
   const hid_t real = native_type<Real>();
-  const hid_t f64 = H5T_IEEE_F64LE;
-  return {{"position", p.position_radius.data(), real, f64, 3, 4, 0},
-          {"radius", p.position_radius.data(), real, f64, 1, 4, 3},
-          {"velocity", p.velocity_inv_mass.data(), real, f64, 3, 4, 0},
-          {"angular_velocity", p.angular_velocity.data(), real, f64, 3, 3, 0},
-          {"force", p.force.data(), real, f64, 3, 3, 0},
-          {"material", p.material.data(), native_type<MaterialId>(), H5T_STD_U32LE, 1, 1, 0},
-          {"id", p.id.data(), native_type<ParticleId>(), H5T_STD_U64LE, 1, 1, 0}};
+  const hid_t stored = single_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE;
+  const FieldSource optional[] = {
+      {kSnapshotFields[0], p.position_radius.data(), real, stored, 1, 4, 3},
+      {kSnapshotFields[1], p.velocity_inv_mass.data(), real, stored, 3, 4, 0},
+      {kSnapshotFields[2], p.angular_velocity.data(), real, stored, 3, 3, 0},
+      {kSnapshotFields[3], p.force.data(), real, stored, 3, 3, 0},
+      {kSnapshotFields[4], p.material.data(), native_type<MaterialId>(), H5T_STD_U32LE, 1, 1, 0},
+      {kSnapshotFields[5], p.id.data(), native_type<ParticleId>(), H5T_STD_U64LE, 1, 1, 0}};
+  static_assert(std::size(optional) == kSnapshotFields.size());
+  std::vector<FieldSource> sources{{"position", p.position_radius.data(), real, stored, 3, 4, 0}};
+  for (std::size_t k = 0; k < kSnapshotFields.size(); ++k)
+    if ((fields >> k) & 1u) sources.push_back(optional[k]);
+  return sources;
 }
 
 void check_store_lengths(const ParticleStore& p) {
@@ -133,19 +143,21 @@ struct SnapshotFile {
   std::string path;
   double time;
   std::uint64_t step;
-  bool rank_field;
+  const SnapshotOptions& options;
 };
 
 void write_snapshot_file(const SnapshotFile& target, const ParticleStore& particles,
-                         const Slice& slice, const std::vector<XdmfMesh>& meshes,
-                         const std::vector<MeshSurface>& surfaces) {
+                         const Slice& slice, const std::vector<MeshSurface>& surfaces) {
   const H5Calls h5("snapshot", target.path);
   ParallelFile file(target.comm, h5, target.path);
-  for (const FieldSource& field : field_sources(particles)) file.write_dataset(field, slice);
-  if (target.rank_field) write_rank_field(target.comm, file, slice);
+  const SnapshotOptions& options = target.options;
+  for (const FieldSource& field :
+       field_sources(particles, options.fields, options.single_precision))
+    file.write_dataset(field, slice);
+  if (options.rank_field) write_rank_field(target.comm, file, slice);
   write_connectivity(file, slice);
-  for (std::size_t m = 0; m < meshes.size(); ++m)
-    write_mesh(target.comm, file, meshes[m].name, surfaces[m]);
+  for (std::size_t m = 0; m < options.meshes.size(); ++m)
+    write_mesh(target.comm, file, options.meshes[m].name, surfaces[m]);
   file.write_attribute("time", H5T_IEEE_F64LE, target.time);
   file.write_attribute("step", H5T_STD_U64LE, target.step);
   file.close();
@@ -192,34 +204,20 @@ void SnapshotWriter::write(const ParticleStore& particles, const std::vector<Mes
   const Slice slice = global_slice(comm_, particles.size());
   const std::string name = snapshot_file_name(options_.basename, files_.size());
   const std::string path = (std::filesystem::path(dir_) / name).string();
-  write_snapshot_file({comm_, path, time, step, options_.rank_field}, particles, slice,
-                      options_.meshes, meshes);
+  write_snapshot_file({comm_, path, time, step, options_}, particles, slice, meshes);
   files_.push_back(path);
-  times_.push_back(time);
-  counts_.push_back(slice.total);
-  rank_fields_.push_back(options_.rank_field);
+  written_.push_back(
+      {name, time, slice.total, options_.rank_field, options_.fields, options_.single_precision});
   publish_xmf();
 }
 
-std::vector<XdmfSnapshot> SnapshotWriter::table() const {
-  std::vector<XdmfSnapshot> snapshots;
-  for (std::size_t k = 0; k < files_.size(); ++k)
-    snapshots.push_back({std::filesystem::path(files_[k]).filename().string(), times_[k],
-                         counts_[k], rank_fields_[k]});
-  return snapshots;
-}
+std::vector<XdmfSnapshot> SnapshotWriter::table() const { return written_; }
 
 void SnapshotWriter::resume(const std::vector<XdmfSnapshot>& table) {
   files_.clear();
-  times_.clear();
-  counts_.clear();
-  rank_fields_.clear();
-  for (const XdmfSnapshot& snapshot : table) {
+  for (const XdmfSnapshot& snapshot : table)
     files_.push_back((std::filesystem::path(dir_) / snapshot.h5_file).string());
-    times_.push_back(snapshot.time);
-    counts_.push_back(snapshot.count);
-    rank_fields_.push_back(snapshot.rank_field);
-  }
+  written_ = table;
   publish_xmf();
 }
 

@@ -17,13 +17,16 @@
 
 namespace gpudem {
 
-/// What the snapshots of one writer hold beyond the fields every snapshot has, and their names.
+/// Which datasets the snapshots of one writer hold beside "position", in what precision, and
+/// their names.
 struct SnapshotOptions {
   bool rank_field = false;  ///< add dataset "rank": the MPI rank owning each particle
   std::string basename = kParticlesBasename;  ///< files `<basename>_<index>.h5`, `<basename>.xmf`
   /// The mesh walls every snapshot holds, in the order write() gets them: names unique,
   /// non-empty, without '/', neither "." nor ".." and not `basename`.
   std::vector<XdmfMesh> meshes = {};
+  std::uint32_t fields = kAllSnapshotFields;  ///< the datasets of kSnapshotFields to write
+  bool single_precision = false;  ///< real-valued particle datasets as float32, not float64
 };
 
 class SnapshotWriter {
@@ -34,10 +37,11 @@ class SnapshotWriter {
   SnapshotWriter(MPI_Comm comm, std::string dir, SnapshotOptions options = {});
 
   /// Writes this rank's particles [0, particles.size()) as the next snapshot: datasets
-  /// position (N×3), radius (N), velocity (N×3), angular_velocity (N×3), force (N×3),
-  /// material (N, uint32), id (N, uint64), and with the rank field rank (N, uint32: each
-  /// rank's rows hold its rank in `comm`); attributes time and step. For each mesh m of the
-  /// options, group `/mesh/<name>/` holds meshes[m] as rank 0 has it: vertices (V×3),
+  /// position (N×3), and those of radius (N), velocity (N×3), angular_velocity (N×3),
+  /// force (N×3), material (N, uint32) and id (N, uint64) in the options' field set (real
+  /// values in float64, or float32 in single precision), connectivity, and with the rank field
+  /// rank (N, uint32: each rank's rows hold its rank in `comm`); attributes time and step. For each
+  /// mesh m of the options, group `/mesh/<name>/` holds meshes[m] as rank 0 has it: vertices (V×3),
   /// triangles (T×3, uint32), force (T×3) and pressure (T): (F · n̂) / A with n̂ the unit
   /// normal of the triangle's corner order and A its area [Pa]. Throws
   /// std::invalid_argument when `meshes` does not match the options' counts. Collective.
@@ -55,7 +59,8 @@ class SnapshotWriter {
   /// Continues the series of an earlier writer whose table() was `table`: numbering goes on
   /// after its last snapshot and the .xmf is rewritten to list exactly these snapshots (any
   /// written after them are dropped from it, and overwritten as numbering reaches them). Each
-  /// keeps the rank field it was written with; new snapshots follow this writer's options.
+  /// keeps the datasets and precision it was written with; new snapshots follow this writer's
+  /// options.
   /// Collective.
   void resume(const std::vector<XdmfSnapshot>& table);
 
@@ -70,9 +75,7 @@ class SnapshotWriter {
   SnapshotOptions options_;
   std::string xmf_path_;
   std::vector<std::string> files_;
-  std::vector<double> times_;
-  std::vector<std::uint64_t> counts_;
-  std::vector<bool> rank_fields_;
+  std::vector<XdmfSnapshot> written_;  ///< the snapshots so far, as table() returns them
 };
 
 }  // namespace gpudem

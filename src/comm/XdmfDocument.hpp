@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/ExactDecimal.hpp"
+#include "core/OutputNames.hpp"
 
 namespace gpudem {
 
@@ -19,6 +20,8 @@ struct XdmfSnapshot {
   double time = 0;          ///< simulated time [s]
   std::uint64_t count = 0;  ///< number of particles (all ranks)
   bool rank_field = false;  ///< the file holds dataset "rank" (owning MPI rank per particle)
+  std::uint32_t fields = kAllSnapshotFields;  ///< the datasets of kSnapshotFields it holds
+  bool single_precision = false;  ///< its real-valued particle datasets are float32, not float64
 };
 
 /// A mesh wall as its XDMF document lists it; its counts do not change during a run.
@@ -33,19 +36,24 @@ struct XdmfField {
   const char* name;            ///< dataset name at the file root, also the attribute name
   const char* attribute_type;  ///< "Scalar" or "Vector"
   const char* number_type;     ///< "Float" or "UInt"
-  int precision;               ///< bytes per value
+  int precision;               ///< bytes per value (of a Float field: in double precision)
   int components;              ///< values per particle
 };
 
-/// The particle attributes of a snapshot, in the order they are listed. Positions are the
-/// geometry (dataset "position", N×3 float64) and not repeated here.
+/// The particle attributes a snapshot may hold, in the order of kSnapshotFields. Positions are
+/// the geometry (dataset "position", N×3) and not repeated here.
 inline const std::vector<XdmfField>& xdmf_particle_fields() {
   static const std::vector<XdmfField> fields = {
-      {"radius", "Scalar", "Float", 8, 1},           {"velocity", "Vector", "Float", 8, 3},
-      {"angular_velocity", "Vector", "Float", 8, 3}, {"force", "Vector", "Float", 8, 3},
-      {"material", "Scalar", "UInt", 4, 1},          {"id", "Scalar", "UInt", 8, 1},
+      {kSnapshotFields[0], "Scalar", "Float", 8, 1}, {kSnapshotFields[1], "Vector", "Float", 8, 3},
+      {kSnapshotFields[2], "Vector", "Float", 8, 3}, {kSnapshotFields[3], "Vector", "Float", 8, 3},
+      {kSnapshotFields[4], "Scalar", "UInt", 4, 1},  {kSnapshotFields[5], "Scalar", "UInt", 8, 1},
   };
   return fields;
+}
+
+/// Bytes per value of a real-valued particle dataset of `snapshot`.
+inline int real_precision(const XdmfSnapshot& snapshot) {
+  return snapshot.single_precision ? 4 : 8;
 }
 
 /// The optional attribute of snapshots written with the rank field: the MPI rank that owned
@@ -103,9 +111,11 @@ inline std::string attribute_element(const std::string& name, const char* attrib
 }
 
 inline std::string attribute(const XdmfSnapshot& snapshot, const XdmfField& field) {
+  const bool real = std::string(field.number_type) == "Float";
   return attribute_element(
       field.name, field.attribute_type, "Node",
-      data_item(snapshot, field.name, field.number_type, field.precision, field.components));
+      data_item(snapshot, field.name, field.number_type,
+                real ? real_precision(snapshot) : field.precision, field.components));
 }
 
 /// The file name without its extension: the name of that snapshot's grid.
@@ -121,8 +131,11 @@ inline std::string uniform_grid(const XdmfSnapshot& snapshot) {
           "\" NodesPerElement=\"1\">\n          " +
           data_item(snapshot, "connectivity", "UInt", index_bytes, 1) + "\n        </Topology>\n";
   grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
-          data_item(snapshot, "position", "Float", 8, 3) + "\n        </Geometry>\n";
-  for (const XdmfField& field : xdmf_particle_fields()) grid += attribute(snapshot, field);
+          data_item(snapshot, "position", "Float", real_precision(snapshot), 3) +
+          "\n        </Geometry>\n";
+  const std::vector<XdmfField>& fields = xdmf_particle_fields();
+  for (std::size_t k = 0; k < fields.size(); ++k)
+    if ((snapshot.fields >> k) & 1u) grid += attribute(snapshot, fields[k]);
   if (snapshot.rank_field) grid += attribute(snapshot, xdmf_rank_field());
   return grid + "      </Grid>\n";
 }

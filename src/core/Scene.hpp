@@ -9,6 +9,7 @@
 #include "core/Config.hpp"
 #include "core/ContactModel.hpp"
 #include "core/MixingRule.hpp"
+#include "core/OutputNames.hpp"
 #include "core/PrescribedMotion.hpp"
 #include "core/StlReader.hpp"
 #include "core/Vec3.hpp"
@@ -126,6 +127,8 @@ struct OutputSettings {
   double timeseries_every = 0;  ///< [s] time-series interval; 0 = about 200 rows per run
   bool rank_field = false;      ///< snapshots hold each particle's owning MPI rank
   bool asynchronous = true;     ///< snapshots written on a writer thread while the run steps on
+  std::uint32_t fields = kAllSnapshotFields;  ///< datasets beside the positions (OutputNames)
+  bool single_precision = false;  ///< real-valued particle datasets stored as 32-bit floats
 };
 
 struct CheckpointSettings {

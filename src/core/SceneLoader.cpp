@@ -570,13 +570,17 @@ std::vector<ParticleSource> read_sources(const TableReader& root, const Scene& s
 
 OutputSettings read_output(const TableReader& root) {
   const TableReader table = root.optional_table("output");
-  table.allow_only({"dir", "every", "timeseries_every", "rank_field", "asynchronous"});
+  table.allow_only(
+      {"dir", "every", "timeseries_every", "rank_field", "asynchronous", "fields", "precision"});
   OutputSettings o;
   o.dir = table.string("dir", o.dir);
   o.every = table.number("every", non_negative("s"), o.every);
   o.timeseries_every = table.number("timeseries_every", non_negative("s"), o.timeseries_every);
   o.rank_field = table.boolean("rank_field", o.rank_field);
   o.asynchronous = table.boolean("asynchronous", o.asynchronous);
+  if (table.has("fields"))
+    o.fields = table.subset("fields", {kSnapshotFields.begin(), kSnapshotFields.end()});
+  o.single_precision = table.choice("precision", {"double", "float"}, "double") == "float";
   return o;
 }
 

@@ -291,6 +291,30 @@ class TableReader {
     fail_found(key, "one of " + list);
   }
 
+  /// Distinct strings, each one of `options`, as a set: bit k for options[k] (an empty array
+  /// is the empty set).
+  std::uint32_t subset(const std::string& key, const std::vector<std::string>& options) const {
+    const toml::value& v = value(key);
+    std::string list;
+    for (const std::string& option : options)
+      list += (list.empty() ? "\"" : ", \"") + option + "\"";
+    const std::string expected = "an array of distinct names out of " + list;
+    if (!v.is_array()) fail_found(key, expected);
+    std::uint32_t set = 0;
+    const auto& elements = v.as_array();
+    for (std::size_t i = 0; i < elements.size(); ++i) {
+      const auto at = elements[i].is_string()
+                          ? std::find(options.begin(), options.end(), elements[i].as_string().str)
+                          : options.end();
+      const std::uint32_t bit = std::uint32_t(1) << (at - options.begin());
+      if (at == options.end() || (set & bit) != 0)
+        fail(key, "expected " + expected + ", got " + describe(elements[i]) + " at index " +
+                      std::to_string(i) + (at == options.end() ? "" : " a second time"));
+      set |= bit;
+    }
+    return set;
+  }
+
   /// Numbers in `range`; `size` > 0 demands exactly that many, 0 any non-zero count.
   std::vector<double> numbers(const std::string& key, const Range& range,
                               std::size_t size = 0) const {
@@ -321,8 +345,7 @@ class TableReader {
   }
 
   /// An array of `size` 3-vectors, e.g. [[0.7, 0, 0], [0.7, 0, 0]].
-  std::vector<Vec3> vec3s(const std::string& key, const std::string& unit,
-                          std::size_t size) const {
+  std::vector<Vec3> vec3s(const std::string& key, const std::string& unit, std::size_t size) const {
     const toml::value& v = value(key);
     const std::string expected = "an array of " + std::to_string(size) + " vectors [x, y, z]" +
                                  (unit.empty() ? "" : " in " + unit);
@@ -334,8 +357,8 @@ class TableReader {
       const bool triple = e.is_array() && e.as_array().size() == 3;
       for (int k = 0; k < 3 && triple; ++k) x[k] = finite_number(e.as_array()[k]);
       if (!triple || !x[0] || !x[1] || !x[2])
-        fail(key, "expected " + expected + ", got " + describe(e) + " at index " +
-                      std::to_string(i));
+        fail(key,
+             "expected " + expected + ", got " + describe(e) + " at index " + std::to_string(i));
       result.push_back(Vec3{*x[0], *x[1], *x[2]});
     }
     return result;

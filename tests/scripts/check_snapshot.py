@@ -239,8 +239,9 @@ ID_ITEM = f"{GRID}/Attribute[@Name='id']/DataItem"
 COMMON_BREAKS = {
     "dimensions differ from the dataset":
         lambda root: bump_dimension(first_of(root, f"{GRID}/Geometry/DataItem")),
-    "precision differs from the dataset": set_attribute(f"{GRID}/Geometry/DataItem",
-                                                        "Precision", "4"),
+    "precision differs from the dataset": lambda root: (
+        lambda item: item.set("Precision", "8" if item.get("Precision") == "4" else "4"))(
+            first_of(root, f"{GRID}/Geometry/DataItem")),
     "file missing": edit_text(f"{GRID}/Geometry/DataItem", ".h5:", "_gone.h5:"),
     "NumberOfElements differs": lambda root: first_of(root, f"{GRID}/Topology").set(
         "NumberOfElements", str(int(first_of(root, f"{GRID}/Topology")
@@ -249,8 +250,7 @@ COMMON_BREAKS = {
 }
 PARTICLE_BREAKS = {
     "signedness differs from the dataset": set_attribute(ID_ITEM, "NumberType", "Int"),
-    "dataset missing": edit_text(f"{GRID}/Attribute[@Name='radius']/DataItem", ":/radius",
-                                 ":/no_such_dataset"),
+    "dataset missing": edit_text(ID_ITEM, ":/id", ":/no_such_dataset"),
     "vector given as scalar": set_attribute(f"{GRID}/Attribute[@Name='velocity']",
                                             "AttributeType", "Scalar"),
 }

@@ -74,7 +74,7 @@ Checkpoint random_part(int rank, std::uint32_t width = kSpringWidth) {
       c.history.add_mesh(id, static_cast<std::uint32_t>(i * 11 % 17), random_values().data());
   }
   c.snapshots = {{"particles_000000.h5", 0.0, 123, true},
-                 {"particles_000001.h5", 1.0 / 3.0, 120, false}};
+                 {"particles_000001.h5", 1.0 / 3.0, 120, false, 0b100010, true}};
   c.time = 0.1 + 1e-17;
   c.step = (std::uint64_t(1) << 35) + 5;
   c.list_build_step = c.step - 3;
@@ -160,6 +160,9 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
     EXPECT_EQ(a.snapshots[k].time, b.snapshots[k].time);
     EXPECT_EQ(a.snapshots[k].count, b.snapshots[k].count);
     EXPECT_EQ(a.snapshots[k].rank_field, b.snapshots[k].rank_field) << a.snapshots[k].h5_file;
+    EXPECT_EQ(a.snapshots[k].fields, b.snapshots[k].fields) << a.snapshots[k].h5_file;
+    EXPECT_EQ(a.snapshots[k].single_precision, b.snapshots[k].single_precision)
+        << a.snapshots[k].h5_file;
   }
   EXPECT_EQ(a.time, b.time);
   EXPECT_EQ(a.step, b.step);
@@ -433,6 +436,27 @@ TEST_F(DamagedCheckpoint, RankFieldFlagsOtherThanZeroOrOneAreRejected) {
   expect_rejected("dataset 'snapshot_rank_field' has 1 rows but 'snapshot_file' has 2");
   test::replace_u32_dataset(path(), "snapshot_rank_field", {0, 1});
   expect_rejected("dataset 'snapshot_rank_field' has the wrong value type");
+}
+
+TEST_F(DamagedCheckpoint, TableWithoutFieldSetsOrPrecisionsHasEveryFieldInDouble) {
+  test::remove_dataset(path(), "snapshot_fields");
+  test::remove_dataset(path(), "snapshot_precision");
+  Checkpoint expected = random_part(0);
+  for (XdmfSnapshot& snapshot : expected.snapshots) {
+    snapshot.fields = kAllSnapshotFields;
+    snapshot.single_precision = false;
+  }
+  expect_identical(read_checkpoint(path()), expected);
+}
+
+TEST_F(DamagedCheckpoint, FieldSetsBeyondTheFieldsAndOtherPrecisionsAreRejected) {
+  test::replace_u32_dataset(path(), "snapshot_fields", {63, 64});
+  expect_rejected("dataset 'snapshot_fields' holds 64; expected a set of 6 fields, below 64");
+  test::replace_u32_dataset(path(), "snapshot_fields", {63});
+  expect_rejected("dataset 'snapshot_fields' has 1 rows but 'snapshot_file' has 2");
+  test::replace_u32_dataset(path(), "snapshot_fields", {63, 34});
+  replace_u8_dataset(path(), "snapshot_precision", {8, 2});
+  expect_rejected("dataset 'snapshot_precision' holds 2; expected 4 or 8");
 }
 
 TEST_F(DamagedCheckpoint, MaterialWallOrMeshBeyondTheSceneIsRejected) {

@@ -1,5 +1,6 @@
 // gpudem-mpi --restart end to end: a run of 2T equals, snapshot for snapshot and bit for bit,
-// a run of T continued from its checkpoint (same .xmf, same time series); a run killed with
+// a run of T continued from its checkpoint (same .xmf, same time series); continued with other
+// snapshot fields and precision, the .xmf describes each snapshot as written; a run killed with
 // SIGKILL while writing a checkpoint every step always leaves a checkpoint that reads back and
 // continues; a bad checkpoint or a restart that cannot continue (another time step, a contact
 // law keeping another number of history values per contact) exits 2 with a message naming the
@@ -114,6 +115,54 @@ TEST_F(RestartCommandLine, RestartedRunEqualsStraightRun) {
   EXPECT_EQ(read_text(legs / "particles.xmf"), read_text(straight / "particles.xmf"));
   EXPECT_EQ(read_text(legs / "timeseries.csv"), read_text(straight / "timeseries.csv"));
   EXPECT_EQ(read_checkpoint(checkpoint).step, 4000u) << "a checkpoint ends the run";
+}
+
+/// Whether file `path` holds dataset `name`, stored as `type`.
+bool stored_as(const fs::path& path, const char* name, hid_t type) {
+  test::H5Id<H5Fclose> file(H5Fopen(path.string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  if (file.id < 0 || H5Lexists(file.id, name, H5P_DEFAULT) <= 0) return false;
+  test::H5Id<H5Dclose> dataset(H5Dopen2(file.id, name, H5P_DEFAULT));
+  test::H5Id<H5Tclose> stored(H5Dget_type(dataset.id));
+  return H5Tequal(stored.id, type) > 0;
+}
+
+TEST_F(RestartCommandLine, RestartWithOtherFieldsAndPrecisionKeepsEachSnapshotDescribed) {
+  const std::string bed = scene(kBedScene);
+  const fs::path legs = dir_ / "legs";
+  const std::string lean =
+      " --set 'output.fields=[\"velocity\"]' --set 'output.precision=\"float\"'";
+  const Result first =
+      run(bed + " --quiet --set simulation.end_time=0.1" + lean + " --output-dir " + legs.string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const Result second = run(bed + " --quiet --restart " + (legs / "checkpoint.h5").string() +
+                            " --output-dir " + legs.string());
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  // Snapshots 0-2 (t = 0, 0.05, 0.1) come from the lean first leg, 3-4 from the second, which
+  // writes every field in double.
+  const std::string xmf = read_text(legs / "particles.xmf");
+  for (const char* file : {"particles_000000", "particles_000002"}) {
+    const fs::path h5 = legs / (std::string(file) + ".h5");
+    EXPECT_TRUE(stored_as(h5, "position", H5T_IEEE_F32LE)) << file;
+    EXPECT_TRUE(stored_as(h5, "velocity", H5T_IEEE_F32LE)) << file;
+    EXPECT_FALSE(stored_as(h5, "radius", H5T_IEEE_F32LE)) << file << " holds a radius";
+    EXPECT_FALSE(stored_as(h5, "radius", H5T_IEEE_F64LE)) << file << " holds a radius";
+    EXPECT_NE(xmf.find(std::string(file) + ".h5:/velocity"), std::string::npos) << file;
+    EXPECT_EQ(xmf.find(std::string(file) + ".h5:/radius"), std::string::npos) << file;
+  }
+  for (const char* file : {"particles_000003", "particles_000004"}) {
+    EXPECT_TRUE(stored_as(legs / (std::string(file) + ".h5"), "position", H5T_IEEE_F64LE));
+    EXPECT_NE(xmf.find(std::string(file) + ".h5:/radius"), std::string::npos) << file;
+    EXPECT_NE(xmf.find(std::string(file) + ".h5:/force"), std::string::npos) << file;
+  }
+  // Geometry in float for the first three grids, double for the last two.
+  std::size_t doubles = 0, floats = 0;
+  for (std::size_t at = xmf.find("<Geometry"); at != std::string::npos;
+       at = xmf.find("<Geometry", at + 1)) {
+    const std::size_t item = xmf.find("Precision=\"", at) + 11;
+    (xmf[item] == '8' ? doubles : floats) += 1;
+  }
+  EXPECT_EQ(floats, 3u);
+  EXPECT_EQ(doubles, 2u);
 }
 
 // ---- a writer killed at random moments -------------------------------------------------------

@@ -301,6 +301,8 @@ TEST_F(SceneLoaderTest, MinimalSceneTakesDefaults) {
   EXPECT_DOUBLE_EQ(s.output.timeseries_every, 0);
   EXPECT_FALSE(s.output.rank_field);
   EXPECT_TRUE(s.output.asynchronous);
+  EXPECT_EQ(s.output.fields, kAllSnapshotFields);
+  EXPECT_FALSE(s.output.single_precision);
   EXPECT_DOUBLE_EQ(s.checkpoint.every, 0);
 }
 
@@ -867,6 +869,36 @@ TEST_F(SceneLoaderTest, OutputRankFieldMustBeABoolean) {
                "unknown key 'rank_fields' in [output]; did you mean 'rank_field'?");
   expect_error(load_error(kBaseScene, {"output.rank_field=\"on\""}), 0, "output.rank_field",
                "expected true or false, got the string \"on\"");
+}
+
+TEST_F(SceneLoaderTest, OutputFieldsAndPrecisionRead) {
+  // Bits in the order of kSnapshotFields: radius 0, velocity 1, angular_velocity 2, force 3,
+  // material 4, id 5, whatever the order in the scene.
+  const Scene s = load_text(with_tables(
+      "[output]\nfields = [\"id\", \"velocity\", \"radius\"]\nprecision = \"float\"\n"));
+  EXPECT_EQ(s.output.fields, 0b100011u);
+  EXPECT_TRUE(s.output.single_precision);
+  EXPECT_EQ(load_text(with_tables("[output]\nfields = []\n")).output.fields, 0u);
+  EXPECT_EQ(load_text(kBaseScene, {"output.fields=[\"force\", \"material\"]"}).output.fields,
+            0b011000u);
+  EXPECT_FALSE(load_text(kBaseScene, {"output.precision=\"double\""}).output.single_precision);
+}
+
+TEST_F(SceneLoaderTest, OutputFieldsMustBeDistinctKnownNames) {
+  const int line = first_appended_line() + 1;
+  const std::string names =
+      "expected an array of distinct names out of \"radius\", \"velocity\", "
+      "\"angular_velocity\", \"force\", \"material\", \"id\", got ";
+  expect_error(load_error(with_tables("[output]\nfields = [\"radius\", \"speed\"]")), line,
+               "output.fields", names + "the string \"speed\" at index 1");
+  expect_error(load_error(with_tables("[output]\nfields = [\"id\", \"id\"]")), line,
+               "output.fields", names + "the string \"id\" at index 1 a second time");
+  expect_error(load_error(with_tables("[output]\nfields = \"radius\"")), line, "output.fields",
+               names + "the string \"radius\"");
+  expect_error(load_error(with_tables("[output]\nfields = [\"position\"]")), line, "output.fields",
+               names + "the string \"position\" at index 0");
+  expect_error(load_error(with_tables("[output]\nprecision = \"half\"")), line, "output.precision",
+               "expected one of \"double\", \"float\", got the string \"half\"");
 }
 
 TEST_F(SceneLoaderTest, PrecisionPoliciesRead) {

@@ -2,7 +2,10 @@
 // for bit at this run's rank count (each rank checks its own rows), the attributes hold time and
 // step, ranks without particles take part, and the .xmf lists every file by relative name. With
 // the rank field, dataset "rank" holds each row's writing rank, and the .xmf lists it for exactly
-// the snapshots that hold it, also when a resumed series switches it on or off. A mesh wall
+// the snapshots that hold it, also when a resumed series switches it on or off. A field set
+// leaves the other datasets out of file and .xmf, single precision stores every real value
+// rounded to float32 (Precision 4 in the .xmf), and a resumed series keeps each snapshot's
+// fields and precision. A mesh wall
 // goes into group /mesh/<name>/ of the same files, with the pressure of each triangle against
 // closed forms, and into <name>.xmf, a Triangle grid per snapshot that lists exactly the
 // snapshots of the particles' .xmf, also after a resume; without meshes nothing of it appears.
@@ -267,6 +270,127 @@ TEST_F(SnapshotWriterTest, ResumedSeriesKeepsEachSnapshotsRankField) {
   expect_rank_field_holds_the_writing_ranks(with_rank_again.files()[3], particles.size());
 }
 
+/// `values` rounded to float, as a float32 dataset stores them.
+std::vector<float> rounded(const std::vector<double>& values) {
+  return std::vector<float>(values.begin(), values.end());
+}
+
+/// For each uniform grid of the writer's .xmf, its geometry and attributes as
+/// "name=Precision", in order, the geometry ("position") first.
+std::vector<std::vector<std::string>> listed_precisions(const SnapshotWriter& writer) {
+  MPI_Barrier(MPI_COMM_WORLD);
+  std::vector<std::vector<std::string>> listed;
+  for (const XmlElement& grid : xml_elements(read_text(writer.xmf_path()), "Grid")) {
+    if (xml_attribute(grid.tag, "GridType") != "Uniform") continue;
+    const XmlElement geometry = xml_elements(grid.content, "Geometry").at(0);
+    std::vector<std::string> entries{
+        "position=" +
+        xml_attribute(xml_elements(geometry.content, "DataItem").at(0).tag, "Precision")};
+    for (const XmlElement& attribute : xml_elements(grid.content, "Attribute"))
+      entries.push_back(
+          xml_attribute(attribute.tag, "Name") + "=" +
+          xml_attribute(xml_elements(attribute.content, "DataItem").at(0).tag, "Precision"));
+    listed.push_back(entries);
+  }
+  return listed;
+}
+
+constexpr std::uint32_t field_bit(std::size_t k) { return std::uint32_t(1) << k; }
+
+TEST_F(SnapshotWriterTest, FieldsOutsideTheSetAreLeftOutOfFileAndXmf) {
+  SnapshotOptions options;
+  options.fields = field_bit(0) | field_bit(5);  // radius and id
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, options);
+  const ParticleStore p = random_store(particles_on_this_rank(), 1500 + comm_rank());
+  writer.write(p, 0.5, 5);
+  const std::string& path = writer.files()[0];
+  MPI_Barrier(MPI_COMM_WORLD);
+  for (const char* name : {"position", "radius", "id", "connectivity"})
+    EXPECT_TRUE(file_has_dataset(path, name)) << name;
+  for (const char* name : {"velocity", "angular_velocity", "force", "material"})
+    EXPECT_FALSE(file_has_dataset(path, name)) << name;
+  const hsize_t n = global_count(p.size()), offset = expected_offset(p.size());
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  expect_bit_identical(test::radii_of(p),
+                       read_rows<double>(file.id, "radius", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {n},
+                                         offset, p.size()),
+                       "radius");
+  expect_bit_identical(p.id,
+                       read_rows<std::uint64_t>(file.id, "id", H5T_STD_U64LE, H5T_NATIVE_UINT64,
+                                                {n}, offset, p.size()),
+                       "id");
+  const std::vector<std::vector<std::string>> expected{{"position=8", "radius=8", "id=8"}};
+  EXPECT_EQ(listed_precisions(writer), expected);
+  EXPECT_EQ(writer.table()[0].fields, options.fields);
+}
+
+TEST_F(SnapshotWriterTest, SinglePrecisionStoresEachRealValueRoundedToFloat) {
+  SnapshotOptions options;
+  options.single_precision = true;
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, options);
+  const ParticleStore p = random_store(particles_on_this_rank(), 1600 + comm_rank());
+  writer.write(p, 0.25, 3);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const hsize_t n = global_count(p.size()), offset = expected_offset(p.size()), rows = p.size();
+  H5Id<H5Fclose> file(H5Fopen(writer.files()[0].c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  const hid_t f32 = H5T_IEEE_F32LE, f32_mem = H5T_NATIVE_FLOAT;
+  expect_bit_identical(rounded(xyz_of(p.position_radius)),
+                       read_rows<float>(file.id, "position", f32, f32_mem, {n, 3}, offset, rows),
+                       "position");
+  expect_bit_identical(rounded(test::radii_of(p)),
+                       read_rows<float>(file.id, "radius", f32, f32_mem, {n}, offset, rows),
+                       "radius");
+  expect_bit_identical(rounded(xyz_of(p.velocity_inv_mass)),
+                       read_rows<float>(file.id, "velocity", f32, f32_mem, {n, 3}, offset, rows),
+                       "velocity");
+  expect_bit_identical(
+      rounded(xyz_of(p.angular_velocity)),
+      read_rows<float>(file.id, "angular_velocity", f32, f32_mem, {n, 3}, offset, rows),
+      "angular_velocity");
+  expect_bit_identical(rounded(xyz_of(p.force)),
+                       read_rows<float>(file.id, "force", f32, f32_mem, {n, 3}, offset, rows),
+                       "force");
+  expect_bit_identical(p.material,
+                       read_rows<std::uint32_t>(file.id, "material", H5T_STD_U32LE,
+                                                H5T_NATIVE_UINT32, {n}, offset, rows),
+                       "material");
+  expect_bit_identical(
+      p.id,
+      read_rows<std::uint64_t>(file.id, "id", H5T_STD_U64LE, H5T_NATIVE_UINT64, {n}, offset, rows),
+      "id");
+  const std::vector<std::vector<std::string>> expected{{"position=4", "radius=4", "velocity=4",
+                                                        "angular_velocity=4", "force=4",
+                                                        "material=4", "id=8"}};
+  EXPECT_EQ(listed_precisions(writer), expected);
+}
+
+TEST_F(SnapshotWriterTest, ResumedSeriesKeepsEachSnapshotsFieldsAndPrecision) {
+  const ParticleStore particles = random_store(particles_on_this_rank(), 1700 + comm_rank());
+  std::vector<XdmfSnapshot> table;
+  {
+    SnapshotWriter full(MPI_COMM_WORLD, dir_);
+    full.write(particles, 0.0, 0);
+    table = full.table();
+  }
+  SnapshotOptions lean;
+  lean.fields = field_bit(1);  // velocity
+  lean.single_precision = true;
+  SnapshotWriter resumed(MPI_COMM_WORLD, dir_, lean);
+  resumed.resume(table);
+  resumed.write(particles, 0.1, 10);
+  const std::vector<std::vector<std::string>> expected{
+      {"position=8", "radius=8", "velocity=8", "angular_velocity=8", "force=8", "material=4",
+       "id=8"},
+      {"position=4", "velocity=4"}};
+  EXPECT_EQ(listed_precisions(resumed), expected);
+  ASSERT_EQ(resumed.table().size(), 2u);
+  EXPECT_FALSE(resumed.table()[0].single_precision);
+  EXPECT_TRUE(resumed.table()[1].single_precision);
+  EXPECT_EQ(resumed.table()[1].fields, lean.fields);
+  expect_snapshot_holds(resumed.files()[0], particles, 0.0, 0);
+  EXPECT_FALSE(file_has_dataset(resumed.files()[1], "force"));
+}
+
 TEST_F(SnapshotWriterTest, LeavesNoHdf5ObjectOpen) {
   ASSERT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0);
   SnapshotWriter writer(MPI_COMM_WORLD, dir_);
@@ -503,7 +627,8 @@ TEST_F(SnapshotWriterTest, RejectsMeshNamesThatCannotNameAFileAndSurfacesOfOther
 // tests/scripts/paraview_open.py (particles.xmf and plate.xmf). particles.xmf: two random
 // snapshots and one without any particle; ranked.xmf: the same with the rank field;
 // resumed.xmf: a series resumed with the rank field switched on after a snapshot without it;
-// meshed.xmf and plate.xmf: two snapshots with the mesh "plate" (two triangles) in them.
+// lean.xmf: velocity and id only, in single precision; meshed.xmf and plate.xmf: two
+// snapshots with the mesh "plate" (two triangles) in them.
 TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
   const std::string dir =
       test::path_from_environment("GPUDEM_SNAPSHOT_FIXTURE_DIR", GPUDEM_SNAPSHOT_FIXTURE_DIR);
@@ -524,13 +649,19 @@ TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
   SnapshotWriter after_restart(MPI_COMM_WORLD, dir, {true, "resumed"});
   after_restart.resume(before_restart.table());
   after_restart.write(random_store(particles_on_this_rank() + 3, 1300 + comm_rank()), 0.01, 100);
+  SnapshotOptions lean_options{false, "lean"};
+  lean_options.fields = field_bit(1) | field_bit(5);  // velocity and id
+  lean_options.single_precision = true;
+  SnapshotWriter lean(MPI_COMM_WORLD, dir, lean_options);
+  lean.write(random_store(particles_on_this_rank(), 1400 + comm_rank()), 0.0, 0);
+  lean.write(ParticleStore{}, 0.01, 100);
   SnapshotWriter meshed(MPI_COMM_WORLD, dir, options_with_plate("meshed"));
   meshed.write(random_store(particles_on_this_rank(), 1900 + comm_rank()), {two_triangles()}, 0.0,
                0);
   meshed.write(ParticleStore{}, {two_triangles()}, 0.01, 100);
   MPI_Barrier(MPI_COMM_WORLD);
   EXPECT_TRUE(fs::exists(fs::path(dir) / "plate.xmf"));
-  for (const SnapshotWriter* writer : {&plain, &ranked, &after_restart, &meshed}) {
+  for (const SnapshotWriter* writer : {&plain, &ranked, &after_restart, &lean, &meshed}) {
     for (const std::string& file : writer->files()) EXPECT_TRUE(fs::exists(file)) << file;
     EXPECT_TRUE(fs::exists(writer->xmf_path()));
   }
