@@ -1,6 +1,7 @@
 #pragma once
 // Particle snapshots read back with the HDF5 C API: each rank checks its own rows of a
-// snapshot file against a particle store, bit for bit.
+// snapshot file against a particle store, bit for bit (after rounding to float for a snapshot
+// in single precision).
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <mpi.h>
@@ -9,6 +10,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/ParticleStore.hpp"
@@ -119,28 +121,39 @@ T read_attribute(hid_t file, const char* name, hid_t stored_type, hid_t memory_t
   return value;
 }
 
-/// Reads back one snapshot file and compares this rank's rows with `p`.
-inline void expect_snapshot_holds(const std::string& path, const ParticleStore& p, double time,
-                                  std::uint64_t step) {
+/// `values` as T: rounded to the nearest float when T is float, as a float32 dataset holds them.
+template <class T>
+std::vector<T> as(const std::vector<double>& values) {
+  return std::vector<T>(values.begin(), values.end());
+}
+
+/// Reads back one snapshot file holding every field and compares this rank's rows with `p`,
+/// its real values stored as T (double, or float in single precision).
+template <class T = double>
+void expect_snapshot_holds(const std::string& path, const ParticleStore& p, double time,
+                           std::uint64_t step) {
   MPI_Barrier(MPI_COMM_WORLD);
   const hsize_t n = global_count(p.size()), offset = expected_offset(p.size()), rows = p.size();
   H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   ASSERT_GE(file.id, 0) << "cannot open " << path;
   const hid_t f64 = H5T_IEEE_F64LE, f64_mem = H5T_NATIVE_DOUBLE;
-  expect_bit_identical(xyz_of(p.position_radius),
-                       read_rows<double>(file.id, "position", f64, f64_mem, {n, 3}, offset, rows),
+  constexpr bool single = std::is_same_v<T, float>;
+  const hid_t real = single ? H5T_IEEE_F32LE : f64, real_mem = single ? H5T_NATIVE_FLOAT : f64_mem;
+  expect_bit_identical(as<T>(xyz_of(p.position_radius)),
+                       read_rows<T>(file.id, "position", real, real_mem, {n, 3}, offset, rows),
                        "position");
-  expect_bit_identical(
-      radii_of(p), read_rows<double>(file.id, "radius", f64, f64_mem, {n}, offset, rows), "radius");
-  expect_bit_identical(xyz_of(p.velocity_inv_mass),
-                       read_rows<double>(file.id, "velocity", f64, f64_mem, {n, 3}, offset, rows),
+  expect_bit_identical(as<T>(radii_of(p)),
+                       read_rows<T>(file.id, "radius", real, real_mem, {n}, offset, rows),
+                       "radius");
+  expect_bit_identical(as<T>(xyz_of(p.velocity_inv_mass)),
+                       read_rows<T>(file.id, "velocity", real, real_mem, {n, 3}, offset, rows),
                        "velocity");
   expect_bit_identical(
-      xyz_of(p.angular_velocity),
-      read_rows<double>(file.id, "angular_velocity", f64, f64_mem, {n, 3}, offset, rows),
+      as<T>(xyz_of(p.angular_velocity)),
+      read_rows<T>(file.id, "angular_velocity", real, real_mem, {n, 3}, offset, rows),
       "angular_velocity");
-  expect_bit_identical(xyz_of(p.force),
-                       read_rows<double>(file.id, "force", f64, f64_mem, {n, 3}, offset, rows),
+  expect_bit_identical(as<T>(xyz_of(p.force)),
+                       read_rows<T>(file.id, "force", real, real_mem, {n, 3}, offset, rows),
                        "force");
   expect_bit_identical(p.material,
                        read_rows<std::uint32_t>(file.id, "material", H5T_STD_U32LE,

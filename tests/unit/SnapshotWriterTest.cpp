@@ -270,11 +270,6 @@ TEST_F(SnapshotWriterTest, ResumedSeriesKeepsEachSnapshotsRankField) {
   expect_rank_field_holds_the_writing_ranks(with_rank_again.files()[3], particles.size());
 }
 
-/// `values` rounded to float, as a float32 dataset stores them.
-std::vector<float> rounded(const std::vector<double>& values) {
-  return std::vector<float>(values.begin(), values.end());
-}
-
 /// For each uniform grid of the writer's .xmf, its geometry and attributes as
 /// "name=Precision", in order, the geometry ("position") first.
 std::vector<std::vector<std::string>> listed_precisions(const SnapshotWriter& writer) {
@@ -330,34 +325,7 @@ TEST_F(SnapshotWriterTest, SinglePrecisionStoresEachRealValueRoundedToFloat) {
   SnapshotWriter writer(MPI_COMM_WORLD, dir_, options);
   const ParticleStore p = random_store(particles_on_this_rank(), 1600 + comm_rank());
   writer.write(p, 0.25, 3);
-  MPI_Barrier(MPI_COMM_WORLD);
-  const hsize_t n = global_count(p.size()), offset = expected_offset(p.size()), rows = p.size();
-  H5Id<H5Fclose> file(H5Fopen(writer.files()[0].c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
-  const hid_t f32 = H5T_IEEE_F32LE, f32_mem = H5T_NATIVE_FLOAT;
-  expect_bit_identical(rounded(xyz_of(p.position_radius)),
-                       read_rows<float>(file.id, "position", f32, f32_mem, {n, 3}, offset, rows),
-                       "position");
-  expect_bit_identical(rounded(test::radii_of(p)),
-                       read_rows<float>(file.id, "radius", f32, f32_mem, {n}, offset, rows),
-                       "radius");
-  expect_bit_identical(rounded(xyz_of(p.velocity_inv_mass)),
-                       read_rows<float>(file.id, "velocity", f32, f32_mem, {n, 3}, offset, rows),
-                       "velocity");
-  expect_bit_identical(
-      rounded(xyz_of(p.angular_velocity)),
-      read_rows<float>(file.id, "angular_velocity", f32, f32_mem, {n, 3}, offset, rows),
-      "angular_velocity");
-  expect_bit_identical(rounded(xyz_of(p.force)),
-                       read_rows<float>(file.id, "force", f32, f32_mem, {n, 3}, offset, rows),
-                       "force");
-  expect_bit_identical(p.material,
-                       read_rows<std::uint32_t>(file.id, "material", H5T_STD_U32LE,
-                                                H5T_NATIVE_UINT32, {n}, offset, rows),
-                       "material");
-  expect_bit_identical(
-      p.id,
-      read_rows<std::uint64_t>(file.id, "id", H5T_STD_U64LE, H5T_NATIVE_UINT64, {n}, offset, rows),
-      "id");
+  test::expect_snapshot_holds<float>(writer.files()[0], p, 0.25, 3);
   const std::vector<std::vector<std::string>> expected{{"position=4", "radius=4", "velocity=4",
                                                         "angular_velocity=4", "force=4",
                                                         "material=4", "id=8"}};
