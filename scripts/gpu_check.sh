@@ -14,7 +14,8 @@
 #              10^7 spheres in each precision, and the largest mixed bed that fits
 #   split      gpudem-mpi --exact-time-split on the benchmarks' settled 10^6 bed
 #              (scripts/bench_scene.sh), 500 steps with a snapshot every 50, on 1, 2 and 4
-#              ranks sharing the GPU: integration, forces, neighbour lists, halo, output
+#              ranks sharing the GPU: integration, forces, neighbour lists, halo, output; and on
+#              1 rank with lean snapshots (velocity and id in float)
 # Usage: scripts/gpu_check.sh PART... (default: mps tests sanitizer)
 # Environment: OUT (results), BENCH_ARGS (replace the bench's default arguments), PYTHON (a
 # Python 3 with h5py and numpy, default python3), TESTS (an extended regular expression: only
@@ -187,14 +188,19 @@ part_split() {
   dt=$("$BUNDLE/bin/gpudem-mpi" "$WORK/split/scene.toml" --check | sed -n 's/^dt = \([^ ]*\) s.*/\1/p')
   end=$(awk -v dt="$dt" 'BEGIN { printf "%.17g", dt * 500 }')
   every=$(awk -v dt="$dt" 'BEGIN { printf "%.17g", dt * 50 }')
-  for ranks in 1 2 4; do
-    echo "== $ranks rank(s)" >> "$LOGS/split.log"
+  local run settings
+  for run in 1 2 4 1-lean; do
+    ranks=${run%-lean}
+    settings=()
+    [ "$run" != "$ranks" ] &&
+      settings=(--set 'output.precision="float"' --set 'output.fields=["velocity","id"]')
+    echo "== $run rank(s)" >> "$LOGS/split.log"
     OMP_NUM_THREADS=$(( $(nproc) / ranks )) timeout "$(left)" \
       mpirun -np "$ranks" "$BUNDLE/bin/gpudem-mpi" "$WORK/split/scene.toml" --backend cuda \
       --exact-time-split --set simulation.end_time="$end" --set output.every="$every" \
-      --set "decomposition.dims=[$ranks,1,1]" --output-dir "$WORK/split/n$ranks" \
-      >> "$LOGS/split.log" 2>&1
-    summary+=("split, $ranks rank(s): exit $?")
+      --set "decomposition.dims=[$ranks,1,1]" --output-dir "$WORK/split/n$run" \
+      "${settings[@]}" >> "$LOGS/split.log" 2>&1
+    summary+=("split, $run rank(s): exit $?")
   done
   mapfile -t lines < <(grep -E "^(== |time split|done)" "$LOGS/split.log")
   summary+=("${lines[@]}")
