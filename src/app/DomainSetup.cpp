@@ -94,7 +94,7 @@ std::vector<int> metis_parts(const Scene& scene, const CoarseGrid& cells,
     throw InputError(scene.file, 0, "decomposition.method",
                      "metis needs at least one coarse cell per rank: " + std::to_string(ranks) +
                          " ranks but " + std::to_string(cells.count()) +
-                         " cells of the ghost width; use fewer ranks");
+                         " coarse cells; use fewer ranks");
   return metis_owners(cells, work, ranks);
 }
 
@@ -133,9 +133,12 @@ void print_decomposition(const MpiDomain& domain) {
                 d.cuts()[1].size() - 1, d.cuts()[2].size() - 1);
   else
     std::printf("decomposition: metis, %d parts", d.ranks());
-  std::printf(" over %d x %d x %d coarse cells, ghost width %.4g m; MPI buffers %s\n", cells.n[0],
-              cells.n[1], cells.n[2], domain.ghost_width(),
-              domain.gpu_aware() ? "on the device (GPU-aware MPI)" : "staged through host memory");
+  std::printf(
+      " over %d x %d x %d coarse cells of %.4g x %.4g x %.4g m, ghost width %.4g m; MPI "
+      "buffers %s\n",
+      cells.n[0], cells.n[1], cells.n[2], cells.edge(0), cells.edge(1), cells.edge(2),
+      domain.ghost_width(),
+      domain.gpu_aware() ? "on the device (GPU-aware MPI)" : "staged through host memory");
 }
 
 }  // namespace gpudem
