@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -28,33 +29,38 @@ inline void remove_dataset(const std::string& path, const char* name) {
   ASSERT_GE(H5Ldelete(file.id, name, H5P_DEFAULT), 0) << name;
 }
 
+/// Replaces dataset `name` by a rows × columns dataset of file type `stored` holding `values`
+/// (row by row, of memory type `memory`); 1-D when columns is 0.
+template <class T>
+void replace_dataset(const std::string& path, const char* name, hid_t stored, hid_t memory,
+                     hsize_t rows, hsize_t columns, const std::vector<T>& values) {
+  ASSERT_EQ(values.size(), rows * std::max<hsize_t>(columns, 1));
+  remove_dataset(path, name);
+  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  const hsize_t dims[2] = {rows, columns};
+  H5Id<H5Sclose> space(H5Screate_simple(columns == 0 ? 1 : 2, dims, nullptr));
+  H5Id<H5Dclose> dataset(
+      H5Dcreate2(file.id, name, stored, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  ASSERT_GE(dataset.id, 0) << name;
+  ASSERT_GE(H5Dwrite(dataset.id, memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+}
+
 /// Replaces dataset `name` by a 1-D u32 dataset holding `values`.
 inline void replace_u32_dataset(const std::string& path, const char* name,
                                 const std::vector<std::uint32_t>& values) {
-  remove_dataset(path, name);
-  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
-  const hsize_t dims[1] = {values.size()};
-  H5Id<H5Sclose> space(H5Screate_simple(1, dims, nullptr));
-  H5Id<H5Dclose> dataset(
-      H5Dcreate2(file.id, name, H5T_STD_U32LE, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  ASSERT_GE(dataset.id, 0) << name;
-  ASSERT_GE(H5Dwrite(dataset.id, H5T_NATIVE_UINT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-            0);
+  replace_dataset(path, name, H5T_STD_U32LE, H5T_NATIVE_UINT32, values.size(), 0, values);
+}
+
+/// Replaces dataset `name` by a 1-D u8 dataset holding `values`.
+inline void replace_u8_dataset(const std::string& path, const char* name,
+                               const std::vector<std::uint8_t>& values) {
+  replace_dataset(path, name, H5T_STD_U8LE, H5T_NATIVE_UINT8, values.size(), 0, values);
 }
 
 /// Replaces dataset `name` by a rows × columns f64 dataset holding `values` (row by row).
 inline void replace_f64_dataset(const std::string& path, const char* name, hsize_t rows,
                                 hsize_t columns, const std::vector<double>& values) {
-  ASSERT_EQ(values.size(), rows * columns);
-  remove_dataset(path, name);
-  H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
-  const hsize_t dims[2] = {rows, columns};
-  H5Id<H5Sclose> space(H5Screate_simple(2, dims, nullptr));
-  H5Id<H5Dclose> dataset(
-      H5Dcreate2(file.id, name, H5T_IEEE_F64LE, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  ASSERT_GE(dataset.id, 0) << name;
-  ASSERT_GE(H5Dwrite(dataset.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-            0);
+  replace_dataset(path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows, columns, values);
 }
 
 inline void remove_attribute(const std::string& path, const char* name) {

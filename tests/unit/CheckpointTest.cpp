@@ -384,20 +384,6 @@ TEST_F(DamagedCheckpoint, DatasetOfTheWrongTypeIsRejected) {
   expect_rejected("dataset 'id' has the wrong value type");
 }
 
-/// Replaces dataset `name` by a 1-D u8 dataset holding `values`.
-void replace_u8_dataset(const std::string& path, const char* name,
-                        const std::vector<std::uint8_t>& values) {
-  test::remove_dataset(path, name);
-  test::H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
-  const hsize_t dims[1] = {values.size()};
-  test::H5Id<H5Sclose> space(H5Screate_simple(1, dims, nullptr));
-  test::H5Id<H5Dclose> dataset(
-      H5Dcreate2(file.id, name, H5T_STD_U8LE, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  ASSERT_GE(dataset.id, 0) << name;
-  ASSERT_GE(H5Dwrite(dataset.id, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-            0);
-}
-
 TEST_F(DamagedCheckpoint, RankFieldFlagsAreStoredAsOneByteEach) {
   EXPECT_EQ(test::raw_bytes(path(), "snapshot_rank_field"),
             (std::vector<unsigned char>{1, 0}));  // random_part's table: with, without
@@ -430,9 +416,9 @@ TEST_F(DamagedCheckpoint, TableWithoutRankFieldFlagsHasNoSnapshotWithTheRankFiel
 }
 
 TEST_F(DamagedCheckpoint, RankFieldFlagsOtherThanZeroOrOneAreRejected) {
-  replace_u8_dataset(path(), "snapshot_rank_field", {0, 2});
+  test::replace_u8_dataset(path(), "snapshot_rank_field", {0, 2});
   expect_rejected("dataset 'snapshot_rank_field' holds 2; expected 0 or 1");
-  replace_u8_dataset(path(), "snapshot_rank_field", {1});
+  test::replace_u8_dataset(path(), "snapshot_rank_field", {1});
   expect_rejected("dataset 'snapshot_rank_field' has 1 rows but 'snapshot_file' has 2");
   test::replace_u32_dataset(path(), "snapshot_rank_field", {0, 1});
   expect_rejected("dataset 'snapshot_rank_field' has the wrong value type");
@@ -455,7 +441,7 @@ TEST_F(DamagedCheckpoint, FieldSetsBeyondTheFieldsAndOtherPrecisionsAreRejected)
   test::replace_u32_dataset(path(), "snapshot_fields", {63});
   expect_rejected("dataset 'snapshot_fields' has 1 rows but 'snapshot_file' has 2");
   test::replace_u32_dataset(path(), "snapshot_fields", {63, 34});
-  replace_u8_dataset(path(), "snapshot_precision", {8, 2});
+  test::replace_u8_dataset(path(), "snapshot_precision", {8, 2});
   expect_rejected("dataset 'snapshot_precision' holds 2; expected 4 or 8");
 }
 
