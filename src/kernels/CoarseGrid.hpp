@@ -17,8 +17,8 @@ namespace gpudem {
 
 /// The most coarse cells a box is cut into: every rank holds the cell -> rank map (5 bytes a
 /// cell in its engine's memory, 9 on the host), so its size must not grow with the bed. 2^22
-/// cells are 20 MiB in the engine; a bed of 10^9 spheres in a box of their ghost width's cells
-/// would need about 4 × 10^8.
+/// cells are 20 MiB in the engine; cells of the ghost width (12.5 mm) would number about
+/// 4.5 × 10^8 in a bed of 10^9 spheres of 5 mm radius packed to 60 %.
 constexpr std::size_t kMaxCoarseCells = std::size_t(1) << 22;
 
 /// The coarse cells of the global box: n[k] = max(1, floor(L_k / s)) per axis, edge L_k / n[k]
