@@ -23,13 +23,15 @@
 # regular expression: the tests it matches start first; default the host-versus-CUDA
 # comparisons, the CUDA unit tests, precision and the rank-count runs), BUDGET
 # (seconds for all parts, default 480, so that one device call of 540 s holds them: every
-# command is stopped when the budget runs out, and what it did not reach is listed as such).
+# command is stopped when the budget runs out, and what it did not reach is listed as such),
+# TESTS_AT_ONCE (tests side by side, default one per 4 cores), WORK (scratch, default
+# /tmp/gpudem-work), BUNDLE (where the bundle is unpacked, default /tmp/gpudem-gpu).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 SRC=$PWD
 OUT=${OUT:-$SRC/out/gpu_check}
 WORK=${WORK:-/tmp/gpudem-work}
-BUNDLE=/tmp/gpudem-gpu
+BUNDLE=${BUNDLE:-/tmp/gpudem-gpu}
 PYTHON=${PYTHON:-python3}
 TESTS=${TESTS:-.*}
 FIRST=${FIRST:-mpi_cuda|test_backend_agreement|.*_cuda|test_portable_cuda|test_precision|mpi_.*}
@@ -86,7 +88,7 @@ run_test() {
 part_tests() {
   mkdir -p "$LOGS/tests"
   : > "$LOGS/tests/results"
-  local at_once=$(( $(nproc) / 4 > 1 ? $(nproc) / 4 : 1 ))
+  local at_once=${TESTS_AT_ONCE:-$(( $(nproc) / 4 > 1 ? $(nproc) / 4 : 1 ))}
   export OMP_NUM_THREADS=1  # as scripts/test.sh: ranks and tests share the cores
   export GPUDEM_SOURCE_DIR=$SRC GPUDEM_BINARY=$BUNDLE/bin/gpudem-mpi GPUDEM_MPIEXEC=mpirun
   export GPUDEM_SNAPSHOT_FIXTURE_DIR=$WORK/snapshot_fixture PYTHON
