@@ -10,6 +10,7 @@ source scripts/mpi-env.sh
 OUT=${1:-out/cultivator}
 [[ $OUT = /* ]] || OUT="$PWD/$OUT"
 NP=${NP:-1}
+share_cores "$NP"
 calibrated=(--set material.0.density=2387 --set material.0.young=7.978e6
             --set material.0.poisson=0.486 --set material.0.restitution=0.113
             --set material.0.friction=0.495 --set material.0.friction_dynamic=0.495

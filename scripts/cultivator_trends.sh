@@ -14,6 +14,7 @@ OUT=${1:-out/cultivator}
 BED="$OUT/uncalibrated/bed/bed.h5"
 [[ -f $BED ]] || { echo "no bed at $BED: run scripts/cultivator_study.sh first" >&2; exit 1; }
 NP=${NP:-1}
+share_cores "$NP"
 echo "parameter,value,draft_mean_N,draft_std_N" > "$OUT/trends.csv"
 pass() {  # parameter value --set options...
   local name=$1 value=$2

@@ -2,13 +2,15 @@
 # Sets up, builds and runs the tillage quickstart: about 19,000 soil spheres settle into a
 # 0.8 m x 0.5 m bin and are trimmed to a 0.15 m bed (stage 1), then the cultivator sweep cuts
 # through the bed at 0.08 m depth and 0.7 m/s (stage 2); the draft force is plotted to
-# draft.png. About a minute and a half on 2 cores.
+# draft.png. About a minute and a half on 2 cores. NP=N runs it on N ranks (each with an equal
+# share of the cores as OpenMP threads unless OMP_NUM_THREADS is set).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 source scripts/mpi-env.sh
 OUT=${OUT:-out/tillage-quickstart}
 NP=${NP:-1}
+share_cores "$NP"
 BED="$OUT/bed/bed.h5"
 [[ $BED = /* ]] || BED="$PWD/$BED"  # the scene resolves relative paths from its own folder
 run() { mpirun -np "$NP" --bind-to none build/gpudem-mpi "$@"; }

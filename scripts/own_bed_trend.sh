@@ -17,6 +17,7 @@ read -r -a VALUES <<< "$3"
 OUT=${4:-out/own-bed-trend}
 [[ $OUT = /* ]] || OUT="$PWD/$OUT"
 NP=${NP:-1}
+share_cores "$NP"
 run() { mpirun -np "$NP" --bind-to none build/gpudem-mpi --quiet "$@"; }
 bed() {  # VALUE: settles and trims a bed with KEY = VALUE
   run inputs/tillage/quickstart_bed.toml --output-dir "$OUT/bed-$1" --set "$KEY=$1"

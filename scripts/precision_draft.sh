@@ -11,6 +11,7 @@ source scripts/mpi-env.sh
 OUT=${1:-out/precision-draft}
 [[ $OUT = /* ]] || OUT="$PWD/$OUT"
 NP=${NP:-1}
+share_cores "$NP"
 run() {  # PRECISION SCENE DIR [--set ...]: one stage, timed
   local precision=$1 scene=$2 dir=$3
   shift 3
