@@ -306,10 +306,11 @@ class TableReader {
       const auto at = elements[i].is_string()
                           ? std::find(options.begin(), options.end(), elements[i].as_string().str)
                           : options.end();
-      const std::uint32_t bit = std::uint32_t(1) << (at - options.begin());
-      if (at == options.end() || (set & bit) != 0)
+      const bool known = at != options.end();
+      const std::uint32_t bit = known ? std::uint32_t(1) << (at - options.begin()) : 0;
+      if (!known || (set & bit) != 0)
         fail(key, "expected " + expected + ", got " + describe(elements[i]) + " at index " +
-                      std::to_string(i) + (at == options.end() ? "" : " a second time"));
+                      std::to_string(i) + (known ? " a second time" : ""));
       set |= bit;
     }
     return set;
