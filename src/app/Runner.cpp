@@ -436,8 +436,9 @@ void adopt_checkpoint_step(EngineSetup& setup, const Scene& scene, const Checkpo
 
 /// This rank's share of the particles a run starts with: the rows of its part of the
 /// checkpoint it restarts from, or of the bed file that is the scene's only source (both read by
-/// parts, so that no rank holds the whole file), or of the particles the scene's other sources
-/// create (created on every rank, then all but the share dropped).
+/// parts, so that no rank holds the whole file), the particles of its part of the tiles of a
+/// tiled box source that is the only source (created by parts), or of the particles the scene's
+/// other sources create (created on every rank, then all but the share dropped).
 struct StartShare {
   std::optional<Checkpoint> checkpoint;  ///< this rank's part of it, on a restart
   ParticleStore created;                 ///< this rank's share of a new run's particles
@@ -461,8 +462,10 @@ bool bed_is_the_only_source(const Scene& scene) {
   return scene.sources.size() == 1 && scene.sources[0].kind == SourceKind::Bed;
 }
 
-/// Reads or creates this rank's StartShare. A problem with the checkpoint or bed file that any
-/// rank finds in its part is thrown on every rank. Collective.
+/// Reads or creates this rank's StartShare: a checkpoint's or a lone bed's part of the rows, a
+/// lone tiled box source's part of the tiles, or else its share of all the particles, created
+/// on every rank. A problem with the input that any rank finds in its part is thrown on every
+/// rank. Collective.
 StartShare load_start_share(const Scene& scene, const RunOptions& options, const MpiContext& mpi,
                             BedLoader& bed) {
   StartShare start;
@@ -480,6 +483,11 @@ StartShare load_start_share(const Scene& scene, const RunOptions& options, const
       create_particles(scene, part, bed.reader(FilePart{rank, ranks}));
       return part;
     });
+  } else if (tiled_box_is_the_only_source(scene)) {
+    start.created =
+        agree_on_input(mpi.comm(), [&] { return create_particle_part(scene, FilePart{rank, ranks}); });
+    const ParticleId first_id = ids_before_rank(mpi.comm(), start.created.size());
+    for (ParticleId& id : start.created.id) id += first_id;
   } else {
     ParticleStore all;
     create_particles(scene, all, bed.reader());

@@ -59,4 +59,12 @@ std::uint64_t sum_over_ranks(MPI_Comm comm, std::uint64_t value) {
   return sum;
 }
 
+std::uint64_t ids_before_rank(MPI_Comm comm, std::uint64_t count) {
+  std::uint64_t before = 0;
+  MPI_Exscan(&count, &before, 1, MPI_UINT64_T, MPI_SUM, comm);
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  return rank == 0 ? 0 : before;  // MPI_Exscan leaves rank 0's result undefined
+}
+
 }  // namespace gpudem

@@ -52,4 +52,8 @@ ParticleStore gather_particles(MPI_Comm comm, const ParticleStore& share);
 /// Σ over ranks of `value`. Collective.
 std::uint64_t sum_over_ranks(MPI_Comm comm, std::uint64_t value);
 
+/// The sum of `count` over the ranks before this one (0 on rank 0): the first global id of
+/// this rank's part when the parts hold consecutive ids in rank order. Collective.
+std::uint64_t ids_before_rank(MPI_Comm comm, std::uint64_t count);
+
 }  // namespace gpudem

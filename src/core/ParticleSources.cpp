@@ -12,24 +12,21 @@
 #include <vector>
 
 #include "core/CsvReader.hpp"
+#include "core/FreeCentre.hpp"
 #include "core/InputError.hpp"
 #include "core/SphereHash.hpp"
+#include "core/TiledInsertion.hpp"
 
 namespace gpudem {
 namespace {
 
 constexpr double pi = 3.14159265358979323846;
-/// Random positions tried for one sphere before the region counts as full.
-constexpr int max_attempts_per_particle = 1000;
 /// Redraws of a truncated normal are bounded by refusing bounds this improbable.
 constexpr double min_truncated_normal_mass = 1e-6;
 /// Radii drawn at a time while filling a volume fraction (the unused rest is dropped).
 constexpr std::size_t radius_batch = 4096;
 
 double sphere_volume(double r) { return 4.0 / 3.0 * pi * r * r * r; }
-
-/// Uniform on [0, 1) from the top 53 bits (identical on every standard library).
-double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
 /// Standard normal deviate by the Box–Muller transform (Box & Muller 1958).
 double standard_normal(std::mt19937_64& rng) {
@@ -112,27 +109,36 @@ void check_material(const Scene& scene, std::size_t i) {
     throw InputError(scene.file, 0, source_key(i) + ".material", "no such material");
 }
 
-/// Radii of a box source, largest first: `count` of them, or enough that their volume
-/// reaches volume_fraction × region volume.
-std::vector<double> box_radii(const Scene& scene, std::size_t i, std::mt19937_64& rng) {
+/// Refuses a box source without a count or a volume fraction in (0, 1), or with more particles
+/// (at least) than one source may hold.
+void check_source_size(const Scene& scene, std::size_t i) {
   const ParticleSource& src = scene.sources[i];
   const std::string key = source_key(i);
-  std::vector<double> radii;
   if (src.count > 0) {
     if (src.count > SphereHash::max_size)
       throw InputError(scene.file, 0, key + ".count", "too many particles for one source");
+    return;
+  }
+  if (!(src.volume_fraction > 0 && src.volume_fraction < 1))
+    throw InputError(scene.file, 0, key, "needs count > 0 or volume_fraction in (0, 1)");
+  const double target = src.volume_fraction * box_volume(src.region_min, src.region_max);
+  if (target / sphere_volume(max_radius(src.radius)) > static_cast<double>(SphereHash::max_size))
+    throw InputError(scene.file, 0, key + ".volume_fraction", "too many particles for one source");
+}
+
+/// Radii of a box source (checked by check_source_size), largest first: `count` of them, or
+/// enough that their volume reaches volume_fraction × region volume.
+std::vector<double> box_radii(const Scene& scene, std::size_t i, std::mt19937_64& rng) {
+  const ParticleSource& src = scene.sources[i];
+  std::vector<double> radii;
+  if (src.count > 0) {
     radii = sample_radii(src.radius, src.count, rng);
   } else {
-    if (!(src.volume_fraction > 0 && src.volume_fraction < 1))
-      throw InputError(scene.file, 0, key, "needs count > 0 or volume_fraction in (0, 1)");
     const double target = src.volume_fraction * box_volume(src.region_min, src.region_max);
-    if (target / sphere_volume(max_radius(src.radius)) > static_cast<double>(SphereHash::max_size))
-      throw InputError(scene.file, 0, key + ".volume_fraction",
-                       "too many particles for one source");
     double volume = 0;
     while (volume < target) {
       if (radii.size() >= SphereHash::max_size)
-        throw InputError(scene.file, 0, key + ".volume_fraction",
+        throw InputError(scene.file, 0, source_key(i) + ".volume_fraction",
                          "too many particles for one source");
       for (double r : sample_radii(src.radius, radius_batch, rng)) {
         if (volume >= target) break;
@@ -164,21 +170,18 @@ SphereHash existing_spheres(const ParticleStore& store, Vec3 lo, Vec3 hi, double
 /// A random centre keeping the sphere inside [lo, hi] and off every stored sphere.
 std::optional<Vec3> free_spot(Vec3 lo, Vec3 hi, double r, const SphereHash& hash,
                               std::mt19937_64& rng) {
-  for (int k = 0; k < 3; ++k)
-    if (axis(hi, k) - axis(lo, k) < 2 * r) return std::nullopt;
-  for (int attempt = 0; attempt < max_attempts_per_particle; ++attempt) {
-    Vec3 c;
-    for (int k = 0; k < 3; ++k)
-      axis(c, k) = axis(lo, k) + r + (axis(hi, k) - axis(lo, k) - 2 * r) * uniform01(rng);
-    if (!hash.overlaps(c, r)) return c;
+  Vec3 first, width;
+  for (int k = 0; k < 3; ++k) {
+    axis(first, k) = axis(lo, k) + r;
+    axis(width, k) = axis(hi, k) - axis(lo, k) - 2 * r;
   }
-  return std::nullopt;
+  return free_centre(first, width, r, hash, rng);
 }
 
-void insert_box(const Scene& scene, std::size_t i, ParticleStore& store, ParticleId& next_id) {
+/// Box source i, placed by one random sequence over its whole region.
+void insert_box_sequential(const Scene& scene, std::size_t i, ParticleStore& store,
+                           ParticleId& next_id) {
   const ParticleSource& src = scene.sources[i];
-  check_material(scene, i);
-  check_distribution(scene, i);
   std::mt19937_64 rng = source_rng(scene.simulation.seed, i);
   const std::vector<double> radii = box_radii(scene, i, rng);
   if (radii.empty()) return;
@@ -202,6 +205,18 @@ void insert_box(const Scene& scene, std::size_t i, ParticleStore& store, Particl
     placed_volume += sphere_volume(r);
     store.add(next_id++, *c, r, src.material, src.velocity, 1.0 / sphere_mass(density, r));
   }
+}
+
+/// Box source i, checked, then placed sequentially or by tiles (part `part` of the tiles).
+void insert_box(const Scene& scene, std::size_t i, ParticleStore& store, ParticleId& next_id,
+                FilePart part = {}) {
+  check_material(scene, i);
+  check_distribution(scene, i);
+  check_source_size(scene, i);
+  if (scene.sources[i].placement == Placement::Tiled)
+    insert_tiled_box(scene, i, part, store, next_id);
+  else
+    insert_box_sequential(scene, i, store, next_id);
 }
 
 /// Positions in the header of the columns a particle CSV file may have.
@@ -369,6 +384,20 @@ void create_particles(const Scene& scene, ParticleStore& store, const BedReader&
         break;
     }
   }
+}
+
+bool tiled_box_is_the_only_source(const Scene& scene) {
+  return scene.sources.size() == 1 && scene.sources[0].kind == SourceKind::Box &&
+         scene.sources[0].placement == Placement::Tiled;
+}
+
+ParticleStore create_particle_part(const Scene& scene, FilePart part) {
+  if (!tiled_box_is_the_only_source(scene))
+    throw std::logic_error("create_particle_part: the scene's one source must be a tiled box");
+  ParticleStore store;
+  ParticleId next_id = 0;
+  insert_box(scene, 0, store, next_id, part);
+  return store;
 }
 
 std::vector<double> sample_radii(const RadiusDistribution& dist, std::size_t count,

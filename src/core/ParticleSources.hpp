@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/ParticleStore.hpp"
+#include "core/RowShare.hpp"
 #include "core/Scene.hpp"
 
 namespace gpudem {
@@ -21,12 +22,14 @@ using BedReader = std::function<ParticleStore(const std::string& bed_file)>;
 /// keep their global ids; the other sources' particles get consecutive ids starting after the
 /// bed's largest id, or at store.size() without a bed source.
 ///
-/// A box source samples all its radii first (`count` of them, or until their volume reaches
+/// A box source placed sequentially (the default) samples all its radii first (`count` of them, or until their volume reaches
 /// volume_fraction × region volume) and places them largest first by random sequential
 /// insertion: uniform random centres keeping the whole sphere inside the region, rejecting any
 /// overlap with particles already in `store`; at most 1000 tries per particle. The random
 /// stream is std::mt19937_64 seeded from scene.simulation.seed and the source index, so a
-/// scene always gives the same particles. Velocity = source velocity, angular velocity 0.
+/// scene always gives the same particles. A tiled box source is placed by insert_tiled_box
+/// (core/TiledInsertion.hpp): the same random sequential insertion tile by tile, the same
+/// particles on any number of ranks and threads. Velocity = source velocity, angular velocity 0.
 ///
 /// A CSV source reads columns x, y, z, r and optionally material (name or 0-based index),
 /// vx, vy, vz, in any order named by the header line; missing ones take the source's
@@ -41,6 +44,17 @@ using BedReader = std::function<ParticleStore(const std::string& bed_file)>;
 /// region that cannot hold the requested particles; std::logic_error for a bed source without
 /// `read_bed`.
 void create_particles(const Scene& scene, ParticleStore& store, const BedReader& read_bed = {});
+
+/// Whether the scene's particles all come from one box source placed by tiles: then each rank
+/// can create only its part of them (create_particle_part).
+bool tiled_box_is_the_only_source(const Scene& scene);
+
+/// Part `part` of the particles of a scene whose one source is a tiled box
+/// (tiled_box_is_the_only_source): those of the part's near-equal share of the tiles, in
+/// create_particles' order, with ids from 0. The parts of all part.count concatenated are
+/// create_particles' particles, ids shifted by the sizes of the parts before. Throws as
+/// create_particles does; std::logic_error for another scene.
+ParticleStore create_particle_part(const Scene& scene, FilePart part);
 
 /// Draws `count` radii from `dist` [m]: uniform on [mean - spread, mean + spread]; normal
 /// (mean, stddev) redrawn until within [min, max]; or values[k] with probability

@@ -106,6 +106,11 @@ struct RadiusDistribution {
 
 enum class SourceKind { Box, Csv, Bed };
 
+/// How a box source fills its region: one random sequence over the whole region, or tiles
+/// filled in parallel in eight colour phases, the same particles on any number of ranks and
+/// threads, each rank creating only its part (core/TiledInsertion.hpp).
+enum class Placement { Sequential, Tiled };
+
 /// One [[insert]] entry: random non-overlapping insertion in a box, a CSV file, or the
 /// particles of a saved bed.
 struct ParticleSource {
@@ -116,6 +121,7 @@ struct ParticleSource {
   RadiusDistribution radius;
   MaterialId material = 0;
   Vec3 velocity;         ///< [m/s] initial velocity (box)
+  Placement placement = Placement::Sequential;  ///< (box)
   std::string csv_file;  ///< CSV path, resolved relative to the scene file
   std::string bed_file;  ///< bed (checkpoint) path, resolved relative to the scene file
   int bed_line = 0;      ///< line of `bed` in the scene file (0: unknown or from --set)

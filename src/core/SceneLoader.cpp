@@ -464,7 +464,7 @@ void read_region(const TableReader& source, const DomainSettings& domain, Partic
 
 /// Keys that only box (region) sources take.
 const std::vector<std::string> kBoxOnlyKeys = {"region", "count", "volume_fraction", "radius",
-                                               "velocity"};
+                                               "velocity", "placement"};
 
 ParticleSource read_box_source(const TableReader& table, const Scene& scene) {
   ParticleSource s;
@@ -483,6 +483,7 @@ ParticleSource read_box_source(const TableReader& table, const Scene& scene) {
   s.radius = read_radius(table);
   s.material = material_index(table, "material", scene.materials);
   s.velocity = table.vec3("velocity", "m/s", s.velocity);
+  s.placement = named_choice(table, "placement", {"sequential", "tiled"}, s.placement);
   return s;
 }
 
@@ -541,7 +542,8 @@ SourceKind source_kind(const TableReader& table) {
 
 ParticleSource read_source(const TableReader& table, const Scene& scene) {
   table.allow_only(
-      {"csv", "region", "bed", "count", "volume_fraction", "radius", "material", "velocity"});
+      {"csv", "region", "bed", "count", "volume_fraction", "radius", "material", "velocity",
+       "placement"});
   switch (source_kind(table)) {
     case SourceKind::Csv:
       return read_csv_source(table, scene);

@@ -1,5 +1,6 @@
 // Particle sources: radius distributions against their closed forms, random non-overlapping
-// box insertion (by count and by volume fraction), and CSV import with its error reports.
+// box insertion (by count and by volume fraction; what both placements must do, and the
+// sequential placement's own bounds), and CSV import with its error reports.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,51 +10,20 @@
 
 #include "core/InputError.hpp"
 #include "core/ParticleSources.hpp"
+#include "support/InsertionChecks.hpp"
 #include "support/TestPaths.hpp"
 
 namespace gpudem {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+using test::ball_volume;
+using test::box;
+using test::discrete;
+using test::expect_inside;
+using test::expect_no_overlaps;
+using test::uniform;
 
-double ball_volume(double r) { return 4.0 / 3.0 * pi * r * r * r; }
-
-Scene make_scene(std::uint64_t seed = 7) {
-  Scene scene;
-  scene.file = "scene.toml";
-  scene.simulation.seed = seed;
-  scene.domain.min = {0, 0, 0};
-  scene.domain.max = {1, 1, 1};
-  scene.materials.push_back({"soil", 2000.0});
-  scene.materials.push_back({"steel", 7800.0});
-  return scene;
-}
-
-RadiusDistribution uniform(double mean, double spread) {
-  RadiusDistribution d;
-  d.kind = RadiusDistributionKind::Uniform;
-  d.mean = mean;
-  d.spread = spread;
-  return d;
-}
-
-RadiusDistribution discrete(std::vector<double> values, std::vector<double> weights) {
-  RadiusDistribution d;
-  d.kind = RadiusDistributionKind::Discrete;
-  d.values = std::move(values);
-  d.weights = std::move(weights);
-  return d;
-}
-
-ParticleSource box(Vec3 lo, Vec3 hi, std::uint64_t count, RadiusDistribution radius) {
-  ParticleSource s;
-  s.kind = SourceKind::Box;
-  s.region_min = lo;
-  s.region_max = hi;
-  s.count = count;
-  s.radius = std::move(radius);
-  return s;
-}
+Scene make_scene(std::uint64_t seed = 7) { return test::insertion_scene(seed); }
 
 ParticleSource csv_source(const std::string& name) {
   ParticleSource s;
@@ -73,34 +43,6 @@ double variance_of(const std::vector<double>& x) {
   double s = 0;
   for (double v : x) s += (v - m) * (v - m);
   return s / static_cast<double>(x.size() - 1);
-}
-
-// Every pair i < j of particles [first, size) against all of [0, size): no overlap, i.e.
-// |x_i - x_j| >= (r_i + r_j)(1 - 1e-12), the factor allowing for rounding of touching spheres.
-void expect_no_overlaps(const ParticleStore& store, std::size_t first = 0) {
-  std::size_t overlaps = 0;
-  for (std::size_t i = first; i < store.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j) {
-      const Real4& a = store.position_radius[i];
-      const Real4& b = store.position_radius[j];
-      const double contact = (a.w + b.w) * (1 - 1e-12);
-      if (norm2(xyz(a) - xyz(b)) < contact * contact) ++overlaps;
-    }
-  EXPECT_EQ(overlaps, 0u);
-}
-
-// Particles [first, last) lie wholly inside [lo, hi] (to 1e-12 m of rounding).
-void expect_inside(const ParticleStore& store, std::size_t first, std::size_t last, Vec3 lo,
-                   Vec3 hi) {
-  std::size_t outside = 0;
-  for (std::size_t n = first; n < last; ++n) {
-    const Real4& p = store.position_radius[n];
-    for (int k = 0; k < 3; ++k)
-      if (axis(xyz(p), k) - p.w < axis(lo, k) - 1e-12 ||
-          axis(xyz(p), k) + p.w > axis(hi, k) + 1e-12)
-        ++outside;
-  }
-  EXPECT_EQ(outside, 0u);
 }
 
 // ---------------------------------------------------------------- radius distributions
@@ -137,7 +79,7 @@ TEST(RadiusDistribution, TruncatedNormalMatchesClosedFormMean) {
   // Truncated normal moments (Johnson, Kotz & Balakrishnan 1994, §10.1), a = (min-mean)/sd,
   // b = (max-mean)/sd, Z = Phi(b) - Phi(a): mean + sd (phi(a) - phi(b))/Z and variance
   // sd^2 [1 + (a phi(a) - b phi(b))/Z - ((phi(a) - phi(b))/Z)^2].
-  const auto phi = [](double x) { return std::exp(-x * x / 2) / std::sqrt(2 * pi); };
+  const auto phi = [](double x) { return std::exp(-x * x / 2) / std::sqrt(2 * test::kPi); };
   const auto Phi = [](double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); };
   const double a = (d.min - d.mean) / d.stddev, b = (d.max - d.mean) / d.stddev;
   const double z = Phi(b) - Phi(a), shift = (phi(a) - phi(b)) / z;
@@ -201,6 +143,22 @@ TEST(RadiusDistribution, UnsampleableDistributionsAreRefused) {
 // ---------------------------------------------------------------- box insertion
 
 // Count, containment, overlaps, state and ids of a box fill that started at `first`.
+/// The box-insertion tests both placements must pass.
+class BoxPlacement : public ::testing::TestWithParam<Placement> {
+ protected:
+  /// `scene` with every box source placed by GetParam().
+  Scene placed(Scene scene) const {
+    for (ParticleSource& s : scene.sources) s.placement = GetParam();
+    return scene;
+  }
+};
+
+INSTANTIATE_TEST_SUITE_P(Placements, BoxPlacement,
+                         ::testing::Values(Placement::Sequential, Placement::Tiled),
+                         [](const auto& info) {
+                           return info.param == Placement::Tiled ? "tiled" : "sequential";
+                         });
+
 void expect_valid_box_fill(const Scene& scene, const ParticleStore& store, std::size_t first) {
   const ParticleSource& src = scene.sources.back();
   ASSERT_EQ(store.size(), first + src.count);
@@ -219,14 +177,14 @@ void expect_valid_box_fill(const Scene& scene, const ParticleStore& store, std::
   }
 }
 
-TEST(BoxInsertion, DiscreteTenToOneByCount) {
+TEST_P(BoxPlacement, DiscreteTenToOneByCount) {
   Scene scene = make_scene();
   scene.sources.push_back(
       box({0.1, 0.2, 0.0}, {0.3, 0.4, 0.2}, 3000, discrete({1e-3, 1e-2}, {0.9, 0.1})));
   scene.sources.back().material = 1;
   scene.sources.back().velocity = {0.5, 0, -1};
   ParticleStore store;
-  create_particles(scene, store);
+  create_particles(placed(scene), store);
   expect_valid_box_fill(scene, store, 0);
   const auto large = std::count_if(store.position_radius.begin(), store.position_radius.end(),
                                    [](const Real4& p) { return p.w == 1e-2; });
@@ -234,20 +192,20 @@ TEST(BoxInsertion, DiscreteTenToOneByCount) {
   EXPECT_LT(large, 400);
 }
 
-TEST(BoxInsertion, UniformTenToOneByCount) {
+TEST_P(BoxPlacement, UniformTenToOneByCount) {
   Scene scene = make_scene();
   scene.sources.push_back(box({0, 0, 0}, {0.025, 0.025, 0.025}, 3000, uniform(0.55e-3, 0.45e-3)));
   ParticleStore store;
-  create_particles(scene, store);
+  create_particles(placed(scene), store);
   expect_valid_box_fill(scene, store, 0);
 }
 
-TEST(BoxInsertion, SameSeedSameParticlesOtherSeedOthers) {
-  const auto fill = [](std::uint64_t seed) {
+TEST_P(BoxPlacement, SameSeedSameParticlesOtherSeedOthers) {
+  const auto fill = [this](std::uint64_t seed) {
     Scene scene = make_scene(seed);
     scene.sources.push_back(box({0, 0, 0}, {0.05, 0.05, 0.05}, 500, uniform(1e-3, 0.5e-3)));
     ParticleStore store;
-    create_particles(scene, store);
+    create_particles(placed(scene), store);
     std::vector<double> flat;
     for (const Real4& p : store.position_radius) flat.insert(flat.end(), {p.x, p.y, p.z, p.w});
     return flat;
@@ -289,41 +247,41 @@ TEST(BoxInsertion, ImpossibleRequestNamesTheSource) {
   }
 }
 
-TEST(BoxInsertion, RegionThinnerThanADiameterIsRefused) {
+TEST_P(BoxPlacement, RegionThinnerThanADiameterIsRefused) {
   Scene scene = make_scene();
   scene.sources.push_back(box({0, 0, 0}, {0.1, 0.1, 0.001}, 1, uniform(1e-3, 0)));
   ParticleStore store;
-  EXPECT_THROW(create_particles(scene, store), InputError);
+  EXPECT_THROW(create_particles(placed(scene), store), InputError);
 }
 
-TEST(BoxInsertion, SecondSourceAvoidsTheFirst) {
+TEST_P(BoxPlacement, SecondSourceAvoidsTheFirst) {
   Scene scene = make_scene();
   scene.sources.push_back(box({0, 0, 0}, {0.1, 0.1, 0.1}, 2000, uniform(2e-3, 1e-3)));
   scene.sources.push_back(box({0.05, 0, 0}, {0.15, 0.1, 0.1}, 2000, uniform(2e-3, 1e-3)));
   ParticleStore store;
-  create_particles(scene, store);
+  create_particles(placed(scene), store);
   ASSERT_EQ(store.size(), 4000u);
   expect_inside(store, 0, 2000, scene.sources[0].region_min, scene.sources[0].region_max);
   expect_inside(store, 2000, 4000, scene.sources[1].region_min, scene.sources[1].region_max);
   expect_no_overlaps(store);
 }
 
-TEST(BoxInsertion, AvoidsParticlesAlreadyInTheStoreAndContinuesTheirIds) {
+TEST_P(BoxPlacement, AvoidsParticlesAlreadyInTheStoreAndContinuesTheirIds) {
   Scene scene = make_scene();
   scene.sources.push_back(box({0, 0, 0}, {0.06, 0.06, 0.06}, 1500, uniform(1e-3, 0.2e-3)));
   ParticleStore store;
   store.add(0, {0.03, 0.03, 0.03}, 0.02, 0, {}, 1.0);   // large sphere in the middle
   store.add(1, {0.065, 0.03, 0.03}, 0.01, 0, {}, 1.0);  // centre outside, reaching in
-  create_particles(scene, store);
+  create_particles(placed(scene), store);
   expect_valid_box_fill(scene, store, 2);
   expect_no_overlaps(store);
 }
 
-TEST(BoxInsertion, NeitherCountNorVolumeFractionIsRefused) {
+TEST_P(BoxPlacement, NeitherCountNorVolumeFractionIsRefused) {
   Scene scene = make_scene();
   scene.sources.push_back(box({0, 0, 0}, {0.1, 0.1, 0.1}, 0, uniform(1e-3, 0)));
   ParticleStore store;
-  EXPECT_THROW(create_particles(scene, store), InputError);
+  EXPECT_THROW(create_particles(placed(scene), store), InputError);
 }
 
 // ---------------------------------------------------------------- CSV import

@@ -226,6 +226,7 @@ TEST_F(SceneLoaderTest, FullSceneReadsEveryValue) {
   EXPECT_DOUBLE_EQ(uniform.radius.spread, 1.5e-3);
   EXPECT_EQ(uniform.material, 0u);
   expect_vec3(uniform.velocity, 0.7, 0, -1);
+  EXPECT_EQ(uniform.placement, Placement::Sequential);
 
   const ParticleSource& normal = s.sources[1];
   EXPECT_EQ(normal.count, 0u);
@@ -237,6 +238,7 @@ TEST_F(SceneLoaderTest, FullSceneReadsEveryValue) {
   EXPECT_DOUBLE_EQ(normal.radius.max, 8e-3);
   EXPECT_EQ(normal.material, 1u);
   expect_vec3(normal.velocity, 0, 0, 0);
+  EXPECT_EQ(normal.placement, Placement::Tiled);
 
   const ParticleSource& discrete = s.sources[2];
   EXPECT_EQ(discrete.count, 7u);
@@ -492,6 +494,14 @@ TEST_F(SceneLoaderTest, CountAndVolumeFractionExclusive) {
                "insert[0].volume_fraction", "either count or volume_fraction, not both");
   expect_error(load_error(base_with(kCountLine, "volume_fraction = 0.7")), kCountLine,
                "insert[0].volume_fraction", "expected a number in (0, 0.6], got 0.7");
+}
+
+TEST_F(SceneLoaderTest, PlacementIsSequentialOrTiledAndOnlyForBoxes) {
+  expect_error(load_error(base_with(kInsertSlot, "placement = \"tiles\"")), kInsertSlot,
+               "insert[0].placement", "one of \"sequential\", \"tiled\"");
+  const std::string csv_placed = "[[insert]]\ncsv = \"bed.csv\"\nplacement = \"tiled\"";
+  expect_error(load_error(base_with(kContactSlot, csv_placed)), kContactSlot + 2,
+               "insert[0].placement", "belongs to region sources");
 }
 
 TEST_F(SceneLoaderTest, CsvAndRegionExclusive) {

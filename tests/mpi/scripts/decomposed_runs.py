@@ -37,6 +37,10 @@ CASE is one of:
                 blocks: final states equal bit for bit, and the particle count and removed
                 count of every time-series row equal one rank's; between a fifth and four
                 fifths of the particles are removed, in more than one row's interval.
+  tiled         tests/mpi/scenes/tiled_pour.toml (20000 grains placed by 5 layers of tiles,
+                each rank creating only its part of them) at N = 1 and at N = 2, 3 and 4 with
+                "auto" dims and at 2 x 2 blocks: the particle ids are those of one rank and the
+                final states equal bit for bit; the time series agree as in same-physics.
   killed-checkpoint
                 tests/mpi/scenes/periodic_gas.toml checkpointed every step, alternately on 2
                 and 3 ranks; each round is killed (SIGKILL to every process group of its
@@ -290,6 +294,18 @@ def leaving(runner):
 SLIDING_WINDOW = range(10, 186)
 FRICTION_SHARE = 0.1  # least |F_t| / |F_n| in the window
 NEWTON_TOLERANCE = 1e-9  # largest |F_0 + F_1| / |F_1|: the contact is each grain's only force
+
+
+def tiled(runner):
+    scene = SCENES / "tiled_pour.toml"
+    reference = runner.run("tiled_n1", scene, 1)
+    for name, ranks, setting in (("tiled_auto_n2", 2, 'decomposition.dims="auto"'),
+                                 ("tiled_auto_n3", 3, 'decomposition.dims="auto"'),
+                                 ("tiled_auto_n4", 4, 'decomposition.dims="auto"'),
+                                 ("tiled_blocks_2x2", 4, "decomposition.dims=[2,2,1]")):
+        out = runner.run(name, scene, ranks, setting)
+        compare_states(runner, name, reference, out)
+        compare_series(runner, name, reference, out)
 
 
 def snapshots_by_step(out):
@@ -689,14 +705,15 @@ def main():
     parser.add_argument("--mpirun", required=True)
     parser.add_argument("--work", required=True)
     parser.add_argument("case", choices=["same-physics", "restart", "balance", "momentum",
-                                         "leaving", "sliding-pair", "killed-checkpoint", "tool",
-                                         "bed", "cuda"])
+                                         "leaving", "tiled", "sliding-pair", "killed-checkpoint",
+                                         "tool", "bed", "cuda"])
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     runner = Runner(args.binary, args.mpirun, args.work)
     cases = {"same-physics": same_physics, "restart": restart, "balance": balance,
-             "momentum": momentum, "leaving": leaving, "sliding-pair": sliding_pair,
+             "momentum": momentum, "leaving": leaving, "tiled": tiled,
+             "sliding-pair": sliding_pair,
              "killed-checkpoint": killed_checkpoint, "tool": tool, "bed": bed, "cuda": cuda}
     if cases[args.case](runner) == SKIPPED:
         return SKIPPED
