@@ -1,19 +1,28 @@
-// Box insertion speed: random sequential insertion of `count` spheres of radius 1 ± 0.5 mm in a
-// cube at a solid fraction, placed sequentially and by tiles at each thread count, and the tiled
-// part of one rank of P (its own share of the tiles and the margin it recomputes). Prints a
-// Markdown table: seconds, spheres/s and the spheres held.
+// Box insertion at start-up, as a run does it: `count` spheres of radius 1 ± 0.5 mm at a solid
+// fraction in a box `aspect` times as long along x as across, placed sequentially (all on every
+// rank, then each keeps its share) or by tiles (each rank places its part, comm/TiledParts.hpp),
+// on however many ranks this runs, with the OpenMP threads OMP_NUM_THREADS gives. Prints one
+// Markdown row: placement, ranks, threads, the largest share, the slowest rank's seconds,
+// spheres/s over all ranks and the largest peak resident memory of a rank; or why the box
+// could not hold the spheres (exit 1).
+#include <mpi.h>
+#include <sys/resource.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <vector>
+#include <string>
 
 #if defined(GPUDEM_HAVE_OPENMP)
 #include <omp.h>
 #endif
 
+#include "comm/TiledParts.hpp"
+#include "core/InputError.hpp"
 #include "core/ParticleSources.hpp"
+#include "core/RowShare.hpp"
 
 namespace gpudem {
 namespace {
@@ -21,11 +30,11 @@ namespace {
 /// Mean volume of a sphere of radius uniform on [0.5, 1.5] mm: (4/3)π E[r³] [m³].
 constexpr double kMeanSphereVolume = 5.2360e-9;
 
-Scene cube_scene(double count, double fraction, Placement placement) {
-  const double side = std::cbrt(count * kMeanSphereVolume / fraction);
+Scene box_scene(double count, double fraction, double aspect, Placement placement) {
+  const double side = std::cbrt(count * kMeanSphereVolume / fraction / aspect);
   Scene scene;
   scene.file = "<bench>";
-  scene.domain.max = {side, side, side};
+  scene.domain.max = {aspect * side, side, side};
   scene.materials.push_back({"grain", 2500.0});
   ParticleSource source;
   source.region_max = scene.domain.max;
@@ -37,22 +46,24 @@ Scene cube_scene(double count, double fraction, Placement placement) {
   return scene;
 }
 
-void set_threads(int threads) {
-#if defined(GPUDEM_HAVE_OPENMP)
-  omp_set_num_threads(threads);
-#else
-  (void)threads;
-#endif
+/// This rank's share, as the run's start-up makes it.
+ParticleStore start_share(MPI_Comm comm, const Scene& scene, int rank, int ranks) {
+  if (tiled_box_is_the_only_source(scene)) return create_tiled_part(comm, scene);
+  ParticleStore all;
+  create_particles(scene, all);
+  return share_of(all, rank, ranks);
 }
 
-template <class Create>
-void time_row(const char* what, int threads, const Create& create) {
-  set_threads(threads);
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::size_t spheres = create();
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("| %s | %d | %zu | %.3f | %.3g |\n", what, threads, spheres, s, spheres / s);
-  std::fflush(stdout);
+double peak_resident_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+double max_over_ranks(double x) {
+  double all = 0;
+  MPI_Allreduce(&x, &all, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return all;
 }
 
 }  // namespace
@@ -60,40 +71,57 @@ void time_row(const char* what, int threads, const Create& create) {
 
 int main(int argc, char** argv) {
   using namespace gpudem;
-  double count = 1e6, fraction = 0.3;
-  std::vector<int> threads{1, 2}, parts{4, 16};
-  bool sequential = true;
-  CLI::App app{"Box insertion speed, sequential and tiled"};
+  MPI_Init(&argc, &argv);
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  double count = 1e6, fraction = 0.3, aspect = 1;
+  std::string placement = "tiled";
+  bool header = false;
+  CLI::App app{"Box insertion at start-up, sequential or tiled, on the ranks this runs on"};
   app.add_option("--count", count, "spheres to insert")->check(CLI::Range(1.0, 4e9));
-  app.add_option("--fraction", fraction, "solid fraction of the cube")->check(CLI::Range(0.01, 0.4));
-  app.add_option("--threads", threads, "OpenMP thread counts");
-  app.add_option("--parts", parts, "rank counts whose middle part is timed (tiled)");
-  app.add_flag("!--no-sequential", sequential, "skip the sequential placement");
-  CLI11_PARSE(app, argc, argv);
-  std::printf("%.3g spheres of radius 1 ± 0.5 mm in a cube at a solid fraction of %.2f\n\n", count,
-              fraction);
-  std::printf("| placement | threads | spheres held | seconds | spheres/s |\n|---|---|---|---|---|\n");
-  for (const int t : threads) {
-    if (sequential)
-      time_row("sequential", t, [&] {
-        ParticleStore store;
-        create_particles(cube_scene(count, fraction, Placement::Sequential), store);
-        return store.size();
-      });
-    time_row("tiled", t, [&] {
-      ParticleStore store;
-      create_particles(cube_scene(count, fraction, Placement::Tiled), store);
-      return store.size();
-    });
-    for (const int p : parts) {
-      char what[48];
-      std::snprintf(what, sizeof what, "tiled, part %d of %d", p / 2, p);
-      time_row(what, t, [&] {
-        return create_particle_part(cube_scene(count, fraction, Placement::Tiled),
-                                    FilePart{p / 2, p})
-            .size();
-      });
-    }
+  app.add_option("--fraction", fraction, "solid fraction of the box")->check(CLI::Range(0.01, 0.4));
+  app.add_option("--aspect", aspect, "length along x over the other edges")
+      ->check(CLI::Range(1.0, 1e3));
+  app.add_option("--placement", placement, "sequential or tiled")
+      ->check(CLI::IsMember({"sequential", "tiled"}));
+  app.add_flag("--header", header, "print the table's header first");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = rank == 0 ? app.exit(e) : 1;
+    MPI_Finalize();
+    return code;
   }
+  const Scene scene = box_scene(count, fraction, aspect,
+                                placement == "tiled" ? Placement::Tiled : Placement::Sequential);
+  int threads = 1;
+#if defined(GPUDEM_HAVE_OPENMP)
+  threads = omp_get_max_threads();
+#endif
+  MPI_Barrier(MPI_COMM_WORLD);
+  const auto t0 = std::chrono::steady_clock::now();
+  ParticleStore share;
+  try {
+    share = start_share(MPI_COMM_WORLD, scene, rank, ranks);
+  } catch (const InputError& e) {  // a region too full (on every rank alike)
+    if (rank == 0)
+      std::printf("| %s | %d | %d | failed: %s |\n", placement.c_str(), ranks, threads, e.what());
+    MPI_Finalize();
+    return 1;
+  }
+  const double seconds =
+      max_over_ranks(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  const double largest_share = max_over_ranks(static_cast<double>(share.size()));
+  const double resident = max_over_ranks(peak_resident_mib());
+  if (rank == 0) {
+    if (header)
+      std::printf(
+          "| placement | ranks | threads | largest share | seconds | spheres/s | peak memory per "
+          "rank [MiB] |\n|---|---|---|---|---|---|---|\n");
+    std::printf("| %s | %d | %d | %.0f | %.3f | %.3g | %.0f |\n", placement.c_str(), ranks, threads,
+                largest_share, seconds, count / seconds, resident);
+  }
+  MPI_Finalize();
   return 0;
 }

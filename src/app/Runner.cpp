@@ -18,6 +18,7 @@
 #include "comm/OutputDirectory.hpp"
 #include "comm/SnapshotQueue.hpp"
 #include "comm/StartupShares.hpp"
+#include "comm/TiledParts.hpp"
 #include "comm/TimeSeriesWriter.hpp"
 #include "core/ExactDecimal.hpp"
 #include "core/InputError.hpp"
@@ -484,10 +485,7 @@ StartShare load_start_share(const Scene& scene, const RunOptions& options, const
       return part;
     });
   } else if (tiled_box_is_the_only_source(scene)) {
-    start.created =
-        agree_on_input(mpi.comm(), [&] { return create_particle_part(scene, FilePart{rank, ranks}); });
-    const ParticleId first_id = ids_before_rank(mpi.comm(), start.created.size());
-    for (ParticleId& id : start.created.id) id += first_id;
+    start.created = create_tiled_part(mpi.comm(), scene);
   } else {
     ParticleStore all;
     create_particles(scene, all, bed.reader());

@@ -8,8 +8,10 @@ add_library(gpudem_comm ${GPUDEM_LIBRARY_TYPE}
   comm/SnapshotQueue.cpp
   comm/SnapshotWriter.cpp
   comm/StartupShares.cpp
+  comm/TiledParts.cpp
   comm/TimeSeriesWriter.cpp)
 target_include_directories(gpudem_comm PUBLIC ${HDF5_INCLUDE_DIRS})
 target_compile_definitions(gpudem_comm PUBLIC ${HDF5_DEFINITIONS})
-target_link_libraries(gpudem_comm PUBLIC gpudem_base gpudem_decomposition MPI::MPI_CXX
+target_link_libraries(gpudem_comm PUBLIC gpudem_base gpudem_decomposition gpudem_particles
+                      MPI::MPI_CXX
                       ${HDF5_C_LIBRARIES})

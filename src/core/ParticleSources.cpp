@@ -207,14 +207,11 @@ void insert_box_sequential(const Scene& scene, std::size_t i, ParticleStore& sto
   }
 }
 
-/// Box source i, checked, then placed sequentially or by tiles (part `part` of the tiles).
-void insert_box(const Scene& scene, std::size_t i, ParticleStore& store, ParticleId& next_id,
-                FilePart part = {}) {
-  check_material(scene, i);
-  check_distribution(scene, i);
-  check_source_size(scene, i);
+/// Box source i, checked, then placed sequentially or by tiles.
+void insert_box(const Scene& scene, std::size_t i, ParticleStore& store, ParticleId& next_id) {
+  check_box_source(scene, i);
   if (scene.sources[i].placement == Placement::Tiled)
-    insert_tiled_box(scene, i, part, store, next_id);
+    insert_tiled_box(scene, i, store, next_id);
   else
     insert_box_sequential(scene, i, store, next_id);
 }
@@ -391,13 +388,10 @@ bool tiled_box_is_the_only_source(const Scene& scene) {
          scene.sources[0].placement == Placement::Tiled;
 }
 
-ParticleStore create_particle_part(const Scene& scene, FilePart part) {
-  if (!tiled_box_is_the_only_source(scene))
-    throw std::logic_error("create_particle_part: the scene's one source must be a tiled box");
-  ParticleStore store;
-  ParticleId next_id = 0;
-  insert_box(scene, 0, store, next_id, part);
-  return store;
+void check_box_source(const Scene& scene, std::size_t i) {
+  check_material(scene, i);
+  check_distribution(scene, i);
+  check_source_size(scene, i);
 }
 
 std::vector<double> sample_radii(const RadiusDistribution& dist, std::size_t count,

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "core/ParticleStore.hpp"
-#include "core/RowShare.hpp"
 #include "core/Scene.hpp"
 
 namespace gpudem {
@@ -22,11 +21,11 @@ using BedReader = std::function<ParticleStore(const std::string& bed_file)>;
 /// keep their global ids; the other sources' particles get consecutive ids starting after the
 /// bed's largest id, or at store.size() without a bed source.
 ///
-/// A box source placed sequentially (the default) samples all its radii first (`count` of them, or until their volume reaches
-/// volume_fraction × region volume) and places them largest first by random sequential
-/// insertion: uniform random centres keeping the whole sphere inside the region, rejecting any
-/// overlap with particles already in `store`; at most 1000 tries per particle. The random
-/// stream is std::mt19937_64 seeded from scene.simulation.seed and the source index, so a
+/// A box source placed sequentially (the default) samples all its radii first (`count` of them, or
+/// until their volume reaches volume_fraction × region volume) and places them largest first by
+/// random sequential insertion: uniform random centres keeping the whole sphere inside the region,
+/// rejecting any overlap with particles already in `store`; at most 1000 tries per particle. The
+/// random stream is std::mt19937_64 seeded from scene.simulation.seed and the source index, so a
 /// scene always gives the same particles. A tiled box source is placed by insert_tiled_box
 /// (core/TiledInsertion.hpp): the same random sequential insertion tile by tile, the same
 /// particles on any number of ranks and threads. Velocity = source velocity, angular velocity 0.
@@ -46,15 +45,13 @@ using BedReader = std::function<ParticleStore(const std::string& bed_file)>;
 void create_particles(const Scene& scene, ParticleStore& store, const BedReader& read_bed = {});
 
 /// Whether the scene's particles all come from one box source placed by tiles: then each rank
-/// can create only its part of them (create_particle_part).
+/// can place only its part of them (comm/TiledParts.hpp).
 bool tiled_box_is_the_only_source(const Scene& scene);
 
-/// Part `part` of the particles of a scene whose one source is a tiled box
-/// (tiled_box_is_the_only_source): those of the part's near-equal share of the tiles, in
-/// create_particles' order, with ids from 0. The parts of all part.count concatenated are
-/// create_particles' particles, ids shifted by the sizes of the parts before. Throws as
-/// create_particles does; std::logic_error for another scene.
-ParticleStore create_particle_part(const Scene& scene, FilePart part);
+/// Refuses box source i when it cannot be placed: a material the scene lacks, a distribution
+/// that cannot be sampled or may give radii <= 0, neither a count nor a volume fraction in
+/// (0, 1), or more particles than one source may hold. Throws InputError naming its key.
+void check_box_source(const Scene& scene, std::size_t i);
 
 /// Draws `count` radii from `dist` [m]: uniform on [mean - spread, mean + spread]; normal
 /// (mean, stddev) redrawn until within [min, max]; or values[k] with probability

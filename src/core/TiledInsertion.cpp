@@ -7,6 +7,7 @@
 #include <optional>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,61 +17,6 @@
 #include "core/SphereHash.hpp"
 
 namespace gpudem {
-
-InsertionTiles::InsertionTiles(Vec3 lo, Vec3 hi, double min_edge) : lo_(lo), hi_(hi) {
-  constexpr double kMaxTiles = 2147483647.0;
-  double edge = min_edge;
-  for (;;) {
-    double tiles = 1;
-    for (int k = 0; k < 3; ++k) {
-      n_[k] = std::max<std::int64_t>(1, static_cast<std::int64_t>((axis(hi, k) - axis(lo, k)) / edge));
-      tiles *= static_cast<double>(n_[k]);
-    }
-    if (tiles < kMaxTiles) break;
-    edge *= std::cbrt(2 * tiles / kMaxTiles);
-  }
-  for (int k = 0; k < 3; ++k)
-    axis(edge_, k) = (axis(hi, k) - axis(lo, k)) / static_cast<double>(n_[k]);
-  slab_ = 0;
-  for (int k = 1; k < 3; ++k)
-    if (n_[k] > n_[slab_]) slab_ = k;
-}
-
-InsertionTiles::Coords InsertionTiles::coords(std::size_t tile) const {
-  const int a = (slab_ + 1) % 3, b = (slab_ + 2) % 3;
-  const auto na = static_cast<std::size_t>(n_[a]), nb = static_cast<std::size_t>(n_[b]);
-  Coords c{};
-  c[a] = static_cast<std::int64_t>(tile % na);
-  c[b] = static_cast<std::int64_t>(tile / na % nb);
-  c[slab_] = static_cast<std::int64_t>(tile / (na * nb));
-  return c;
-}
-
-std::size_t InsertionTiles::index(const Coords& c) const {
-  const int a = (slab_ + 1) % 3, b = (slab_ + 2) % 3;
-  return static_cast<std::size_t>(c[a] + n_[a] * (c[b] + n_[b] * c[slab_]));
-}
-
-bool InsertionTiles::contains(const Coords& c) const {
-  for (int k = 0; k < 3; ++k)
-    if (c[k] < 0 || c[k] >= n_[k]) return false;
-  return true;
-}
-
-Vec3 InsertionTiles::tile_lo(const Coords& c) const {
-  Vec3 p;
-  for (int k = 0; k < 3; ++k) axis(p, k) = axis(lo_, k) + static_cast<double>(c[k]) * axis(edge_, k);
-  return p;
-}
-
-Vec3 InsertionTiles::tile_hi(const Coords& c) const {
-  Vec3 p;
-  for (int k = 0; k < 3; ++k)  // the last tile ends on the region's face exactly
-    axis(p, k) = c[k] + 1 == n_[k] ? axis(hi_, k)
-                                   : axis(lo_, k) + static_cast<double>(c[k] + 1) * axis(edge_, k);
-  return p;
-}
-
 namespace {
 
 constexpr double pi = 3.14159265358979323846;
@@ -85,7 +31,8 @@ std::uint64_t mix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-/// Random stream `stream` of tile `tile` of source `source` (all ~0: the source's sizing stream).
+/// Random stream `stream` of tile `tile` of source `source`: 0 its radii, 1 + k its centres
+/// in round k (all ~0: the source's sizing stream).
 std::mt19937_64 tile_rng(std::uint64_t seed, std::size_t source, std::uint64_t tile,
                          std::uint64_t stream) {
   return std::mt19937_64(mix64(mix64(mix64(mix64(seed) ^ source) ^ tile) ^ stream));
@@ -93,14 +40,14 @@ std::mt19937_64 tile_rng(std::uint64_t seed, std::size_t source, std::uint64_t t
 
 /// Expected number of spheres of a source, for the tile size: its count, or the volume to
 /// fill over the mean volume of 4096 radii from the source's sizing stream.
-double expected_spheres(const ParticleSource& src, std::uint64_t seed, std::size_t source,
-                        double region_volume) {
+double expected_spheres(const ParticleSource& src, std::uint64_t seed, std::size_t source) {
   if (src.count > 0) return static_cast<double>(src.count);
   std::mt19937_64 rng = tile_rng(seed, source, ~std::uint64_t{0}, ~std::uint64_t{0});
   double mean_volume = 0;
   const std::vector<double> radii = sample_radii(src.radius, 4096, rng);
   for (double r : radii) mean_volume += sphere_volume(r) / static_cast<double>(radii.size());
-  return src.volume_fraction * region_volume / mean_volume;
+  const Vec3 extent = src.region_max - src.region_min;
+  return src.volume_fraction * extent.x * extent.y * extent.z / mean_volume;
 }
 
 /// Tile t's share ⌊N (t+1)/T⌋ − ⌊N t/T⌋ of N spheres (no overflow for N, T < 2^32).
@@ -109,26 +56,18 @@ std::size_t count_share(std::uint64_t count, std::size_t t, std::size_t tiles) {
   return static_cast<std::size_t>(bound(t + 1) - bound(t));
 }
 
-/// One box source being placed: its region, its grid and the range of tiles filled.
-struct TiledSource {
-  const ParticleSource& src;
-  std::uint64_t seed;
-  std::size_t index;
-  InsertionTiles tiles;
-  std::size_t first = 0, last = 0;  ///< tiles filled: [first, last)
-  double r_min = 0, r_max = 0;
-};
-
-/// A tile's radii, largest first, from its stream.
-std::vector<double> tile_radii(const TiledSource& s, std::size_t t, std::mt19937_64& rng) {
+/// Tile t's radii, largest first: its share of the count, or drawn until their volume reaches
+/// volume_fraction × the tile's volume.
+std::vector<double> tile_radii(const ParticleSource& src, const InsertionTiles& tiles,
+                               std::size_t t, std::mt19937_64& rng) {
   std::vector<double> radii;
-  if (s.src.count > 0) {
-    radii = sample_radii(s.src.radius, count_share(s.src.count, t, s.tiles.count()), rng);
+  if (src.count > 0) {
+    radii = sample_radii(src.radius, count_share(src.count, t, tiles.count()), rng);
   } else {
-    const double target = s.src.volume_fraction * s.tiles.tile_volume();
+    const double target = src.volume_fraction * tiles.tile_volume();
     double volume = 0;
     while (volume < target)
-      for (double r : sample_radii(s.src.radius, 16, rng)) {
+      for (double r : sample_radii(src.radius, 16, rng)) {
         if (volume >= target) break;
         radii.push_back(r);
         volume += sphere_volume(r);
@@ -136,42 +75,6 @@ std::vector<double> tile_radii(const TiledSource& s, std::size_t t, std::mt19937
   }
   std::sort(radii.begin(), radii.end(), std::greater<double>());
   return radii;
-}
-
-/// One tile's radii, largest first, and the spheres placed so far.
-struct TileFill {
-  std::vector<double> radii;
-  std::vector<Real4> spheres;
-  bool stuck = false;  ///< a sphere found no free centre: the tile takes no more
-};
-
-/// Indices into `store` of the spheres that a sphere centred in each filled tile could meet:
-/// those whose box, widened by r_max, reaches the tile.
-std::vector<std::vector<std::size_t>> earlier_spheres_by_tile(const TiledSource& s,
-                                                              const ParticleStore& store) {
-  std::vector<std::vector<std::size_t>> near(s.last - s.first);
-  const InsertionTiles& g = s.tiles;
-  const InsertionTiles::Coords first = g.coords(s.first), last = g.coords(s.last - 1);
-  const Vec3 origin = g.lo(), unit = g.edge();
-  for (std::size_t n = 0; n < store.size(); ++n) {
-    const Real4& p = store.position_radius[n];
-    InsertionTiles::Coords lo{}, hi{};
-    for (int k = 0; k < 3; ++k) {
-      const double reach = p.w + s.r_max;
-      lo[k] = static_cast<std::int64_t>(std::floor((axis(xyz(p), k) - reach - axis(origin, k)) / axis(unit, k)));
-      hi[k] = static_cast<std::int64_t>(std::floor((axis(xyz(p), k) + reach - axis(origin, k)) / axis(unit, k)));
-      lo[k] = std::max<std::int64_t>(lo[k], 0);
-      hi[k] = std::min<std::int64_t>(hi[k], g.along(k) - 1);
-    }
-    const int slab = g.slab_axis();
-    lo[slab] = std::max(lo[slab], first[slab]);
-    hi[slab] = std::min(hi[slab], last[slab]);
-    InsertionTiles::Coords c{};
-    for (c[2] = lo[2]; c[2] <= hi[2]; ++c[2])
-      for (c[1] = lo[1]; c[1] <= hi[1]; ++c[1])
-        for (c[0] = lo[0]; c[0] <= hi[0]; ++c[0]) near[g.index(c) - s.first].push_back(n);
-  }
-  return near;
 }
 
 /// Squared distance from `p` to the box [lo, hi].
@@ -184,64 +87,9 @@ double distance2_to_box(Vec3 p, Vec3 lo, Vec3 hi) {
   return d2;
 }
 
-/// The spheres of the filled neighbours of tile c (box [lo, hi]) that a sphere centred in it
-/// could overlap: those closer to the box than their radius plus r_max.
-std::vector<Real4> neighbour_spheres_near(const TiledSource& s, const InsertionTiles::Coords& c,
-                                          Vec3 lo, Vec3 hi, const std::vector<TileFill>& fills) {
-  std::vector<Real4> near;
-  for (std::int64_t dz = -1; dz <= 1; ++dz)
-    for (std::int64_t dy = -1; dy <= 1; ++dy)
-      for (std::int64_t dx = -1; dx <= 1; ++dx) {
-        const InsertionTiles::Coords u{c[0] + dx, c[1] + dy, c[2] + dz};
-        if ((dx | dy | dz) == 0 || !s.tiles.contains(u)) continue;
-        const std::size_t k = s.tiles.index(u);
-        if (k < s.first || k >= s.last) continue;
-        for (const Real4& p : fills[k - s.first].spheres) {
-          const double reach = p.w + s.r_max;
-          if (distance2_to_box(xyz(p), lo, hi) < reach * reach) near.push_back(p);
-        }
-      }
-  return near;
-}
-
-/// Places run `round` of tile t's radii, largest first, at free centres inside both the tile and
-/// the region (shrunk by the radius), avoiding the tile's spheres, those of its neighbours and
-/// the earlier spheres near it; a sphere that finds no free centre leaves the tile stuck.
-void fill_tile(const TiledSource& s, std::size_t t, int round, std::vector<TileFill>& fills,
-               const std::vector<std::size_t>& earlier, const ParticleStore& store) {
-  const InsertionTiles& g = s.tiles;
-  const InsertionTiles::Coords c = g.coords(t);
-  TileFill& fill = fills[t - s.first];
-  const RowRange run = share_of_rows(fill.radii.size(), round, kRounds);
-  if (fill.stuck || run.count == 0) return;
-  const Vec3 tile_lo = g.tile_lo(c), tile_hi = g.tile_hi(c);
-  const std::vector<Real4> near = neighbour_spheres_near(s, c, tile_lo, tile_hi, fills);
-  SphereHash hash(s.r_min, fill.spheres.size() + run.count + near.size() + earlier.size());
-  for (const Real4& p : fill.spheres) hash.insert(xyz(p), p.w);
-  for (const Real4& p : near) hash.insert(xyz(p), p.w);
-  for (std::size_t n : earlier)
-    hash.insert(xyz(store.position_radius[n]), store.position_radius[n].w);
-  std::mt19937_64 rng = tile_rng(s.seed, s.index, t, 1 + round);
-  for (std::size_t n = run.first; n < run.first + run.count; ++n) {
-    const double r = fill.radii[n];
-    Vec3 first, width;
-    for (int k = 0; k < 3; ++k) {
-      axis(first, k) = std::max(axis(tile_lo, k), axis(s.src.region_min, k) + r);
-      axis(width, k) = std::min(axis(tile_hi, k), axis(s.src.region_max, k) - r) - axis(first, k);
-    }
-    const std::optional<Vec3> centre = free_centre(first, width, r, hash, rng);
-    if (!centre) {
-      fill.stuck = true;
-      return;
-    }
-    hash.insert(*centre, r);
-    fill.spheres.push_back({centre->x, centre->y, centre->z, r});
-  }
-}
-
 /// Runs `body(k)` for k in [0, count) on all threads; the first exception is rethrown after.
 template <class Body>
-void for_each_tile(std::size_t count, const Body& body) {
+void on_all_threads(std::size_t count, const Body& body) {
   std::exception_ptr failure;
   const auto n = static_cast<std::int64_t>(count);
 #pragma omp parallel for schedule(dynamic, 16)
@@ -256,46 +104,11 @@ void for_each_tile(std::size_t count, const Body& body) {
   if (failure) std::rethrow_exception(failure);
 }
 
-/// Fills the tiles [s.first, s.last): their radii, then their centres round by round and colour
-/// by colour, the tiles of one colour on all threads.
-std::vector<TileFill> fill_tiles(const TiledSource& s, const ParticleStore& store) {
-  std::vector<TileFill> fills(s.last - s.first);
-  const std::vector<std::vector<std::size_t>> earlier = earlier_spheres_by_tile(s, store);
-  for_each_tile(fills.size(), [&](std::size_t k) {
-    std::mt19937_64 rng = tile_rng(s.seed, s.index, s.first + k, 0);
-    fills[k].radii = tile_radii(s, s.first + k, rng);
-  });
-  for (int round = 0; round < kRounds; ++round)
-    for (int colour = 0; colour < 8; ++colour)
-      for_each_tile(fills.size(), [&](std::size_t k) {
-        const std::size_t t = s.first + k;
-        if (s.tiles.colour(s.tiles.coords(t)) == colour)
-          fill_tile(s, t, round, fills, earlier[k], store);
-      });
-  return fills;
-}
-
 std::string format_number(double x) {
   std::ostringstream s;
   s.precision(4);
   s << x;
   return s.str();
-}
-
-/// The error for tile t, which holds `fill` of the spheres it wanted.
-InputError shortfall(const Scene& scene, const TiledSource& s, std::size_t t, const TileFill& fill) {
-  const InsertionTiles::Coords c = s.tiles.coords(t);
-  double solid = 0;
-  for (const Real4& p : fill.spheres) solid += sphere_volume(p.w);
-  return InputError(
-      scene.file, 0, "insert[" + std::to_string(s.index) + "]",
-      "could only place " + std::to_string(fill.spheres.size()) + " of " +
-          std::to_string(fill.radii.size()) + " particles in tile (" + std::to_string(c[0]) + ", " +
-          std::to_string(c[1]) + ", " + std::to_string(c[2]) + ") of " +
-          std::to_string(s.tiles.along(0)) + " x " + std::to_string(s.tiles.along(1)) + " x " +
-          std::to_string(s.tiles.along(2)) + " (its solid fraction " +
-          format_number(solid / s.tiles.tile_volume()) +
-          "); enlarge the region or lower count/volume_fraction");
 }
 
 }  // namespace
@@ -304,33 +117,181 @@ InsertionTiles insertion_tiles(const Scene& scene, std::size_t i) {
   const ParticleSource& src = scene.sources[i];
   const Vec3 extent = src.region_max - src.region_min;
   const double region_volume = extent.x * extent.y * extent.z;
-  const double expected = expected_spheres(src, scene.simulation.seed, i, region_volume);
+  const double expected = expected_spheres(src, scene.simulation.seed, i);
   const double sized_edge = std::cbrt(region_volume * kSpheresPerTile / expected);
   return InsertionTiles(src.region_min, src.region_max,
                         std::max(2 * max_radius(src.radius), sized_edge));
 }
 
-void insert_tiled_box(const Scene& scene, std::size_t i, FilePart part, ParticleStore& store,
-                      ParticleId& next_id) {
-  const ParticleSource& src = scene.sources[i];
-  TiledSource s{src, scene.simulation.seed, i, insertion_tiles(scene, i)};
-  s.r_min = min_radius(src.radius);
-  s.r_max = max_radius(src.radius);
-  const RowRange own = part.rows_of(s.tiles.count());
+TiledFill::TiledFill(const Scene& scene, std::size_t i, FilePart part, const ParticleStore& earlier)
+    : scene_(scene),
+      src_(scene.sources[i]),
+      index_(i),
+      tiles_(insertion_tiles(scene, i)),
+      r_min_(min_radius(src_.radius)),
+      r_max_(max_radius(src_.radius)) {
+  const std::size_t layer = tiles_.layer_size(), layers = tiles_.count() / layer;
+  const auto layers_of = [&](int p) { return share_of_rows(layers, p, part.count); };
+  const RowRange own = layers_of(part.index);
   if (own.count == 0) return;
-  const std::size_t layer = s.tiles.layer_size(), layers = s.tiles.count() / layer;
-  const std::size_t first_layer = own.first / layer;
-  const std::size_t last_layer = (own.first + own.count - 1) / layer;
-  s.first = (first_layer - std::min<std::size_t>(first_layer, kTileMarginLayers)) * layer;
-  s.last = std::min<std::size_t>(last_layer + 1 + kTileMarginLayers, layers) * layer;
-  const std::vector<TileFill> fills = fill_tiles(s, store);
-  for (std::size_t t = own.first; t < own.first + own.count; ++t)
-    if (fills[t - s.first].stuck) throw shortfall(scene, s, t, fills[t - s.first]);
-  const double density = scene.materials[src.material].density;
-  for (std::size_t t = own.first; t < own.first + own.count; ++t)
-    for (const Real4& p : fills[t - s.first].spheres)
-      store.add(next_id++, xyz(p), p.w, src.material, src.velocity,
+  own_first_ = own.first * layer;
+  own_count_ = own.count * layer;
+  for (int p = part.index - 1; p >= 0 && neighbour_[0] < 0; --p)
+    if (layers_of(p).count > 0) neighbour_[0] = p;
+  for (int p = part.index + 1; p < part.count && neighbour_[1] < 0; ++p)
+    if (layers_of(p).count > 0) neighbour_[1] = p;
+  const std::size_t first_layer = own.first - (neighbour_[0] >= 0 ? 1 : 0);
+  const std::size_t end_layer = own.first + own.count + (neighbour_[1] >= 0 ? 1 : 0);
+  first_held_ = first_layer * layer;
+  tiles_held_.resize((end_layer - first_layer) * layer);
+  on_all_threads(own_count_, [&](std::size_t k) {
+    std::mt19937_64 rng = tile_rng(scene_.simulation.seed, index_, own_first_ + k, 0);
+    tile(own_first_ + k).radii = tile_radii(src_, tiles_, own_first_ + k, rng);
+  });
+  copy_earlier_spheres(earlier);
+}
+
+void TiledFill::copy_earlier_spheres(const ParticleStore& earlier) {
+  const Vec3 origin = tiles_.lo(), edge = tiles_.edge();
+  const InsertionTiles::Coords first = tiles_.coords(first_held_);
+  const InsertionTiles::Coords last = tiles_.coords(first_held_ + tiles_held_.size() - 1);
+  const int slab = tiles_.slab_axis();
+  for (const Real4& p : earlier.position_radius) {
+    InsertionTiles::Coords lo{}, hi{};
+    for (int k = 0; k < 3; ++k) {  // the tiles whose box the sphere's, widened by r_max, meets
+      const double reach = p.w + r_max_;
+      lo[k] = std::max<std::int64_t>(
+          0, static_cast<std::int64_t>(
+                 std::floor((axis(xyz(p), k) - reach - axis(origin, k)) / axis(edge, k))));
+      hi[k] = std::min<std::int64_t>(
+          tiles_.along(k) - 1, static_cast<std::int64_t>(std::floor(
+                                   (axis(xyz(p), k) + reach - axis(origin, k)) / axis(edge, k))));
+    }
+    lo[slab] = std::max(lo[slab], first[slab]);
+    hi[slab] = std::min(hi[slab], last[slab]);
+    InsertionTiles::Coords c{};
+    for (c[2] = lo[2]; c[2] <= hi[2]; ++c[2])
+      for (c[1] = lo[1]; c[1] <= hi[1]; ++c[1])
+        for (c[0] = lo[0]; c[0] <= hi[0]; ++c[0]) tile(tiles_.index(c)).earlier.push_back(p);
+  }
+}
+
+std::vector<Real4> TiledFill::neighbour_spheres_near(std::size_t t, Vec3 lo, Vec3 hi) const {
+  const InsertionTiles::Coords c = tiles_.coords(t);
+  std::vector<Real4> near;
+  for (std::int64_t dz = -1; dz <= 1; ++dz)
+    for (std::int64_t dy = -1; dy <= 1; ++dy)
+      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        const InsertionTiles::Coords u{c[0] + dx, c[1] + dy, c[2] + dz};
+        if ((dx | dy | dz) == 0 || !tiles_.contains(u) || !holds(tiles_.index(u))) continue;
+        for (const Real4& p : tile(tiles_.index(u)).spheres) {
+          const double reach = p.w + r_max_;
+          if (distance2_to_box(xyz(p), lo, hi) < reach * reach) near.push_back(p);
+        }
+      }
+  return near;
+}
+
+/// Places run `round` of tile t's radii, largest first, at free centres inside both the tile
+/// and the region (shrunk by the radius), avoiding the tile's spheres, those of its neighbours
+/// that a sphere in it could reach (closer to it than their radius plus r_max) and the earlier
+/// spheres; a sphere that finds no free centre leaves the tile stuck.
+void TiledFill::fill_tile(std::size_t t, int round) {
+  Tile& fill = tile(t);
+  fill.last_phase_first = fill.spheres.size();
+  const RowRange run = share_of_rows(fill.radii.size(), round, kRounds);
+  if (fill.stuck || run.count == 0) return;
+  const InsertionTiles::Coords c = tiles_.coords(t);
+  const Vec3 lo = tiles_.tile_lo(c), hi = tiles_.tile_hi(c);
+  const std::vector<Real4> near = neighbour_spheres_near(t, lo, hi);
+  SphereHash hash(r_min_, fill.spheres.size() + run.count + near.size() + fill.earlier.size());
+  for (const std::vector<Real4>& spheres :
+       {std::cref(fill.spheres), std::cref(near), std::cref(fill.earlier)})
+    for (const Real4& p : spheres) hash.insert(xyz(p), p.w);
+  std::mt19937_64 rng = tile_rng(scene_.simulation.seed, index_, t, 1 + round);
+  for (std::size_t n = run.first; n < run.first + run.count; ++n) {
+    const double r = fill.radii[n];
+    Vec3 first, width;
+    for (int k = 0; k < 3; ++k) {
+      axis(first, k) = std::max(axis(lo, k), axis(src_.region_min, k) + r);
+      axis(width, k) = std::min(axis(hi, k), axis(src_.region_max, k) - r) - axis(first, k);
+    }
+    const std::optional<Vec3> centre = free_centre(first, width, r, hash, rng);
+    if (!centre) {
+      fill.stuck = true;
+      return;
+    }
+    hash.insert(*centre, r);
+    fill.spheres.push_back({centre->x, centre->y, centre->z, r});
+  }
+}
+
+void TiledFill::fill_phase(int phase) {
+  if (phase < 0 || phase >= kTilePhases) throw std::out_of_range("TiledFill: no such phase");
+  last_colour_ = phase % 8;
+  on_all_threads(own_count_, [&](std::size_t k) {
+    const std::size_t t = own_first_ + k;
+    if (tiles_.colour(tiles_.coords(t)) == last_colour_) fill_tile(t, phase / 8);
+  });
+}
+
+std::size_t TiledFill::boundary_layer_first(LayerSide side) const {
+  return side == LayerSide::Below ? own_first_ : own_first_ + own_count_ - tiles_.layer_size();
+}
+
+std::vector<BoundarySphere> TiledFill::boundary(LayerSide side) const {
+  std::vector<BoundarySphere> out;
+  if (own_count_ == 0) return out;
+  const std::size_t first = boundary_layer_first(side);
+  for (std::size_t t = first; t < first + tiles_.layer_size(); ++t) {
+    if (tiles_.colour(tiles_.coords(t)) != last_colour_) continue;
+    const Tile& fill = tile(t);
+    for (std::size_t n = fill.last_phase_first; n < fill.spheres.size(); ++n)
+      out.push_back({t, fill.spheres[n]});
+  }
+  return out;
+}
+
+void TiledFill::receive(LayerSide side, const std::vector<BoundarySphere>& spheres) {
+  if (spheres.empty()) return;
+  if (neighbour(side) < 0) throw std::logic_error("TiledFill::receive: no neighbour there");
+  const std::size_t layer = tiles_.layer_size();
+  const std::size_t first = side == LayerSide::Below ? first_held_ : own_first_ + own_count_;
+  for (const BoundarySphere& b : spheres) {
+    if (b.tile < first || b.tile >= first + layer)
+      throw std::logic_error("TiledFill::receive: a sphere outside the mirrored layer");
+    tile(b.tile).spheres.push_back(b.sphere);
+  }
+}
+
+void TiledFill::append_to(ParticleStore& store, ParticleId& next_id) const {
+  for (std::size_t t = own_first_; t < own_first_ + own_count_; ++t) {
+    const Tile& fill = tile(t);
+    if (!fill.stuck) continue;
+    const InsertionTiles::Coords c = tiles_.coords(t);
+    double solid = 0;
+    for (const Real4& p : fill.spheres) solid += sphere_volume(p.w);
+    throw InputError(scene_.file, 0, "insert[" + std::to_string(index_) + "]",
+                     "could only place " + std::to_string(fill.spheres.size()) + " of " +
+                         std::to_string(fill.radii.size()) + " particles in tile (" +
+                         std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " +
+                         std::to_string(c[2]) + ") of " + std::to_string(tiles_.along(0)) + " x " +
+                         std::to_string(tiles_.along(1)) + " x " + std::to_string(tiles_.along(2)) +
+                         " (its solid fraction " + format_number(solid / tiles_.tile_volume()) +
+                         "); enlarge the region or lower count/volume_fraction");
+  }
+  const double density = scene_.materials[src_.material].density;
+  for (std::size_t t = own_first_; t < own_first_ + own_count_; ++t)
+    for (const Real4& p : tile(t).spheres)
+      store.add(next_id++, xyz(p), p.w, src_.material, src_.velocity,
                 1.0 / sphere_mass(density, p.w));
+}
+
+void insert_tiled_box(const Scene& scene, std::size_t i, ParticleStore& store,
+                      ParticleId& next_id) {
+  TiledFill fill(scene, i, FilePart{}, store);
+  for (int phase = 0; phase < kTilePhases; ++phase) fill.fill_phase(phase);
+  fill.append_to(store, next_id);
 }
 
 }  // namespace gpudem

@@ -1,34 +1,33 @@
 #pragma once
 /// Tiled random sequential insertion: a box source filled tile by tile, in parallel, giving the
-/// same particles on any number of ranks and threads, each rank creating only its part.
+/// same particles on any number of ranks and threads, each rank placing only its part.
 ///
 /// The region is cut into a grid of equal tiles whose edges are at least the largest diameter
-/// 2 r_max (sized for about kSpheresPerTile spheres each). A tile's spheres have their centres
-/// in it, so they reach at most r_max beyond it: two tiles with a tile between them can never
-/// hold overlapping spheres. The tiles are coloured by the parity of their three indices
-/// (8 colours, no two tiles of one colour adjacent). Each tile draws its radii from its own
-/// random stream and sorts them, largest first; then, in each of kRounds rounds, the tiles of
-/// each colour in turn place the round's run of their radii at random free centres (random
-/// sequential insertion), avoiding the spheres already placed in the tile and its 26
-/// neighbours and the store's earlier particles. Tiles of one colour are independent, so they
-/// fill in any order on any thread.
+/// 2 r_max (sized for about kSpheresPerTile spheres each; core/InsertionTiles.hpp). A tile's
+/// spheres have their centres in it, so they reach at most r_max beyond it: two tiles with a
+/// tile between them never hold overlapping spheres. The tiles are coloured by the parities of
+/// their three indices (8 colours, no two neighbours alike). Each tile draws its radii from its
+/// own random stream and sorts them, largest first; then in each of kRounds rounds the tiles
+/// of each colour in turn (one phase) place the round's run of their radii at random free
+/// centres (random sequential insertion), avoiding the spheres already in the tile and its 26
+/// neighbours and the earlier sources' particles. Tiles of one colour are independent, so a
+/// phase fills them in any order, on any thread.
 ///
-/// A part (rank `index` of `count`) owns a near-equal share of the tiles in their order, which
-/// runs slowest along the axis with the most tiles (layers across that slab axis). A tile
-/// depends on the lower-coloured neighbours of its round and on all neighbours of earlier
-/// rounds. The slab axis' parity is the colour's highest bit, so along a chain of dependencies
-/// it drops at most once within a round, and a chain crosses at most 2 kRounds - 1 layers:
-/// a part fills its own layers and that many either side, and its own tiles come out exactly
-/// as in the whole region.
+/// A part (rank `index` of `count`) owns a near-equal share of the layers of tiles across the
+/// axis with the most tiles, and mirrors the layer next to its own on either side: after each
+/// phase, the spheres that phase placed in a part's first and last layers go to the parts
+/// beside it (TiledFill::boundary, TiledFill::receive). Every tile is thus filled with its
+/// neighbours exactly as they are in the whole region at that phase.
 ///
-/// The tile faces leave a mark: over 4 × 10^5 spheres of radius 1 ± 0.5 mm at a solid
-/// fraction of 0.3, the solid volume of the centres lying within 1/16 of a tile of its faces
-/// is 1.5 % below the mean (8 % with one round). Tiles sized for 512 spheres reach a solid
-/// fraction of 0.38, as the sequential placement does (tiles of 128: below 0.34).
-#include <array>
+/// The tile faces leave a faint mark: the large spheres keep a little away from them (about 2 %
+/// less solid volume of centres within 1/16 of a tile of a face, validation.md). A tile's quota
+/// cannot move to a neighbour with room, so the densest fill is a little below the sequential
+/// placement's (0.38 by count for radii 1 ± 0.5 mm; tiles of 128 spheres failed at 0.36).
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
+#include "core/InsertionTiles.hpp"
 #include "core/ParticleStore.hpp"
 #include "core/RowShare.hpp"
 #include "core/Scene.hpp"
@@ -38,63 +37,86 @@ namespace gpudem {
 /// Spheres a tile is sized for (its edges are at least 2 r_max).
 inline constexpr double kSpheresPerTile = 512;
 /// Rounds of the 8 colours; in round k every tile places the k-th of kRounds near-equal runs
-/// of its radii, largest first, so large spheres go first everywhere, as in the sequential
-/// placement.
+/// of its radii, so the large spheres go first everywhere, as in the sequential placement.
 inline constexpr int kRounds = 8;
-/// Layers of tiles a part fills beyond its own on either side (see above).
-inline constexpr int kTileMarginLayers = 2 * kRounds - 1;
-
-/// The tile grid over a box region [lo, hi]: n[k] equal tiles along axis k, in the order that
-/// runs fastest along axis (slab + 1) % 3 and slowest along `slab`.
-class InsertionTiles {
- public:
-  using Coords = std::array<std::int64_t, 3>;
-
-  /// Tiles of edge at least `min_edge` (fewer than 2^31 of them); one tile along an axis
-  /// shorter than `min_edge`.
-  InsertionTiles(Vec3 lo, Vec3 hi, double min_edge);
-
-  std::size_t count() const { return layer_size() * static_cast<std::size_t>(n_[slab_]); }
-  /// Tiles in one layer across the slab axis.
-  std::size_t layer_size() const {
-    return static_cast<std::size_t>(n_[(slab_ + 1) % 3]) * static_cast<std::size_t>(n_[(slab_ + 2) % 3]);
-  }
-  int slab_axis() const { return slab_; }
-  std::int64_t along(int k) const { return n_[k]; }
-  Coords coords(std::size_t tile) const;
-  std::size_t index(const Coords& c) const;
-  bool contains(const Coords& c) const;
-  Vec3 tile_lo(const Coords& c) const;
-  Vec3 tile_hi(const Coords& c) const;
-  Vec3 lo() const { return lo_; }
-  Vec3 edge() const { return edge_; }
-  double tile_volume() const { return edge_.x * edge_.y * edge_.z; }
-  /// Colour 0..7 of a tile: the parities of its indices, the slab axis' the highest bit.
-  int colour(const Coords& c) const {
-    return static_cast<int>((c[(slab_ + 1) % 3] & 1) | (c[(slab_ + 2) % 3] & 1) << 1 |
-                            (c[slab_] & 1) << 2);
-  }
-
- private:
-  Vec3 lo_, hi_, edge_;
-  Coords n_{};
-  int slab_ = 2;
-};
+/// Phases of a tiled placement: round p / 8, colour p % 8.
+inline constexpr int kTilePhases = 8 * kRounds;
 
 /// The tiles of box source `i` of `scene`: edges of at least 2 r_max and about kSpheresPerTile
-/// spheres each (its count, or its volume to fill over the mean volume of 4096 radii drawn from
-/// a stream of its own).
+/// spheres each (its count, or its volume to fill over the mean volume of 4096 radii drawn
+/// from a stream of its own).
 InsertionTiles insertion_tiles(const Scene& scene, std::size_t i);
 
-/// Tiled placement of box source `i` of `scene` (checked by the caller: material, distribution,
-/// size): appends the particles of `part`'s tiles, tile by tile, with ids from `next_id`.
-/// The particles of all parts in order are those of the whole region (part {0, 1}), whatever
-/// the number of parts and threads. A tile's radii are `count` shared out over the tiles
-/// (⌊N (t+1)/T⌋ − ⌊N t/T⌋ for tile t of T) or drawn until their volume reaches
-/// volume_fraction × the tile's volume, placed largest first. Spheres of `store` that reach
-/// into the region are avoided. Throws InputError naming the source and the first tile of the
-/// part that could not hold its spheres.
-void insert_tiled_box(const Scene& scene, std::size_t i, FilePart part, ParticleStore& store,
-                      ParticleId& next_id);
+/// A sphere placed in tile `tile` (its index in the grid) of a part's first or last layer.
+struct BoundarySphere {
+  std::uint64_t tile;
+  Real4 sphere;
+};
+
+enum class LayerSide { Below, Above };
+
+/// The tiled placement of box source `i` by one part: its own layers of tiles and the layer
+/// beside them on either side (mirrored from the parts that own them). Run the kTilePhases
+/// phases in order on every part, passing each part's boundary spheres to its neighbours after
+/// each phase, then take the particles with append_to.
+class TiledFill {
+ public:
+  /// Part `part` of box source i of `scene` (checked by check_box_source); `earlier` holds the
+  /// spheres to avoid (those of earlier sources), of which it copies the ones near the region.
+  TiledFill(const Scene& scene, std::size_t i, FilePart part, const ParticleStore& earlier);
+
+  const InsertionTiles& tiles() const { return tiles_; }
+  /// The part owning the layer beside this part's own on `side`; -1 for none (the region's end
+  /// or a part without layers).
+  int neighbour(LayerSide side) const { return neighbour_[static_cast<int>(side)]; }
+
+  /// Phase `phase` (< kTilePhases, in order): the own tiles of its colour place its round's run
+  /// of their radii, on all OpenMP threads.
+  void fill_phase(int phase);
+  /// The spheres the last phase placed in the own layer on `side` (for neighbour(side)).
+  std::vector<BoundarySphere> boundary(LayerSide side) const;
+  /// Adds to the mirrored layer on `side` the spheres that neighbour(side) placed there.
+  void receive(LayerSide side, const std::vector<BoundarySphere>& spheres);
+
+  /// Appends the own tiles' particles, tile by tile, with ids from `next_id`; velocity the
+  /// source's, mass from its material. Throws InputError naming the source and the first own
+  /// tile whose spheres found no room.
+  void append_to(ParticleStore& store, ParticleId& next_id) const;
+
+ private:
+  struct Tile {
+    std::vector<double> radii;         ///< largest first
+    std::vector<Real4> spheres;        ///< placed so far
+    std::vector<Real4> earlier;        ///< earlier sources' spheres that reach it
+    std::size_t last_phase_first = 0;  ///< spheres placed before the tile's last phase
+    bool stuck = false;                ///< a sphere found no free centre: it takes no more
+  };
+
+  void fill_tile(std::size_t t, int round);
+  std::vector<Real4> neighbour_spheres_near(std::size_t t, Vec3 lo, Vec3 hi) const;
+  void copy_earlier_spheres(const ParticleStore& earlier);
+  Tile& tile(std::size_t t) { return tiles_held_[t - first_held_]; }
+  const Tile& tile(std::size_t t) const { return tiles_held_[t - first_held_]; }
+  bool holds(std::size_t t) const {
+    return t >= first_held_ && t < first_held_ + tiles_held_.size();
+  }
+  /// First tile of the own layer on `side`.
+  std::size_t boundary_layer_first(LayerSide side) const;
+
+  const Scene& scene_;
+  const ParticleSource& src_;
+  std::size_t index_;
+  InsertionTiles tiles_;
+  double r_min_, r_max_;
+  std::size_t own_first_ = 0, own_count_ = 0;  ///< own tiles (whole layers)
+  std::size_t first_held_ = 0;                 ///< first tile held (own or mirrored)
+  std::vector<Tile> tiles_held_;
+  int neighbour_[2] = {-1, -1};
+  int last_colour_ = -1;
+};
+
+/// Tiled placement of box source `i` over its whole region, appending its particles with ids
+/// from `next_id`, avoiding the spheres of `store`: one part, all phases.
+void insert_tiled_box(const Scene& scene, std::size_t i, ParticleStore& store, ParticleId& next_id);
 
 }  // namespace gpudem

@@ -65,12 +65,14 @@ inline void expect_no_overlaps(const ParticleStore& store, std::size_t first = 0
   std::vector<std::size_t> order(store.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   const auto& p = store.position_radius;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return p[a].x < p[b].x; });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return p[a].x < p[b].x; });
   double r_max = 0;
   for (const Real4& q : p) r_max = std::max(r_max, double(q.w));
   std::size_t overlaps = 0;
   for (std::size_t a = 0; a < order.size(); ++a)
-    for (std::size_t b = a + 1; b < order.size() && p[order[b]].x - p[order[a]].x < p[order[a]].w + r_max; ++b) {
+    for (std::size_t b = a + 1;
+         b < order.size() && p[order[b]].x - p[order[a]].x < p[order[a]].w + r_max; ++b) {
       const std::size_t i = order[a], j = order[b];
       if (i < first && j < first) continue;
       const double contact = (p[i].w + p[j].w) * (1 - 1e-12);
