@@ -14,6 +14,7 @@
 #include "app/LoadBalance.hpp"
 #include "app/MemoryReport.hpp"
 #include "app/Progress.hpp"
+#include "app/ThreadCores.hpp"
 #include "comm/Checkpoint.hpp"
 #include "comm/OutputDirectory.hpp"
 #include "comm/SnapshotQueue.hpp"
@@ -570,6 +571,10 @@ int run_scene(const RunOptions& options, const MpiContext& mpi) {
   const std::vector<MemoryUse> memory = memory_over_ranks(mpi, *engine);
   if (banner)
     print_summary(scene, deciding, particle_count, setup, engine.get(), total_bytes(memory), steps);
+  if (!options.quiet && engine->backend_name() == "host") {
+    const std::string crowded = crowded_threads_warning(mpi);
+    if (!crowded.empty()) std::printf("%s\n", crowded.c_str());
+  }
   if (banner && options.verbose) {
     print_memory_report(memory, engine->particle_count());
     std::printf("%s\n", tuning.c_str());

@@ -180,6 +180,28 @@ TEST_F(CommandLine, TimeSplitClocksIntegrationApartFromForces) {
   }
 }
 
+/// A rank whose affinity mask holds fewer cores than its OpenMP threads is warned, with the
+/// mpirun options that give each thread a core; one with a core per thread is not.
+TEST_F(CommandLine, MoreThreadsThanCoresIsWarnedOf) {
+#if !defined(GPUDEM_HAVE_OPENMP)
+  GTEST_SKIP() << "built without OpenMP";
+#endif
+  const std::string args = " " + scene(kValidScene) + " --output-dir " + out() + " 2>&1";
+  const Result crowded = gpudem::test::run_command("OMP_NUM_THREADS=2 taskset -c 0 " +
+                                                   gpudem::test::binary_path() + args);
+  ASSERT_EQ(crowded.exit_code, 0) << crowded.output;
+  EXPECT_NE(crowded.output.find("warning: 1 of 1 rank(s) run more OpenMP threads than the cores "
+                                "they may use (rank 0: 2 threads on 1 core(s))"),
+            std::string::npos)
+      << crowded.output;
+  EXPECT_NE(crowded.output.find("--bind-to none (or --map-by slot:PE=2)"), std::string::npos);
+  fs::remove_all(out());
+  const Result one = gpudem::test::run_command("OMP_NUM_THREADS=1 taskset -c 0 " +
+                                               gpudem::test::binary_path() + args);
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  EXPECT_EQ(one.output.find("OpenMP threads than the cores"), std::string::npos) << one.output;
+}
+
 TEST_F(CommandLine, VerboseAndQuietExcludeEachOther) {
   const Result r = run(scene(kValidScene) + " --output-dir " + out() + " --verbose --quiet");
   EXPECT_EQ(r.exit_code, 2) << r.output;
