@@ -126,9 +126,7 @@ std::vector<double> timeseries_row(double time, std::uint64_t step, const Diagno
 /// with the rank field when asked, and every mesh of the scene with the counts of its setup.
 SnapshotOptions snapshot_options(const Scene& scene, const EngineSetup& setup) {
   SnapshotOptions options;
-  options.rank_field = scene.output.rank_field;
-  options.fields = scene.output.fields;
-  options.single_precision = scene.output.single_precision;
+  options.layout = {scene.output.rank_field, scene.output.fields, scene.output.single_precision};
   for (std::size_t m = 0; m < setup.meshes.size(); ++m)
     options.meshes.push_back({scene.meshes[m].name, setup.meshes[m].mesh.vertices.size(),
                               setup.meshes[m].mesh.triangles.size()});

@@ -111,8 +111,8 @@ void write_snapshot_table(MPI_Comm comm, const H5Calls& h5, const ParallelFile& 
     std::memcpy(names.data() + k * width, rows[k].h5_file.data(), rows[k].h5_file.size());
     times.push_back(rows[k].time);
     counts.push_back(rows[k].count);
-    rank_fields.push_back(rows[k].rank_field ? 1 : 0);
-    fields.push_back(rows[k].fields);
+    rank_fields.push_back(rows[k].layout.rank_field ? 1 : 0);
+    fields.push_back(rows[k].layout.fields);
     precisions.push_back(static_cast<std::uint8_t>(real_precision(rows[k])));
   }
   H5Handle text = h5.handle(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy(snapshot_file)");
@@ -439,7 +439,7 @@ void read_snapshot_table(const Reader& r, std::vector<XdmfSnapshot>& table) {
                         {"snapshot_precision", precisions.size()}});
   for (std::size_t k = 0; k < files.size(); ++k)
     table.push_back(
-        {files[k], times[k], counts[k], rank_fields[k] == 1, fields[k], precisions[k] == 4});
+        {files[k], times[k], counts[k], {rank_fields[k] == 1, fields[k], precisions[k] == 4}});
 }
 
 void read_attributes(const Reader& r, Checkpoint& c) {

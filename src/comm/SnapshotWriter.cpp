@@ -21,13 +21,12 @@ namespace {
 static_assert(sizeof(Real4) == 4 * sizeof(Real) && sizeof(Vec3) == 3 * sizeof(Real),
               "snapshot memory selections assume Real4 and Vec3 hold their values unpadded");
 
-/// The datasets of a snapshot of `p` with field set `fields`: "position", then the fields of
-/// kSnapshotFields in the set. Real values are stored as float64, or float32 with
-/// `single_precision` (HDF5 rounds them as it writes).
-std::vector<FieldSource> field_sources(const ParticleStore& p, std::uint32_t fields,
-                                       bool single_precision) {
+/// The datasets of a snapshot of `p` laid out as `layout`: "position", then the fields of
+/// kSnapshotFields in its set. Real values are stored as float64, or float32 in single
+/// precision (HDF5 rounds them as it writes).
+std::vector<FieldSource> field_sources(const ParticleStore& p, const SnapshotLayout& layout) {
   const hid_t real = native_type<Real>();
-  const hid_t stored = single_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE;
+  const hid_t stored = layout.single_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE;
   const FieldSource optional[] = {
       {kSnapshotFields[0], p.position_radius.data(), real, stored, 1, 4, 3},
       {kSnapshotFields[1], p.velocity_inv_mass.data(), real, stored, 3, 4, 0},
@@ -38,7 +37,7 @@ std::vector<FieldSource> field_sources(const ParticleStore& p, std::uint32_t fie
   static_assert(std::size(optional) == kSnapshotFields.size());
   std::vector<FieldSource> sources{{"position", p.position_radius.data(), real, stored, 3, 4, 0}};
   for (std::size_t k = 0; k < kSnapshotFields.size(); ++k)
-    if ((fields >> k) & 1u) sources.push_back(optional[k]);
+    if ((layout.fields >> k) & 1u) sources.push_back(optional[k]);
   return sources;
 }
 
@@ -151,10 +150,9 @@ void write_snapshot_file(const SnapshotFile& target, const ParticleStore& partic
   const H5Calls h5("snapshot", target.path);
   ParallelFile file(target.comm, h5, target.path);
   const SnapshotOptions& options = target.options;
-  for (const FieldSource& field :
-       field_sources(particles, options.fields, options.single_precision))
+  for (const FieldSource& field : field_sources(particles, options.layout))
     file.write_dataset(field, slice);
-  if (options.rank_field) write_rank_field(target.comm, file, slice);
+  if (options.layout.rank_field) write_rank_field(target.comm, file, slice);
   write_connectivity(file, slice);
   for (std::size_t m = 0; m < options.meshes.size(); ++m)
     write_mesh(target.comm, file, options.meshes[m].name, surfaces[m]);
@@ -206,8 +204,7 @@ void SnapshotWriter::write(const ParticleStore& particles, const std::vector<Mes
   const std::string path = (std::filesystem::path(dir_) / name).string();
   write_snapshot_file({comm_, path, time, step, options_}, particles, slice, meshes);
   files_.push_back(path);
-  written_.push_back(
-      {name, time, slice.total, options_.rank_field, options_.fields, options_.single_precision});
+  written_.push_back({name, time, slice.total, options_.layout});
   publish_xmf();
 }
 

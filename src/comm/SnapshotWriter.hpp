@@ -17,16 +17,13 @@
 
 namespace gpudem {
 
-/// Which datasets the snapshots of one writer hold beside "position", in what precision, and
-/// their names.
+/// What the snapshots of one writer hold beside "position", in what precision, and their names.
 struct SnapshotOptions {
-  bool rank_field = false;  ///< add dataset "rank": the MPI rank owning each particle
+  SnapshotLayout layout;  ///< the datasets beside "position" and their precision
   std::string basename = kParticlesBasename;  ///< files `<basename>_<index>.h5`, `<basename>.xmf`
   /// The mesh walls every snapshot holds, in the order write() gets them: names unique,
   /// non-empty, without '/', neither "." nor ".." and not `basename`.
   std::vector<XdmfMesh> meshes = {};
-  std::uint32_t fields = kAllSnapshotFields;  ///< the datasets of kSnapshotFields to write
-  bool single_precision = false;  ///< real-valued particle datasets as float32, not float64
 };
 
 class SnapshotWriter {

@@ -14,14 +14,19 @@
 
 namespace gpudem {
 
+/// What a snapshot file holds beside dataset "position", and in what precision.
+struct SnapshotLayout {
+  bool rank_field = false;                    ///< dataset "rank": the MPI rank owning each particle
+  std::uint32_t fields = kAllSnapshotFields;  ///< the datasets of kSnapshotFields it holds
+  bool single_precision = false;  ///< real-valued particle datasets in float32, not float64
+};
+
 /// One snapshot as the XDMF document lists it.
 struct XdmfSnapshot {
   std::string h5_file;      ///< HDF5 file name relative to the .xmf
   double time = 0;          ///< simulated time [s]
   std::uint64_t count = 0;  ///< number of particles (all ranks)
-  bool rank_field = false;  ///< the file holds dataset "rank" (owning MPI rank per particle)
-  std::uint32_t fields = kAllSnapshotFields;  ///< the datasets of kSnapshotFields it holds
-  bool single_precision = false;  ///< its real-valued particle datasets are float32, not float64
+  SnapshotLayout layout;    ///< what the file holds
 };
 
 /// A mesh wall as its XDMF document lists it; its counts do not change during a run.
@@ -36,7 +41,7 @@ struct XdmfField {
   const char* name;            ///< dataset name at the file root, also the attribute name
   const char* attribute_type;  ///< "Scalar" or "Vector"
   const char* number_type;     ///< "Float" or "UInt"
-  int precision;               ///< bytes per value (of a Float field: in double precision)
+  int precision;               ///< bytes per value of a UInt field (Float: real_precision)
   int components;              ///< values per particle
 };
 
@@ -44,8 +49,8 @@ struct XdmfField {
 /// the geometry (dataset "position", N×3) and not repeated here.
 inline const std::vector<XdmfField>& xdmf_particle_fields() {
   static const std::vector<XdmfField> fields = {
-      {kSnapshotFields[0], "Scalar", "Float", 8, 1}, {kSnapshotFields[1], "Vector", "Float", 8, 3},
-      {kSnapshotFields[2], "Vector", "Float", 8, 3}, {kSnapshotFields[3], "Vector", "Float", 8, 3},
+      {kSnapshotFields[0], "Scalar", "Float", 0, 1}, {kSnapshotFields[1], "Vector", "Float", 0, 3},
+      {kSnapshotFields[2], "Vector", "Float", 0, 3}, {kSnapshotFields[3], "Vector", "Float", 0, 3},
       {kSnapshotFields[4], "Scalar", "UInt", 4, 1},  {kSnapshotFields[5], "Scalar", "UInt", 8, 1},
   };
   return fields;
@@ -53,7 +58,7 @@ inline const std::vector<XdmfField>& xdmf_particle_fields() {
 
 /// Bytes per value of a real-valued particle dataset of `snapshot`.
 inline int real_precision(const XdmfSnapshot& snapshot) {
-  return snapshot.single_precision ? 4 : 8;
+  return snapshot.layout.single_precision ? 4 : 8;
 }
 
 /// The optional attribute of snapshots written with the rank field: the MPI rank that owned
@@ -135,8 +140,8 @@ inline std::string uniform_grid(const XdmfSnapshot& snapshot) {
           "\n        </Geometry>\n";
   const std::vector<XdmfField>& fields = xdmf_particle_fields();
   for (std::size_t k = 0; k < fields.size(); ++k)
-    if ((snapshot.fields >> k) & 1u) grid += attribute(snapshot, fields[k]);
-  if (snapshot.rank_field) grid += attribute(snapshot, xdmf_rank_field());
+    if ((snapshot.layout.fields >> k) & 1u) grid += attribute(snapshot, fields[k]);
+  if (snapshot.layout.rank_field) grid += attribute(snapshot, xdmf_rank_field());
   return grid + "      </Grid>\n";
 }
 

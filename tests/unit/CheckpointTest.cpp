@@ -73,8 +73,8 @@ Checkpoint random_part(int rank, std::uint32_t width = kSpringWidth) {
     if (i % 3 == 0)
       c.history.add_mesh(id, static_cast<std::uint32_t>(i * 11 % 17), random_values().data());
   }
-  c.snapshots = {{"particles_000000.h5", 0.0, 123, true},
-                 {"particles_000001.h5", 1.0 / 3.0, 120, false, 0b100010, true}};
+  c.snapshots = {{"particles_000000.h5", 0.0, 123, {true, kAllSnapshotFields, false}},
+                 {"particles_000001.h5", 1.0 / 3.0, 120, {false, 0b100010, true}}};
   c.time = 0.1 + 1e-17;
   c.step = (std::uint64_t(1) << 35) + 5;
   c.list_build_step = c.step - 3;
@@ -159,9 +159,10 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
     EXPECT_EQ(a.snapshots[k].h5_file, b.snapshots[k].h5_file);
     EXPECT_EQ(a.snapshots[k].time, b.snapshots[k].time);
     EXPECT_EQ(a.snapshots[k].count, b.snapshots[k].count);
-    EXPECT_EQ(a.snapshots[k].rank_field, b.snapshots[k].rank_field) << a.snapshots[k].h5_file;
-    EXPECT_EQ(a.snapshots[k].fields, b.snapshots[k].fields) << a.snapshots[k].h5_file;
-    EXPECT_EQ(a.snapshots[k].single_precision, b.snapshots[k].single_precision)
+    EXPECT_EQ(a.snapshots[k].layout.rank_field, b.snapshots[k].layout.rank_field)
+        << a.snapshots[k].h5_file;
+    EXPECT_EQ(a.snapshots[k].layout.fields, b.snapshots[k].layout.fields) << a.snapshots[k].h5_file;
+    EXPECT_EQ(a.snapshots[k].layout.single_precision, b.snapshots[k].layout.single_precision)
         << a.snapshots[k].h5_file;
   }
   EXPECT_EQ(a.time, b.time);
@@ -411,7 +412,7 @@ TEST_F(DamagedCheckpoint, MeshRecordsOfDifferentLengthsAreRejected) {
 TEST_F(DamagedCheckpoint, TableWithoutRankFieldFlagsHasNoSnapshotWithTheRankField) {
   test::remove_dataset(path(), "snapshot_rank_field");
   Checkpoint expected = random_part(0);
-  for (XdmfSnapshot& snapshot : expected.snapshots) snapshot.rank_field = false;
+  for (XdmfSnapshot& snapshot : expected.snapshots) snapshot.layout.rank_field = false;
   expect_identical(read_checkpoint(path()), expected);
 }
 
@@ -429,8 +430,8 @@ TEST_F(DamagedCheckpoint, TableWithoutFieldSetsOrPrecisionsHasEveryFieldInDouble
   test::remove_dataset(path(), "snapshot_precision");
   Checkpoint expected = random_part(0);
   for (XdmfSnapshot& snapshot : expected.snapshots) {
-    snapshot.fields = kAllSnapshotFields;
-    snapshot.single_precision = false;
+    snapshot.layout.fields = kAllSnapshotFields;
+    snapshot.layout.single_precision = false;
   }
   expect_identical(read_checkpoint(path()), expected);
 }

@@ -53,6 +53,17 @@ using test::random_store;
 using test::read_rows;
 using test::xyz_of;
 
+/// Default options with files named `<basename>_<index>.h5`, with or without the rank field.
+SnapshotOptions named(const std::string& basename, bool rank_field = false) {
+  SnapshotOptions options;
+  options.basename = basename;
+  options.layout.rank_field = rank_field;
+  return options;
+}
+
+/// Default options with the rank field.
+SnapshotOptions with_rank_field() { return named(kParticlesBasename, true); }
+
 std::string read_text(const std::string& path) {
   std::ifstream in(path);
   std::stringstream text;
@@ -163,7 +174,7 @@ void expect_rank_listed_for(const SnapshotWriter& writer, const std::vector<bool
     const std::string file = fs::path(writer.files()[k]).filename().string();
     EXPECT_EQ(grids[k].h5_file, file);
     EXPECT_EQ(file_has_dataset(writer.files()[k], "rank"), with_rank[k]) << file;
-    EXPECT_EQ(writer.table()[k].rank_field, with_rank[k]) << file;
+    EXPECT_EQ(writer.table()[k].layout.rank_field, with_rank[k]) << file;
     const auto rank = std::find_if(grids[k].attributes.begin(), grids[k].attributes.end(),
                                    [](const auto& a) { return a.first == "rank"; });
     ASSERT_EQ(rank != grids[k].attributes.end(), with_rank[k]) << "grid of " << file;
@@ -204,7 +215,7 @@ TEST_F(SnapshotWriterTest, EveryDatasetReadsBackBitIdenticalToTheStore) {
 }
 
 TEST_F(SnapshotWriterTest, SnapshotWithoutAnyParticleHasEmptyDatasets) {
-  SnapshotWriter writer(MPI_COMM_WORLD, dir_, {false, "empty"});
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, named("empty"));
   writer.write(ParticleStore{}, 1.5, 42);
   ASSERT_EQ(writer.files().size(), 1u);
   expect_snapshot_holds(writer.files()[0], ParticleStore{}, 1.5, 42);
@@ -212,7 +223,7 @@ TEST_F(SnapshotWriterTest, SnapshotWithoutAnyParticleHasEmptyDatasets) {
 }
 
 TEST_F(SnapshotWriterTest, XmfListsEverySnapshotByRelativeFileName) {
-  SnapshotWriter writer(MPI_COMM_WORLD, dir_, {false, "bed"});
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, named("bed"));
   EXPECT_EQ(writer.xmf_path(), (fs::path(dir_) / "bed.xmf").string());
   writer.write(random_store(particles_on_this_rank(), 300 + comm_rank()), 0.0, 0);
   writer.write(random_store(particles_on_this_rank(), 400 + comm_rank()), 0.01, 100);
@@ -229,7 +240,7 @@ TEST_F(SnapshotWriterTest, XmfListsEverySnapshotByRelativeFileName) {
 }
 
 TEST_F(SnapshotWriterTest, RankFieldHoldsTheWritingRankOfEveryRow) {
-  SnapshotWriter writer(MPI_COMM_WORLD, dir_, {true});
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, with_rank_field());
   const ParticleStore particles = random_store(particles_on_this_rank(), 900 + comm_rank());
   writer.write(particles, 0.25, 25);
   writer.write(ParticleStore{}, 0.5, 50);
@@ -250,7 +261,7 @@ TEST_F(SnapshotWriterTest, ResumedSeriesKeepsEachSnapshotsRankField) {
   const ParticleStore particles = random_store(particles_on_this_rank(), 1100 + comm_rank());
   std::vector<XdmfSnapshot> table;
   {
-    SnapshotWriter with_rank(MPI_COMM_WORLD, dir_, {true});
+    SnapshotWriter with_rank(MPI_COMM_WORLD, dir_, with_rank_field());
     with_rank.write(particles, 0.0, 0);
     with_rank.write(particles, 0.1, 10);
     table = with_rank.table();
@@ -263,7 +274,7 @@ TEST_F(SnapshotWriterTest, ResumedSeriesKeepsEachSnapshotsRankField) {
     expect_rank_listed_for(without_rank, {true, true, false});
     table = without_rank.table();
   }
-  SnapshotWriter with_rank_again(MPI_COMM_WORLD, dir_, {true});
+  SnapshotWriter with_rank_again(MPI_COMM_WORLD, dir_, with_rank_field());
   with_rank_again.resume(table);
   with_rank_again.write(particles, 0.3, 30);
   expect_rank_listed_for(with_rank_again, {true, true, false, true});
@@ -294,7 +305,7 @@ constexpr std::uint32_t field_bit(std::size_t k) { return std::uint32_t(1) << k;
 
 TEST_F(SnapshotWriterTest, FieldsOutsideTheSetAreLeftOutOfFileAndXmf) {
   SnapshotOptions options;
-  options.fields = field_bit(0) | field_bit(5);  // radius and id
+  options.layout.fields = field_bit(0) | field_bit(5);  // radius and id
   SnapshotWriter writer(MPI_COMM_WORLD, dir_, options);
   const ParticleStore p = random_store(particles_on_this_rank(), 1500 + comm_rank());
   writer.write(p, 0.5, 5);
@@ -316,12 +327,12 @@ TEST_F(SnapshotWriterTest, FieldsOutsideTheSetAreLeftOutOfFileAndXmf) {
                        "id");
   const std::vector<std::vector<std::string>> expected{{"position=8", "radius=8", "id=8"}};
   EXPECT_EQ(listed_precisions(writer), expected);
-  EXPECT_EQ(writer.table()[0].fields, options.fields);
+  EXPECT_EQ(writer.table()[0].layout.fields, options.layout.fields);
 }
 
 TEST_F(SnapshotWriterTest, SinglePrecisionStoresEachRealValueRoundedToFloat) {
   SnapshotOptions options;
-  options.single_precision = true;
+  options.layout.single_precision = true;
   SnapshotWriter writer(MPI_COMM_WORLD, dir_, options);
   const ParticleStore p = random_store(particles_on_this_rank(), 1600 + comm_rank());
   writer.write(p, 0.25, 3);
@@ -341,8 +352,8 @@ TEST_F(SnapshotWriterTest, ResumedSeriesKeepsEachSnapshotsFieldsAndPrecision) {
     table = full.table();
   }
   SnapshotOptions lean;
-  lean.fields = field_bit(1);  // velocity
-  lean.single_precision = true;
+  lean.layout.fields = field_bit(1);  // velocity
+  lean.layout.single_precision = true;
   SnapshotWriter resumed(MPI_COMM_WORLD, dir_, lean);
   resumed.resume(table);
   resumed.write(particles, 0.1, 10);
@@ -352,9 +363,9 @@ TEST_F(SnapshotWriterTest, ResumedSeriesKeepsEachSnapshotsFieldsAndPrecision) {
       {"position=4", "velocity=4"}};
   EXPECT_EQ(listed_precisions(resumed), expected);
   ASSERT_EQ(resumed.table().size(), 2u);
-  EXPECT_FALSE(resumed.table()[0].single_precision);
-  EXPECT_TRUE(resumed.table()[1].single_precision);
-  EXPECT_EQ(resumed.table()[1].fields, lean.fields);
+  EXPECT_FALSE(resumed.table()[0].layout.single_precision);
+  EXPECT_TRUE(resumed.table()[1].layout.single_precision);
+  EXPECT_EQ(resumed.table()[1].layout.fields, lean.layout.fields);
   expect_snapshot_holds(resumed.files()[0], particles, 0.0, 0);
   EXPECT_FALSE(file_has_dataset(resumed.files()[1], "force"));
 }
@@ -606,20 +617,20 @@ TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
   }
   MPI_Barrier(MPI_COMM_WORLD);
   SnapshotWriter plain(MPI_COMM_WORLD, dir);
-  SnapshotWriter ranked(MPI_COMM_WORLD, dir, {true, "ranked"});
+  SnapshotWriter ranked(MPI_COMM_WORLD, dir, named("ranked", true));
   for (SnapshotWriter* writer : {&plain, &ranked}) {
     writer->write(random_store(particles_on_this_rank(), 700 + comm_rank()), 0.0, 0);
     writer->write(random_store(particles_on_this_rank() + 11, 800 + comm_rank()), 0.005, 50);
     writer->write(ParticleStore{}, 0.01, 100);
   }
-  SnapshotWriter before_restart(MPI_COMM_WORLD, dir, {false, "resumed"});
+  SnapshotWriter before_restart(MPI_COMM_WORLD, dir, named("resumed"));
   before_restart.write(random_store(particles_on_this_rank(), 1200 + comm_rank()), 0.0, 0);
-  SnapshotWriter after_restart(MPI_COMM_WORLD, dir, {true, "resumed"});
+  SnapshotWriter after_restart(MPI_COMM_WORLD, dir, named("resumed", true));
   after_restart.resume(before_restart.table());
   after_restart.write(random_store(particles_on_this_rank() + 3, 1300 + comm_rank()), 0.01, 100);
-  SnapshotOptions lean_options{false, "lean"};
-  lean_options.fields = field_bit(1) | field_bit(5);  // velocity and id
-  lean_options.single_precision = true;
+  SnapshotOptions lean_options = named("lean");
+  lean_options.layout.fields = field_bit(1) | field_bit(5);  // velocity and id
+  lean_options.layout.single_precision = true;
   SnapshotWriter lean(MPI_COMM_WORLD, dir, lean_options);
   lean.write(random_store(particles_on_this_rank(), 1400 + comm_rank()), 0.0, 0);
   lean.write(ParticleStore{}, 0.01, 100);
