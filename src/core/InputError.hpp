@@ -1,6 +1,7 @@
 #pragma once
 /// The one error type for bad user input (scene, CSV, command line). Carries where the
 /// problem is so the message can name file, line and key; main() prints it and exits 2.
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -33,5 +34,13 @@ class InputError : public std::runtime_error {
   int line_;
   std::string key_;
 };
+
+/// `x` to 4 significant digits, as messages about input quote measured values.
+inline std::string four_digits(double x) {
+  std::ostringstream s;
+  s.precision(4);
+  s << x;
+  return s.str();
+}
 
 }  // namespace gpudem

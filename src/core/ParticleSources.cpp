@@ -5,7 +5,6 @@
 #include <functional>
 #include <numeric>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -25,8 +24,6 @@ constexpr double pi = 3.14159265358979323846;
 constexpr double min_truncated_normal_mass = 1e-6;
 /// Radii drawn at a time while filling a volume fraction (the unused rest is dropped).
 constexpr std::size_t radius_batch = 4096;
-
-double sphere_volume(double r) { return 4.0 / 3.0 * pi * r * r * r; }
 
 /// Standard normal deviate by the Box–Muller transform (Box & Muller 1958).
 double standard_normal(std::mt19937_64& rng) {
@@ -74,13 +71,6 @@ std::mt19937_64 source_rng(std::uint64_t seed, std::size_t source_index) {
 }
 
 std::string source_key(std::size_t i) { return "insert[" + std::to_string(i) + "]"; }
-
-std::string format_number(double x) {
-  std::ostringstream s;
-  s.precision(4);
-  s << x;
-  return s.str();
-}
 
 double box_volume(Vec3 lo, Vec3 hi) { return (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z); }
 
@@ -199,7 +189,7 @@ void insert_box_sequential(const Scene& scene, std::size_t i, ParticleStore& sto
       throw InputError(scene.file, 0, source_key(i),
                        "could only place " + std::to_string(n) + " of " +
                            std::to_string(radii.size()) + " particles (solid fraction " +
-                           format_number(placed_volume / region_volume) +
+                           four_digits(placed_volume / region_volume) +
                            ") in the region; enlarge the region or lower count/volume_fraction");
     hash.insert(*c, r);
     placed_volume += sphere_volume(r);
@@ -269,9 +259,9 @@ int axis_outside_domain(const Scene& scene, Vec3 centre) {
 
 /// "centre x = 1.2 lies outside the domain [0, 1]" for axis k.
 std::string outside_domain_text(const Scene& scene, Vec3 centre, int k) {
-  return "centre " + std::string(1, "xyz"[k]) + " = " + format_number(axis(centre, k)) +
-         " lies outside the domain [" + format_number(axis(scene.domain.min, k)) + ", " +
-         format_number(axis(scene.domain.max, k)) + "]";
+  return "centre " + std::string(1, "xyz"[k]) + " = " + four_digits(axis(centre, k)) +
+         " lies outside the domain [" + four_digits(axis(scene.domain.min, k)) + ", " +
+         four_digits(axis(scene.domain.max, k)) + "]";
 }
 
 /// Rejects a centre outside the domain along a non-periodic axis.

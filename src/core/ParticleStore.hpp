@@ -36,6 +36,11 @@ struct ParticleStore {
   void clear() { *this = ParticleStore{}; }
 };
 
+/// Sphere volume from its radius: V = 4/3 π r^3.
+inline double sphere_volume(double radius) {
+  return 4.0 / 3.0 * 3.14159265358979323846 * radius * radius * radius;
+}
+
 /// Sphere mass from density and radius: m = 4/3 π r^3 ρ.
 inline Real sphere_mass(Real density, Real radius) {
   return Real(4.0 / 3.0 * 3.14159265358979323846) * radius * radius * radius * density;

@@ -6,7 +6,6 @@
 #include <functional>
 #include <optional>
 #include <random>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -18,10 +17,6 @@
 
 namespace gpudem {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
-
-double sphere_volume(double r) { return 4.0 / 3.0 * pi * r * r * r; }
 
 /// SplitMix64's finaliser (Steele, Lea & Flood, OOPSLA 2014): one well-mixed 64-bit word.
 std::uint64_t mix64(std::uint64_t x) {
@@ -102,13 +97,6 @@ void on_all_threads(std::size_t count, const Body& body) {
     }
   }
   if (failure) std::rethrow_exception(failure);
-}
-
-std::string format_number(double x) {
-  std::ostringstream s;
-  s.precision(4);
-  s << x;
-  return s.str();
 }
 
 }  // namespace
@@ -277,7 +265,7 @@ void TiledFill::append_to(ParticleStore& store, ParticleId& next_id) const {
                          std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " +
                          std::to_string(c[2]) + ") of " + std::to_string(tiles_.along(0)) + " x " +
                          std::to_string(tiles_.along(1)) + " x " + std::to_string(tiles_.along(2)) +
-                         " (its solid fraction " + format_number(solid / tiles_.tile_volume()) +
+                         " (its solid fraction " + four_digits(solid / tiles_.tile_volume()) +
                          "); enlarge the region or lower count/volume_fraction");
   }
   const double density = scene_.materials[src_.material].density;

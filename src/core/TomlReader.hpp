@@ -284,21 +284,14 @@ class TableReader {
         std::find(options.begin(), options.end(), v.as_string().str) != options.end()) {
       return v.as_string().str;
     }
-    std::string list;
-    for (const std::string& option : options) {
-      list += (list.empty() ? "\"" : ", \"") + option + "\"";
-    }
-    fail_found(key, "one of " + list);
+    fail_found(key, "one of " + quoted_list(options));
   }
 
   /// Distinct strings, each one of `options`, as a set: bit k for options[k] (an empty array
   /// is the empty set).
   std::uint32_t subset(const std::string& key, const std::vector<std::string>& options) const {
     const toml::value& v = value(key);
-    std::string list;
-    for (const std::string& option : options)
-      list += (list.empty() ? "\"" : ", \"") + option + "\"";
-    const std::string expected = "an array of distinct names out of " + list;
+    const std::string expected = "an array of distinct names out of " + quoted_list(options);
     if (!v.is_array()) fail_found(key, expected);
     std::uint32_t set = 0;
     const auto& elements = v.as_array();
@@ -408,6 +401,14 @@ class TableReader {
   }
 
  private:
+  /// `options` quoted and separated by commas: "a", "b", "c".
+  static std::string quoted_list(const std::vector<std::string>& options) {
+    std::string list;
+    for (const std::string& option : options)
+      list += (list.empty() ? "\"" : ", \"") + option + "\"";
+    return list;
+  }
+
   /// "[simulation]" for a table header, "insert[0].region" inside an array of tables.
   std::string table_title(const std::string& key) const {
     const std::string p = path(key);
