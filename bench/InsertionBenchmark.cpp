@@ -1,8 +1,9 @@
-// Box insertion at start-up, as a run does it: `count` spheres of radius 1 ± 0.5 mm at a solid
-// fraction in a box `aspect` times as long along x as across, placed sequentially (all on every
-// rank, then each keeps its share) or by tiles (each rank places its part, comm/TiledParts.hpp),
-// on however many ranks this runs, with the OpenMP threads OMP_NUM_THREADS gives. Prints one
-// Markdown row: placement, ranks, threads, the largest share, the slowest rank's seconds,
+// Box insertion at start-up, as a run does it (comm/StartParts.hpp): `count` spheres of radius
+// 1 ± 0.5 mm at a solid fraction in a box `aspect` times as long along x as across, cut into
+// `layers` stacked sources, placed sequentially (all on every rank, then each keeps its share)
+// or by tiles (each rank places its part), on however many ranks this runs, with the OpenMP
+// threads OMP_NUM_THREADS gives. Prints one Markdown row: placement, layers, ranks, threads,
+// the largest share, the slowest rank's seconds,
 // spheres/s over all ranks and the largest peak resident memory of a rank; or why the box
 // could not hold the spheres (exit 1).
 #include <mpi.h>
@@ -19,10 +20,8 @@
 #include <omp.h>
 #endif
 
-#include "comm/TiledParts.hpp"
+#include "comm/StartParts.hpp"
 #include "core/InputError.hpp"
-#include "core/ParticleSources.hpp"
-#include "core/RowShare.hpp"
 
 namespace gpudem {
 namespace {
@@ -30,28 +29,27 @@ namespace {
 /// Mean volume of a sphere of radius uniform on [0.5, 1.5] mm: (4/3)π E[r³] [m³].
 constexpr double kMeanSphereVolume = 5.2360e-9;
 
-Scene box_scene(double count, double fraction, double aspect, Placement placement) {
+/// The box cut into `layers` stacked sources along z (alternately of two materials), each of
+/// count / layers spheres.
+Scene box_scene(double count, double fraction, double aspect, Placement placement, int layers) {
   const double side = std::cbrt(count * kMeanSphereVolume / fraction / aspect);
   Scene scene;
   scene.file = "<bench>";
   scene.domain.max = {aspect * side, side, side};
-  scene.materials.push_back({"grain", 2500.0});
-  ParticleSource source;
-  source.region_max = scene.domain.max;
-  source.count = static_cast<std::uint64_t>(count);
-  source.radius.mean = 1e-3;
-  source.radius.spread = 0.5e-3;
-  source.placement = placement;
-  scene.sources.push_back(source);
+  scene.materials.push_back({"subsoil", 2500.0});
+  scene.materials.push_back({"topsoil", 1800.0});
+  for (int k = 0; k < layers; ++k) {
+    ParticleSource source;
+    source.region_min = {0, 0, side * k / layers};
+    source.region_max = {aspect * side, side, side * (k + 1) / layers};
+    source.count = static_cast<std::uint64_t>(count / layers);
+    source.radius.mean = 1e-3;
+    source.radius.spread = 0.5e-3;
+    source.material = static_cast<MaterialId>(k % 2);
+    source.placement = placement;
+    scene.sources.push_back(source);
+  }
   return scene;
-}
-
-/// This rank's share, as the run's start-up makes it.
-ParticleStore start_share(MPI_Comm comm, const Scene& scene, int rank, int ranks) {
-  if (tiled_box_is_the_only_source(scene)) return create_tiled_part(comm, scene);
-  ParticleStore all;
-  create_particles(scene, all);
-  return share_of(all, rank, ranks);
 }
 
 double peak_resident_mib() {
@@ -77,6 +75,7 @@ int main(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   double count = 1e6, fraction = 0.3, aspect = 1;
   std::string placement = "tiled";
+  int layers = 1;
   bool header = false;
   CLI::App app{"Box insertion at start-up, sequential or tiled, on the ranks this runs on"};
   app.add_option("--count", count, "spheres to insert")->check(CLI::Range(1.0, 4e9));
@@ -85,6 +84,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 1e3));
   app.add_option("--placement", placement, "sequential or tiled")
       ->check(CLI::IsMember({"sequential", "tiled"}));
+  app.add_option("--layers", layers, "stacked sources the box is cut into along z")
+      ->check(CLI::Range(1, 64));
   app.add_flag("--header", header, "print the table's header first");
   try {
     app.parse(argc, argv);
@@ -93,8 +94,9 @@ int main(int argc, char** argv) {
     MPI_Finalize();
     return code;
   }
-  const Scene scene = box_scene(count, fraction, aspect,
-                                placement == "tiled" ? Placement::Tiled : Placement::Sequential);
+  const Scene scene =
+      box_scene(count, fraction, aspect,
+                placement == "tiled" ? Placement::Tiled : Placement::Sequential, layers);
   int threads = 1;
 #if defined(GPUDEM_HAVE_OPENMP)
   threads = omp_get_max_threads();
@@ -103,10 +105,11 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   ParticleStore share;
   try {
-    share = start_share(MPI_COMM_WORLD, scene, rank, ranks);
+    share = create_start_part(MPI_COMM_WORLD, scene, {});
   } catch (const InputError& e) {  // a region too full (on every rank alike)
     if (rank == 0)
-      std::printf("| %s | %d | %d | failed: %s |\n", placement.c_str(), ranks, threads, e.what());
+      std::printf("| %s | %d | %d | %d | failed: %s |\n", placement.c_str(), layers, ranks, threads,
+                  e.what());
     MPI_Finalize();
     return 1;
   }
@@ -117,10 +120,10 @@ int main(int argc, char** argv) {
   if (rank == 0) {
     if (header)
       std::printf(
-          "| placement | ranks | threads | largest share | seconds | spheres/s | peak memory per "
-          "rank [MiB] |\n|---|---|---|---|---|---|---|\n");
-    std::printf("| %s | %d | %d | %.0f | %.3f | %.3g | %.0f |\n", placement.c_str(), ranks, threads,
-                largest_share, seconds, count / seconds, resident);
+          "| placement | layers | ranks | threads | largest share | seconds | spheres/s | peak "
+          "memory per rank [MiB] |\n|---|---|---|---|---|---|---|---|\n");
+    std::printf("| %s | %d | %d | %d | %.0f | %.3f | %.3g | %.0f |\n", placement.c_str(), layers,
+                ranks, threads, largest_share, seconds, count / seconds, resident);
   }
   MPI_Finalize();
   return 0;

@@ -248,7 +248,6 @@ BedReader BedLoader::reader(FilePart part) {
   return [this, part](const std::string& path) {
     Checkpoint bed = read_checkpoint(path, part);
     path_ = path;
-    part_ = part;
     history_ = std::move(bed.history);
     return std::move(bed.particles);
   };
@@ -267,7 +266,6 @@ void BedLoader::apply_history(const Scene& scene, const MpiContext& mpi, StepEng
           path_.c_str(), history.width, width);
     return;
   }
-  if (part_.count != mpi.size()) history = share_of(history, mpi.rank(), mpi.size());
   const std::uint64_t dropped =
       sum_over_ranks(mpi.comm(), keep_known_walls(history, scene.walls.size()));
   if (dropped > 0 && mpi.is_root())

@@ -52,23 +52,21 @@ void report_unsettled(const Scene& scene, const MpiContext& mpi, double time, co
 /// Collective.
 void save_bed(const Scene& scene, const MpiContext& mpi, Checkpoint state);
 
-/// Reads the bed file of a scene's bed source (for create_particles), whole or this rank's part
-/// of its rows, and keeps the contact history it read to give to the engine.
+/// Reads this rank's part of the bed file of a scene's bed source (for create_start_part) and
+/// keeps the contact history it read to give to the engine.
 class BedLoader {
  public:
-  /// Reads a bed file, whole or the rows of `part` (of the particles and of each kind of
-  /// history record, as read_checkpoint); its errors are InputErrors naming the file.
-  BedReader reader(FilePart part = {});
-  /// Gives `engine` the bed's contact history when the scene's contact law keeps as many values
-  /// per contact (otherwise says on rank 0 that the bed starts without history) and
-  /// re-evaluates the forces with it, then frees it. Each rank gives its part when the bed was
-  /// read by parts, else its share of the whole. Wall records are kept by wall index, for the
-  /// walls the scene has. Nothing happens when no bed was read. Collective.
+  /// Reads the rows of `part` of a bed file (of the particles and of each kind of history
+  /// record, as read_checkpoint); its errors are InputErrors naming the file.
+  BedReader reader(FilePart part);
+  /// Gives `engine` this rank's part of the bed's contact history when the scene's contact law
+  /// keeps as many values per contact (otherwise says on rank 0 that the bed starts without
+  /// history) and re-evaluates the forces with it, then frees it. Wall records are kept by wall
+  /// index, for the walls the scene has. Nothing happens when no bed was read. Collective.
   void apply_history(const Scene& scene, const MpiContext& mpi, StepEngine& engine);
 
  private:
   std::string path_;
-  FilePart part_;
   std::optional<ContactHistory> history_;
 };
 

@@ -18,8 +18,8 @@
 #include "comm/Checkpoint.hpp"
 #include "comm/OutputDirectory.hpp"
 #include "comm/SnapshotQueue.hpp"
+#include "comm/StartParts.hpp"
 #include "comm/StartupShares.hpp"
-#include "comm/TiledParts.hpp"
 #include "comm/TimeSeriesWriter.hpp"
 #include "core/ExactDecimal.hpp"
 #include "core/InputError.hpp"
@@ -435,10 +435,8 @@ void adopt_checkpoint_step(EngineSetup& setup, const Scene& scene, const Checkpo
 }
 
 /// This rank's share of the particles a run starts with: the rows of its part of the
-/// checkpoint it restarts from, or of the bed file that is the scene's only source (both read by
-/// parts, so that no rank holds the whole file), the particles of its part of the tiles of a
-/// tiled box source that is the only source (created by parts), or of the particles the scene's
-/// other sources create (created on every rank, then all but the share dropped).
+/// checkpoint it restarts from (read by parts, so that no rank holds the whole file), or its
+/// part of a new run's particles (comm/StartParts.hpp).
 struct StartShare {
   std::optional<Checkpoint> checkpoint;  ///< this rank's part of it, on a restart
   ParticleStore created;                 ///< this rank's share of a new run's particles
@@ -456,16 +454,8 @@ struct StartShare {
   }
 };
 
-/// Whether the scene's particles all come from one bed file: then each rank reads its part of
-/// the rows, which are the particles' rows in creation order.
-bool bed_is_the_only_source(const Scene& scene) {
-  return scene.sources.size() == 1 && scene.sources[0].kind == SourceKind::Bed;
-}
-
-/// Reads or creates this rank's StartShare: a checkpoint's or a lone bed's part of the rows, a
-/// lone tiled box source's part of the tiles, or else its share of all the particles, created
-/// on every rank. A problem with the input that any rank finds in its part is thrown on every
-/// rank. Collective.
+/// Reads or creates this rank's StartShare. A problem with the input that any rank finds in its
+/// part is thrown on every rank. Collective.
 StartShare load_start_share(const Scene& scene, const RunOptions& options, const MpiContext& mpi,
                             BedLoader& bed) {
   StartShare start;
@@ -477,18 +467,8 @@ StartShare load_start_share(const Scene& scene, const RunOptions& options, const
       check_checkpoint_fits_scene(part, path, scene);
       return part;
     });
-  } else if (bed_is_the_only_source(scene)) {
-    start.created = agree_on_input(mpi.comm(), [&] {
-      ParticleStore part;
-      create_particles(scene, part, bed.reader(FilePart{rank, ranks}));
-      return part;
-    });
-  } else if (tiled_box_is_the_only_source(scene)) {
-    start.created = create_tiled_part(mpi.comm(), scene);
   } else {
-    ParticleStore all;
-    create_particles(scene, all, bed.reader());
-    start.created = share_of(all, rank, ranks);
+    start.created = create_start_part(mpi.comm(), scene, bed.reader(FilePart{rank, ranks}));
   }
   return start;
 }

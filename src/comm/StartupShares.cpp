@@ -1,5 +1,7 @@
 #include "comm/StartupShares.hpp"
 
+#include <cstdint>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <vector>
@@ -7,12 +9,18 @@
 namespace gpudem {
 namespace {
 
+/// The most bytes one MPI call with int counts can move.
+constexpr int kMaxMessageBytes = std::numeric_limits<int>::max();
+
 /// Every rank's `part` concatenated in rank order, on every rank (T holds plain values).
 template <class T>
 std::vector<T> gather_rows(MPI_Comm comm, const std::vector<T>& part) {
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
-  const int bytes = static_cast<int>(part.size() * sizeof(T));
+  const std::uint64_t part_bytes = part.size() * sizeof(T);
+  if (sum_over_ranks(comm, part_bytes) > static_cast<std::uint64_t>(kMaxMessageBytes))
+    throw std::length_error("gathering rows on every rank: more than 2^31 - 1 bytes in all");
+  const int bytes = static_cast<int>(part_bytes);
   std::vector<int> counts(ranks), offsets(ranks, 0);
   MPI_Allgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
   std::partial_sum(counts.begin(), counts.end() - 1, offsets.begin() + 1);
@@ -51,6 +59,16 @@ ParticleStore gather_particles(MPI_Comm comm, const ParticleStore& share) {
   all.id = gather_rows(comm, share.id);
   all.material = gather_rows(comm, share.material);
   return all;
+}
+
+std::vector<Real4> gather_spheres(MPI_Comm comm, const std::vector<Real4>& spheres) {
+  return gather_rows(comm, spheres);
+}
+
+std::uint64_t max_over_ranks(MPI_Comm comm, std::uint64_t value) {
+  std::uint64_t max = 0;
+  MPI_Allreduce(&value, &max, 1, MPI_UINT64_T, MPI_MAX, comm);
+  return max;
 }
 
 std::uint64_t sum_over_ranks(MPI_Comm comm, std::uint64_t value) {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/InputError.hpp"
 #include "core/ParticleStore.hpp"
@@ -48,6 +49,13 @@ auto agree_on_input(MPI_Comm comm, Attempt&& attempt) -> decltype(attempt()) {
 /// Every rank's `share` (all its arrays the same length, or force and torque empty on every
 /// rank), concatenated in rank order, on every rank. For small selections. Collective.
 ParticleStore gather_particles(MPI_Comm comm, const ParticleStore& share);
+
+/// Every rank's `spheres` concatenated in rank order, on every rank. For small selections
+/// (below 2^31 bytes). Collective.
+std::vector<Real4> gather_spheres(MPI_Comm comm, const std::vector<Real4>& spheres);
+
+/// The largest `value` over ranks. Collective.
+std::uint64_t max_over_ranks(MPI_Comm comm, std::uint64_t value);
 
 /// Σ over ranks of `value`. Collective.
 std::uint64_t sum_over_ranks(MPI_Comm comm, std::uint64_t value);

@@ -1,13 +1,18 @@
 #include "comm/TiledParts.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "comm/StartupShares.hpp"
 #include "core/ParticleSources.hpp"
+#include "core/PeriodicImages.hpp"
 #include "core/RowShare.hpp"
 #include "core/TiledInsertion.hpp"
 
@@ -43,18 +48,115 @@ void exchange_boundaries(MPI_Comm comm, TiledFill& fill) {
   fill.receive(LayerSide::Below, send_receive(comm, fill.boundary(LayerSide::Above), above, below));
 }
 
+/// The parts that own the layers of tiles across the slab axis (their near-equal shares, as
+/// TiledFill takes them).
+class LayerOwners {
+ public:
+  LayerOwners(const InsertionTiles& tiles, int parts)
+      : layers_(static_cast<std::int64_t>(tiles.count() / tiles.layer_size())), first_(parts + 1) {
+    for (int p = 0; p <= parts; ++p)
+      first_[p] = static_cast<std::int64_t>(share_of_rows(layers_, p, parts).first);
+    first_[parts] = layers_;
+  }
+  /// The part owning layer `layer` (clamped to the grid).
+  int owner(std::int64_t layer) const {
+    layer = std::clamp<std::int64_t>(layer, 0, layers_ - 1);
+    return static_cast<int>(std::upper_bound(first_.begin(), first_.end(), layer) -
+                            first_.begin()) -
+           1;
+  }
+  bool owns_layers(int part) const { return first_[part + 1] > first_[part]; }
+
+ private:
+  std::int64_t layers_;
+  std::vector<std::int64_t> first_;  ///< first layer of each part; the layer count last
+};
+
+/// Whether sphere p, its box widened by `reach`, meets the box [lo, hi].
+bool meets(const Real4& p, double reach, Vec3 lo, Vec3 hi) {
+  for (int k = 0; k < 3; ++k)
+    if (axis(xyz(p), k) + p.w + reach < axis(lo, k) || axis(xyz(p), k) - p.w - reach > axis(hi, k))
+      return false;
+  return true;
+}
+
+/// The spheres of every rank's `earlier_part` that may reach this rank's tiles of `tiles`: each
+/// rank sends each sphere of its part to the ranks owning a layer that a periodic image of it
+/// meets, its box widened by twice the new source's largest radius `r_max` (a tile avoids the
+/// earlier spheres within one r_max of it; the second r_max covers rounding). Collective.
+std::vector<Real4> earlier_spheres_near_part(MPI_Comm comm, const DomainSettings& domain,
+                                             const InsertionTiles& tiles, double r_max,
+                                             const std::vector<Real4>& earlier_part) {
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  const LayerOwners owners(tiles, ranks);
+  const int slab = tiles.slab_axis();
+  const Vec3 grid_lo = tiles.lo(), grid_hi = tiles.tile_hi(tiles.coords(tiles.count() - 1));
+  const double reach = 2 * r_max, origin = axis(grid_lo, slab), edge = axis(tiles.edge(), slab);
+  const auto layer_of = [&](double x) {
+    return static_cast<std::int64_t>(std::floor((x - origin) / edge));
+  };
+  std::vector<std::vector<Real4>> out(ranks);
+  std::vector<std::size_t> sent_last(ranks, ~std::size_t{0});  // the sphere last sent to a rank
+  for (std::size_t n = 0; n < earlier_part.size(); ++n) {
+    const Real4& s = earlier_part[n];
+    for_each_image_in_domain(domain, s, [&](const Real4& q) {
+      if (!meets(q, reach, grid_lo, grid_hi)) return;
+      const double c = axis(xyz(q), slab);
+      const int first = owners.owner(layer_of(c - q.w - reach));
+      const int last = owners.owner(layer_of(c + q.w + reach));
+      for (int p = first; p <= last; ++p)
+        if (owners.owns_layers(p) && sent_last[p] != n) {
+          out[p].push_back(s);
+          sent_last[p] = n;
+        }
+    });
+  }
+  std::vector<int> send_bytes(ranks), send_offsets(ranks, 0), receive_bytes(ranks),
+      receive_offsets(ranks, 0);
+  std::vector<Real4> send;
+  for (int p = 0; p < ranks; ++p) {
+    if (out[p].size() > std::numeric_limits<int>::max() / sizeof(Real4))
+      throw std::length_error("create_tiled_part: too many earlier spheres for one message");
+    send_bytes[p] = static_cast<int>(out[p].size() * sizeof(Real4));
+    if (p > 0) send_offsets[p] = send_offsets[p - 1] + send_bytes[p - 1];
+    send.insert(send.end(), out[p].begin(), out[p].end());
+    out[p] = std::vector<Real4>{};
+  }
+  MPI_Alltoall(send_bytes.data(), 1, MPI_INT, receive_bytes.data(), 1, MPI_INT, comm);
+  std::size_t received = 0;
+  for (int p = 0; p < ranks; ++p) {
+    receive_offsets[p] = static_cast<int>(received);
+    received += static_cast<std::size_t>(receive_bytes[p]);
+    if (received > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw std::length_error("create_tiled_part: too many earlier spheres for one rank");
+  }
+  std::vector<Real4> near(received / sizeof(Real4));
+  MPI_Alltoallv(send.data(), send_bytes.data(), send_offsets.data(), MPI_BYTE, near.data(),
+                receive_bytes.data(), receive_offsets.data(), MPI_BYTE, comm);
+  return near;
+}
+
 }  // namespace
 
-ParticleStore create_tiled_part(MPI_Comm comm, const Scene& scene) {
-  if (!tiled_box_is_the_only_source(scene))
-    throw std::logic_error("create_tiled_part: the scene's one source must be a tiled box");
+ParticleStore create_tiled_part(MPI_Comm comm, const Scene& scene, std::size_t i,
+                                const std::vector<Real4>& earlier_part, ParticleId first_id) {
+  const ParticleSource& src = scene.sources[i];
+  if (src.kind != SourceKind::Box || src.placement != Placement::Tiled)
+    throw std::logic_error("create_tiled_part: source " + std::to_string(i) +
+                           " is not a tiled box");
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
+  const InsertionTiles tiles = agree_on_input(comm, [&] {
+    check_box_source(scene, i);
+    return insertion_tiles(scene, i);
+  });
+  const std::vector<Real4> earlier =
+      earlier_spheres_near_part(comm, scene.domain, tiles, max_radius(src.radius), earlier_part);
   std::optional<TiledFill> fill;
   agree_on_input(comm, [&] {
-    check_box_source(scene, 0);
-    fill.emplace(scene, 0, FilePart{rank, ranks}, ParticleStore{});
+    fill.emplace(scene, i, FilePart{rank, ranks}, earlier);
     return 0;
   });
   for (int phase = 0; phase < kTilePhases; ++phase) {
@@ -63,12 +165,12 @@ ParticleStore create_tiled_part(MPI_Comm comm, const Scene& scene) {
   }
   ParticleStore part = agree_on_input(comm, [&] {
     ParticleStore placed;
-    ParticleId next_id = 0;
+    ParticleId next_id = first_id;
     fill->append_to(placed, next_id);
     return placed;
   });
-  const ParticleId first_id = ids_before_rank(comm, part.size());
-  for (ParticleId& id : part.id) id += first_id;
+  const ParticleId before = ids_before_rank(comm, part.size());
+  for (ParticleId& id : part.id) id += before;
   return part;
 }
 

@@ -7,6 +7,7 @@ add_library(gpudem_comm ${GPUDEM_LIBRARY_TYPE}
   comm/OutputDirectory.cpp
   comm/SnapshotQueue.cpp
   comm/SnapshotWriter.cpp
+  comm/StartParts.cpp
   comm/StartupShares.cpp
   comm/TiledParts.cpp
   comm/TimeSeriesWriter.cpp)

@@ -13,6 +13,7 @@
 #include "core/CsvReader.hpp"
 #include "core/FreeCentre.hpp"
 #include "core/InputError.hpp"
+#include "core/PeriodicImages.hpp"
 #include "core/SphereHash.hpp"
 #include "core/TiledInsertion.hpp"
 
@@ -141,20 +142,21 @@ std::vector<double> box_radii(const Scene& scene, std::size_t i, std::mt19937_64
   return radii;
 }
 
-/// Hash of the particles already in `store` that reach into the region [lo, hi].
-SphereHash existing_spheres(const ParticleStore& store, Vec3 lo, Vec3 hi, double min_radius,
-                            std::size_t extra) {
-  std::vector<std::size_t> inside;
-  for (std::size_t n = 0; n < store.size(); ++n) {
-    const Real4& p = store.position_radius[n];
-    if (p.x + p.w > lo.x && p.x - p.w < hi.x && p.y + p.w > lo.y && p.y - p.w < hi.y &&
-        p.z + p.w > lo.z && p.z - p.w < hi.z)
-      inside.push_back(n);
-  }
-  SphereHash hash(min_radius, inside.size() + extra);
-  for (std::size_t n : inside)
-    hash.insert(xyz(store.position_radius[n]), store.position_radius[n].w);
-  return hash;
+/// Whether sphere p reaches into the box [lo, hi].
+bool reaches_box(const Real4& p, Vec3 lo, Vec3 hi) {
+  return p.x + p.w > lo.x && p.x - p.w < hi.x && p.y + p.w > lo.y && p.y - p.w < hi.y &&
+         p.z + p.w > lo.z && p.z - p.w < hi.z;
+}
+
+/// The images of `spheres` in the domain (for_each_image_in_domain) that reach into [lo, hi].
+std::vector<Real4> images_reaching(const DomainSettings& domain, const std::vector<Real4>& spheres,
+                                   Vec3 lo, Vec3 hi) {
+  std::vector<Real4> images;
+  for (const Real4& p : spheres)
+    for_each_image_in_domain(domain, p, [&](const Real4& q) {
+      if (reaches_box(q, lo, hi)) images.push_back(q);
+    });
+  return images;
 }
 
 /// A random centre keeping the sphere inside [lo, hi] and off every stored sphere.
@@ -168,17 +170,19 @@ std::optional<Vec3> free_spot(Vec3 lo, Vec3 hi, double r, const SphereHash& hash
   return free_centre(first, width, r, hash, rng);
 }
 
-/// Box source i, placed by one random sequence over its whole region.
-void insert_box_sequential(const Scene& scene, std::size_t i, ParticleStore& store,
-                           ParticleId& next_id) {
+/// Box source i, placed by one random sequence over its whole region avoiding `avoid`.
+void insert_box_sequential(const Scene& scene, std::size_t i, const std::vector<Real4>& avoid,
+                           ParticleStore& out, ParticleId& next_id) {
   const ParticleSource& src = scene.sources[i];
   std::mt19937_64 rng = source_rng(scene.simulation.seed, i);
   const std::vector<double> radii = box_radii(scene, i, rng);
   if (radii.empty()) return;
-  if (store.size() + radii.size() > SphereHash::max_size)
-    throw InputError(scene.file, 0, source_key(i), "too many particles in all");
-  SphereHash hash =
-      existing_spheres(store, src.region_min, src.region_max, radii.back(), radii.size());
+  const std::vector<Real4> near =
+      images_reaching(scene.domain, avoid, src.region_min, src.region_max);
+  if (near.size() + radii.size() > SphereHash::max_size)
+    throw InputError(scene.file, 0, source_key(i), "too many particles in and near the region");
+  SphereHash hash(radii.back(), near.size() + radii.size());
+  for (const Real4& p : near) hash.insert(xyz(p), p.w);
   const double density = scene.materials[src.material].density;
   const double region_volume = box_volume(src.region_min, src.region_max);
   double placed_volume = 0;
@@ -193,17 +197,18 @@ void insert_box_sequential(const Scene& scene, std::size_t i, ParticleStore& sto
                            ") in the region; enlarge the region or lower count/volume_fraction");
     hash.insert(*c, r);
     placed_volume += sphere_volume(r);
-    store.add(next_id++, *c, r, src.material, src.velocity, 1.0 / sphere_mass(density, r));
+    out.add(next_id++, *c, r, src.material, src.velocity, 1.0 / sphere_mass(density, r));
   }
 }
 
 /// Box source i, checked, then placed sequentially or by tiles.
-void insert_box(const Scene& scene, std::size_t i, ParticleStore& store, ParticleId& next_id) {
+void insert_box(const Scene& scene, std::size_t i, const std::vector<Real4>& avoid,
+                ParticleStore& out, ParticleId& next_id) {
   check_box_source(scene, i);
   if (scene.sources[i].placement == Placement::Tiled)
-    insert_tiled_box(scene, i, store, next_id);
+    insert_tiled_box(scene, i, avoid, out, next_id);
   else
-    insert_box_sequential(scene, i, store, next_id);
+    insert_box_sequential(scene, i, avoid, out, next_id);
 }
 
 /// Positions in the header of the columns a particle CSV file may have.
@@ -303,17 +308,6 @@ void import_csv(const Scene& scene, std::size_t i, ParticleStore& store, Particl
                    "bed file '" + src.bed_file + "': " + what);
 }
 
-/// The particles of bed source i, read errors reported on its `bed` key.
-ParticleStore read_bed_particles(const Scene& scene, std::size_t i, const BedReader& read_bed) {
-  if (!read_bed) throw std::logic_error("create_particles: a bed source needs a bed reader");
-  try {
-    return read_bed(scene.sources[i].bed_file);
-  } catch (const InputError& e) {
-    throw InputError(scene.file, scene.sources[i].bed_line, source_key(i) + ".bed",
-                     std::string("cannot read the bed: ") + e.what());
-  }
-}
-
 /// Rejects bed particle n when its material or its centre does not fit the scene.
 void check_bed_particle(const Scene& scene, std::size_t i, const ParticleStore& bed,
                         std::size_t n) {
@@ -328,54 +322,77 @@ void check_bed_particle(const Scene& scene, std::size_t i, const ParticleStore& 
   if (k >= 0) reject_bed(scene, i, particle + ": " + outside_domain_text(scene, centre, k));
 }
 
-/// Appends the particles of bed source i with their ids, velocities and spins; masses from the
-/// scene's material densities.
-void append_bed(const Scene& scene, std::size_t i, const ParticleStore& bed, ParticleStore& store) {
+}  // namespace
+
+void create_source(const Scene& scene, std::size_t i, const std::vector<Real4>& avoid,
+                   ParticleStore& out, ParticleId& next_id) {
+  switch (scene.sources[i].kind) {
+    case SourceKind::Box:
+      insert_box(scene, i, avoid, out, next_id);
+      return;
+    case SourceKind::Csv:
+      import_csv(scene, i, out, next_id);
+      return;
+    case SourceKind::Bed:
+      throw std::logic_error("create_source: a bed source is read with read_bed_source");
+  }
+}
+
+std::vector<Real4> spheres_reaching(const DomainSettings& domain, const std::vector<Real4>& spheres,
+                                    Vec3 lo, Vec3 hi) {
+  std::vector<Real4> reaching;
+  for (const Real4& p : spheres) {
+    bool reaches = false;
+    for_each_image_in_domain(domain, p, [&](const Real4& q) { reaches |= reaches_box(q, lo, hi); });
+    if (reaches) reaching.push_back(p);
+  }
+  return reaching;
+}
+
+std::size_t bed_source_index(const Scene& scene) {
+  const auto is_bed = [](const ParticleSource& s) { return s.kind == SourceKind::Bed; };
+  return std::find_if(scene.sources.begin(), scene.sources.end(), is_bed) - scene.sources.begin();
+}
+
+ParticleStore read_bed_source(const Scene& scene, std::size_t i, const BedReader& read_bed) {
+  if (!read_bed) throw std::logic_error("read_bed_source: a bed source needs a bed reader");
+  try {
+    return read_bed(scene.sources[i].bed_file);
+  } catch (const InputError& e) {
+    throw InputError(scene.file, scene.sources[i].bed_line, source_key(i) + ".bed",
+                     std::string("cannot read the bed: ") + e.what());
+  }
+}
+
+void append_bed_particles(const Scene& scene, std::size_t i, const ParticleStore& bed,
+                          ParticleStore& out) {
   for (std::size_t n = 0; n < bed.size(); ++n) {
     check_bed_particle(scene, i, bed, n);
     const Real4 p = bed.position_radius[n];
     const double density = scene.materials[bed.material[n]].density;
-    store.add(bed.id[n], xyz(p), p.w, bed.material[n], xyz(bed.velocity_inv_mass[n]),
-              1.0 / sphere_mass(density, p.w));
-    store.angular_velocity.back() = bed.angular_velocity[n];
+    out.add(bed.id[n], xyz(p), p.w, bed.material[n], xyz(bed.velocity_inv_mass[n]),
+            1.0 / sphere_mass(density, p.w));
+    out.angular_velocity.back() = bed.angular_velocity[n];
   }
 }
 
-/// The id after the largest of `particles` (0 for none).
 ParticleId id_after(const ParticleStore& particles) {
   ParticleId next = 0;
   for (const ParticleId id : particles.id) next = std::max(next, id + 1);
   return next;
 }
 
-}  // namespace
-
 void create_particles(const Scene& scene, ParticleStore& store, const BedReader& read_bed) {
-  const auto& sources = scene.sources;
-  const auto is_bed = [](const ParticleSource& s) { return s.kind == SourceKind::Bed; };
-  const std::size_t bed_index =
-      std::find_if(sources.begin(), sources.end(), is_bed) - sources.begin();
+  const std::size_t bed_index = bed_source_index(scene);
   ParticleStore bed;
-  if (bed_index < sources.size()) bed = read_bed_particles(scene, bed_index, read_bed);
+  if (bed_index < scene.sources.size()) bed = read_bed_source(scene, bed_index, read_bed);
   ParticleId next_id = std::max<ParticleId>(store.size(), id_after(bed));
-  for (std::size_t i = 0; i < sources.size(); ++i) {
-    switch (sources[i].kind) {
-      case SourceKind::Box:
-        insert_box(scene, i, store, next_id);
-        break;
-      case SourceKind::Csv:
-        import_csv(scene, i, store, next_id);
-        break;
-      case SourceKind::Bed:
-        append_bed(scene, i, bed, store);
-        break;
-    }
+  for (std::size_t i = 0; i < scene.sources.size(); ++i) {
+    if (i == bed_index)
+      append_bed_particles(scene, i, bed, store);
+    else
+      create_source(scene, i, store.position_radius, store, next_id);
   }
-}
-
-bool tiled_box_is_the_only_source(const Scene& scene) {
-  return scene.sources.size() == 1 && scene.sources[0].kind == SourceKind::Box &&
-         scene.sources[0].placement == Placement::Tiled;
 }
 
 void check_box_source(const Scene& scene, std::size_t i) {

@@ -24,7 +24,8 @@ using BedReader = std::function<ParticleStore(const std::string& bed_file)>;
 /// A box source placed sequentially (the default) samples all its radii first (`count` of them, or
 /// until their volume reaches volume_fraction × region volume) and places them largest first by
 /// random sequential insertion: uniform random centres keeping the whole sphere inside the region,
-/// rejecting any overlap with particles already in `store`; at most 1000 tries per particle. The
+/// rejecting any overlap with particles already in `store` (and with their periodic images in
+/// the domain, of those that cross a periodic face); at most 1000 tries per particle. The
 /// random stream is std::mt19937_64 seeded from scene.simulation.seed and the source index, so a
 /// scene always gives the same particles. A tiled box source is placed by insert_tiled_box
 /// (core/TiledInsertion.hpp): the same random sequential insertion tile by tile, the same
@@ -44,9 +45,34 @@ using BedReader = std::function<ParticleStore(const std::string& bed_file)>;
 /// `read_bed`.
 void create_particles(const Scene& scene, ParticleStore& store, const BedReader& read_bed = {});
 
-/// Whether the scene's particles all come from one box source placed by tiles: then each rank
-/// can place only its part of them (comm/TiledParts.hpp).
-bool tiled_box_is_the_only_source(const Scene& scene);
+/// Appends the particles of source i, a box or a CSV source, to `out` with ids from `next_id`;
+/// a box source avoids the spheres `avoid` (those of earlier sources near its region; read
+/// before any particle is appended, so they may be `out`'s own). Each rank that runs it on the
+/// same `avoid` near the region gets the same particles.
+void create_source(const Scene& scene, std::size_t i, const std::vector<Real4>& avoid,
+                   ParticleStore& out, ParticleId& next_id);
+
+/// The spheres of `spheres` that reach into the region [lo, hi], themselves or by a periodic
+/// image in the domain (core/PeriodicImages.hpp): those a box source placed sequentially there
+/// must avoid.
+std::vector<Real4> spheres_reaching(const DomainSettings& domain, const std::vector<Real4>& spheres,
+                                    Vec3 lo, Vec3 hi);
+
+/// Index of the scene's bed source; scene.sources.size() when it has none.
+std::size_t bed_source_index(const Scene& scene);
+
+/// The particles `read_bed` reads for bed source i (the whole bed or a part of its rows); its
+/// InputErrors are reported on the source's `bed` key.
+ParticleStore read_bed_source(const Scene& scene, std::size_t i, const BedReader& read_bed);
+
+/// Appends `bed`, read for bed source i, to `out` with its ids, velocities and spins; masses
+/// from the scene's material densities. Throws InputError for a particle whose material the
+/// scene lacks or whose centre lies outside the domain on a non-periodic axis.
+void append_bed_particles(const Scene& scene, std::size_t i, const ParticleStore& bed,
+                          ParticleStore& out);
+
+/// The id after the largest of `particles` (0 for none).
+ParticleId id_after(const ParticleStore& particles);
 
 /// Refuses box source i when it cannot be placed: a material the scene lacks, a distribution
 /// that cannot be sampled or may give radii <= 0, neither a count nor a volume fraction in

@@ -33,6 +33,20 @@ struct ParticleStore {
     material.push_back(mat);
   }
 
+  /// Appends every row of `more`.
+  void append(const ParticleStore& more) {
+    const auto extend = [](auto& to, const auto& from) {
+      to.insert(to.end(), from.begin(), from.end());
+    };
+    extend(position_radius, more.position_radius);
+    extend(velocity_inv_mass, more.velocity_inv_mass);
+    extend(angular_velocity, more.angular_velocity);
+    extend(force, more.force);
+    extend(torque, more.torque);
+    extend(id, more.id);
+    extend(material, more.material);
+  }
+
   void clear() { *this = ParticleStore{}; }
 };
 

@@ -13,6 +13,7 @@
 #include "core/FreeCentre.hpp"
 #include "core/InputError.hpp"
 #include "core/ParticleSources.hpp"
+#include "core/PeriodicImages.hpp"
 #include "core/SphereHash.hpp"
 
 namespace gpudem {
@@ -99,6 +100,22 @@ void on_all_threads(std::size_t count, const Body& body) {
   if (failure) std::rethrow_exception(failure);
 }
 
+/// The layers `part` holds (HeldLayers).
+HeldLayers held_layers(const InsertionTiles& tiles, FilePart part) {
+  const std::size_t layers = tiles.count() / tiles.layer_size();
+  const auto layers_of = [&](int p) { return share_of_rows(layers, p, part.count); };
+  HeldLayers held;
+  held.own = layers_of(part.index);
+  if (held.own.count == 0) return held;
+  for (int p = part.index - 1; p >= 0 && held.neighbour[0] < 0; --p)
+    if (layers_of(p).count > 0) held.neighbour[0] = p;
+  for (int p = part.index + 1; p < part.count && held.neighbour[1] < 0; ++p)
+    if (layers_of(p).count > 0) held.neighbour[1] = p;
+  held.first = held.own.first - (held.neighbour[0] >= 0 ? 1 : 0);
+  held.end = held.own.first + held.own.count + (held.neighbour[1] >= 0 ? 1 : 0);
+  return held;
+}
+
 }  // namespace
 
 InsertionTiles insertion_tiles(const Scene& scene, std::size_t i) {
@@ -111,27 +128,21 @@ InsertionTiles insertion_tiles(const Scene& scene, std::size_t i) {
                         std::max(2 * max_radius(src.radius), sized_edge));
 }
 
-TiledFill::TiledFill(const Scene& scene, std::size_t i, FilePart part, const ParticleStore& earlier)
+TiledFill::TiledFill(const Scene& scene, std::size_t i, FilePart part,
+                     const std::vector<Real4>& earlier)
     : scene_(scene),
       src_(scene.sources[i]),
       index_(i),
       tiles_(insertion_tiles(scene, i)),
       r_min_(min_radius(src_.radius)),
-      r_max_(max_radius(src_.radius)) {
-  const std::size_t layer = tiles_.layer_size(), layers = tiles_.count() / layer;
-  const auto layers_of = [&](int p) { return share_of_rows(layers, p, part.count); };
-  const RowRange own = layers_of(part.index);
-  if (own.count == 0) return;
-  own_first_ = own.first * layer;
-  own_count_ = own.count * layer;
-  for (int p = part.index - 1; p >= 0 && neighbour_[0] < 0; --p)
-    if (layers_of(p).count > 0) neighbour_[0] = p;
-  for (int p = part.index + 1; p < part.count && neighbour_[1] < 0; ++p)
-    if (layers_of(p).count > 0) neighbour_[1] = p;
-  const std::size_t first_layer = own.first - (neighbour_[0] >= 0 ? 1 : 0);
-  const std::size_t end_layer = own.first + own.count + (neighbour_[1] >= 0 ? 1 : 0);
-  first_held_ = first_layer * layer;
-  tiles_held_.resize((end_layer - first_layer) * layer);
+      r_max_(max_radius(src_.radius)),
+      held_(held_layers(tiles_, part)) {
+  if (held_.own.count == 0) return;
+  const std::size_t layer = tiles_.layer_size();
+  own_first_ = held_.own.first * layer;
+  own_count_ = held_.own.count * layer;
+  first_held_ = held_.first * layer;
+  tiles_held_.resize((held_.end - held_.first) * layer);
   on_all_threads(own_count_, [&](std::size_t k) {
     std::mt19937_64 rng = tile_rng(scene_.simulation.seed, index_, own_first_ + k, 0);
     tile(own_first_ + k).radii = tile_radii(src_, tiles_, own_first_ + k, rng);
@@ -139,29 +150,32 @@ TiledFill::TiledFill(const Scene& scene, std::size_t i, FilePart part, const Par
   copy_earlier_spheres(earlier);
 }
 
-void TiledFill::copy_earlier_spheres(const ParticleStore& earlier) {
+void TiledFill::copy_earlier_spheres(const std::vector<Real4>& earlier) {
+  for (const Real4& p : earlier)
+    for_each_image_in_domain(scene_.domain, p, [&](const Real4& image) { copy_to_tiles(image); });
+}
+
+void TiledFill::copy_to_tiles(const Real4& p) {
   const Vec3 origin = tiles_.lo(), edge = tiles_.edge();
   const InsertionTiles::Coords first = tiles_.coords(first_held_);
   const InsertionTiles::Coords last = tiles_.coords(first_held_ + tiles_held_.size() - 1);
   const int slab = tiles_.slab_axis();
-  for (const Real4& p : earlier.position_radius) {
-    InsertionTiles::Coords lo{}, hi{};
-    for (int k = 0; k < 3; ++k) {  // the tiles whose box the sphere's, widened by r_max, meets
-      const double reach = p.w + r_max_;
-      lo[k] = std::max<std::int64_t>(
-          0, static_cast<std::int64_t>(
-                 std::floor((axis(xyz(p), k) - reach - axis(origin, k)) / axis(edge, k))));
-      hi[k] = std::min<std::int64_t>(
-          tiles_.along(k) - 1, static_cast<std::int64_t>(std::floor(
-                                   (axis(xyz(p), k) + reach - axis(origin, k)) / axis(edge, k))));
-    }
-    lo[slab] = std::max(lo[slab], first[slab]);
-    hi[slab] = std::min(hi[slab], last[slab]);
-    InsertionTiles::Coords c{};
-    for (c[2] = lo[2]; c[2] <= hi[2]; ++c[2])
-      for (c[1] = lo[1]; c[1] <= hi[1]; ++c[1])
-        for (c[0] = lo[0]; c[0] <= hi[0]; ++c[0]) tile(tiles_.index(c)).earlier.push_back(p);
+  InsertionTiles::Coords lo{}, hi{};
+  for (int k = 0; k < 3; ++k) {  // the tiles whose box the sphere's, widened by r_max, meets
+    const double reach = p.w + r_max_;
+    lo[k] = std::max<std::int64_t>(
+        0, static_cast<std::int64_t>(
+               std::floor((axis(xyz(p), k) - reach - axis(origin, k)) / axis(edge, k))));
+    hi[k] = std::min<std::int64_t>(
+        tiles_.along(k) - 1, static_cast<std::int64_t>(std::floor(
+                                 (axis(xyz(p), k) + reach - axis(origin, k)) / axis(edge, k))));
   }
+  lo[slab] = std::max(lo[slab], first[slab]);
+  hi[slab] = std::min(hi[slab], last[slab]);
+  InsertionTiles::Coords c{};
+  for (c[2] = lo[2]; c[2] <= hi[2]; ++c[2])
+    for (c[1] = lo[1]; c[1] <= hi[1]; ++c[1])
+      for (c[0] = lo[0]; c[0] <= hi[0]; ++c[0]) tile(tiles_.index(c)).earlier.push_back(p);
 }
 
 std::vector<Real4> TiledFill::neighbour_spheres_near(std::size_t t, Vec3 lo, Vec3 hi) const {
@@ -275,11 +289,11 @@ void TiledFill::append_to(ParticleStore& store, ParticleId& next_id) const {
                 1.0 / sphere_mass(density, p.w));
 }
 
-void insert_tiled_box(const Scene& scene, std::size_t i, ParticleStore& store,
-                      ParticleId& next_id) {
-  TiledFill fill(scene, i, FilePart{}, store);
+void insert_tiled_box(const Scene& scene, std::size_t i, const std::vector<Real4>& avoid,
+                      ParticleStore& out, ParticleId& next_id) {
+  TiledFill fill(scene, i, FilePart{}, avoid);
   for (int phase = 0; phase < kTilePhases; ++phase) fill.fill_phase(phase);
-  fill.append_to(store, next_id);
+  fill.append_to(out, next_id);
 }
 
 }  // namespace gpudem

@@ -55,6 +55,15 @@ struct BoundarySphere {
 
 enum class LayerSide { Below, Above };
 
+/// The layers of tiles (across the slab axis) that part `index` of `count` holds: its own
+/// near-equal share, and the layer beside it on either side, mirrored from the nearest part
+/// with layers there.
+struct HeldLayers {
+  RowRange own;                    ///< own layers (none for a part with fewer layers than parts)
+  int neighbour[2] = {-1, -1};     ///< the parts owning the layers below and above; -1 for none
+  std::size_t first = 0, end = 0;  ///< layers held, own and mirrored: [first, end)
+};
+
 /// The tiled placement of box source `i` by one part: its own layers of tiles and the layer
 /// beside them on either side (mirrored from the parts that own them). Run the kTilePhases
 /// phases in order on every part, passing each part's boundary spheres to its neighbours after
@@ -62,13 +71,16 @@ enum class LayerSide { Below, Above };
 class TiledFill {
  public:
   /// Part `part` of box source i of `scene` (checked by check_box_source); `earlier` holds the
-  /// spheres to avoid (those of earlier sources), of which it copies the ones near the region.
-  TiledFill(const Scene& scene, std::size_t i, FilePart part, const ParticleStore& earlier);
+  /// spheres to avoid (those of earlier sources), of which it copies the ones, and the periodic
+  /// images in the domain (core/PeriodicImages.hpp), that reach a held tile widened by r_max
+  /// (all of them that matter, when `earlier` holds every earlier sphere of which some image's
+  /// box widened by r_max meets the held tiles).
+  TiledFill(const Scene& scene, std::size_t i, FilePart part, const std::vector<Real4>& earlier);
 
   const InsertionTiles& tiles() const { return tiles_; }
   /// The part owning the layer beside this part's own on `side`; -1 for none (the region's end
   /// or a part without layers).
-  int neighbour(LayerSide side) const { return neighbour_[static_cast<int>(side)]; }
+  int neighbour(LayerSide side) const { return held_.neighbour[static_cast<int>(side)]; }
 
   /// Phase `phase` (< kTilePhases, in order): the own tiles of its colour place its round's run
   /// of their radii, on all OpenMP threads.
@@ -94,7 +106,9 @@ class TiledFill {
 
   void fill_tile(std::size_t t, int round);
   std::vector<Real4> neighbour_spheres_near(std::size_t t, Vec3 lo, Vec3 hi) const;
-  void copy_earlier_spheres(const ParticleStore& earlier);
+  void copy_earlier_spheres(const std::vector<Real4>& earlier);
+  /// Adds sphere p to the earlier spheres of each held tile that it, widened by r_max, meets.
+  void copy_to_tiles(const Real4& p);
   Tile& tile(std::size_t t) { return tiles_held_[t - first_held_]; }
   const Tile& tile(std::size_t t) const { return tiles_held_[t - first_held_]; }
   bool holds(std::size_t t) const {
@@ -108,15 +122,17 @@ class TiledFill {
   std::size_t index_;
   InsertionTiles tiles_;
   double r_min_, r_max_;
+  HeldLayers held_;
   std::size_t own_first_ = 0, own_count_ = 0;  ///< own tiles (whole layers)
   std::size_t first_held_ = 0;                 ///< first tile held (own or mirrored)
   std::vector<Tile> tiles_held_;
-  int neighbour_[2] = {-1, -1};
   int last_colour_ = -1;
 };
 
-/// Tiled placement of box source `i` over its whole region, appending its particles with ids
-/// from `next_id`, avoiding the spheres of `store`: one part, all phases.
-void insert_tiled_box(const Scene& scene, std::size_t i, ParticleStore& store, ParticleId& next_id);
+/// Tiled placement of box source `i` over its whole region, appending its particles to `out`
+/// with ids from `next_id`, avoiding the spheres `avoid` (copied before any is appended): one
+/// part, all phases.
+void insert_tiled_box(const Scene& scene, std::size_t i, const std::vector<Real4>& avoid,
+                      ParticleStore& out, ParticleId& next_id);
 
 }  // namespace gpudem

@@ -35,7 +35,7 @@ TEST(TiledParts, EachRankPlacesItsRowsOfTheWholeWithGlobalIds) {
   const Scene scene = long_bed();
   ParticleStore all;
   create_particles(scene, all);
-  const ParticleStore part = create_tiled_part(MPI_COMM_WORLD, scene);
+  const ParticleStore part = create_tiled_part(MPI_COMM_WORLD, scene, 0, {}, 0);
   EXPECT_EQ(sum_over_ranks(part.size()), all.size());
   std::size_t differ = 0;
   for (std::size_t n = 0; n < part.size(); ++n) {
@@ -62,17 +62,17 @@ TEST(TiledParts, ARegionTooFullFailsOnEveryRankAsOnOne) {
   }
   ASSERT_NE(alone.find("could only place"), std::string::npos) << alone;
   try {
-    create_tiled_part(MPI_COMM_WORLD, scene);
+    create_tiled_part(MPI_COMM_WORLD, scene, 0, {}, 0);
     ADD_FAILURE() << "no InputError on rank " << test::comm_rank();
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), alone);
   }
 }
 
-TEST(TiledParts, ASceneOfOtherSourcesIsALogicError) {
+TEST(TiledParts, ASourceThatIsNotATiledBoxIsALogicError) {
   Scene scene = long_bed();
   scene.sources[0].placement = Placement::Sequential;
-  EXPECT_THROW(create_tiled_part(MPI_COMM_WORLD, scene), std::logic_error);
+  EXPECT_THROW(create_tiled_part(MPI_COMM_WORLD, scene, 0, {}, 0), std::logic_error);
 }
 
 }  // namespace

@@ -15,3 +15,12 @@ gpudem_add_test(test_tiled_parts
   LABELS mpi
   TIMEOUT 120)
 gpudem_add_test_on_ranks(test_tiled_parts RANKS 2 3 4)
+
+# A new run's particles made by parts, every kind of source one after another (StartParts.hpp),
+# on 1, 2, 3 and 4 ranks.
+gpudem_add_test(test_start_parts
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/StartPartsTest.cpp
+  LIBS gpudem_comm
+  LABELS mpi
+  TIMEOUT 120)
+gpudem_add_test_on_ranks(test_start_parts RANKS 2 3 4)

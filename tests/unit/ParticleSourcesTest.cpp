@@ -277,6 +277,25 @@ TEST_P(BoxPlacement, AvoidsParticlesAlreadyInTheStoreAndContinuesTheirIds) {
   expect_no_overlaps(store);
 }
 
+TEST_P(BoxPlacement, AvoidsThePeriodicImagesOfParticlesCrossingAPeriodicFace) {
+  Scene scene = make_scene();
+  scene.domain.periodic = {true, true, false};
+  scene.sources.push_back(box({0, 0, 0}, {0.06, 0.06, 0.06}, 1500, uniform(1e-3, 0.2e-3)));
+  ParticleStore store;
+  store.add(0, {0.995, 0.03, 0.03}, 0.01, 0, {}, 1.0);    // across x = 1: an image at x = -0.005
+  store.add(1, {0.998, 0.998, 0.04}, 0.008, 0, {}, 1.0);  // across the corner x = y = 1
+  store.add(2, {1.004, 0.01, 0.01}, 0.006, 0, {}, 1.0);   // centre beyond x = 1, wrapped to 0.004
+  create_particles(placed(scene), store);
+  expect_valid_box_fill(scene, store, 3);
+  ParticleStore with_images = store;  // the images in the box's corner, placed by hand
+  with_images.add(3, {-0.005, 0.03, 0.03}, 0.01, 0, {}, 1.0);
+  with_images.add(4, {-0.002, -0.002, 0.04}, 0.008, 0, {}, 1.0);
+  with_images.add(5, {0.998, -0.002, 0.04}, 0.008, 0, {}, 1.0);
+  with_images.add(6, {-0.002, 0.998, 0.04}, 0.008, 0, {}, 1.0);
+  with_images.add(7, {0.004, 0.01, 0.01}, 0.006, 0, {}, 1.0);
+  expect_no_overlaps(with_images, 3);
+}
+
 TEST_P(BoxPlacement, NeitherCountNorVolumeFractionIsRefused) {
   Scene scene = make_scene();
   scene.sources.push_back(box({0, 0, 0}, {0.1, 0.1, 0.1}, 0, uniform(1e-3, 0)));

@@ -56,7 +56,8 @@ LayerSide opposite(LayerSide side) {
 std::vector<TiledFill> lockstep_fills(const Scene& scene, int count) {
   std::vector<TiledFill> fills;
   fills.reserve(static_cast<std::size_t>(count));
-  for (int p = 0; p < count; ++p) fills.emplace_back(scene, 0, FilePart{p, count}, ParticleStore{});
+  for (int p = 0; p < count; ++p)
+    fills.emplace_back(scene, 0, FilePart{p, count}, std::vector<Real4>{});
   for (int phase = 0; phase < kTilePhases; ++phase) {
     for (TiledFill& fill : fills) fill.fill_phase(phase);
     for (TiledFill& fill : fills)

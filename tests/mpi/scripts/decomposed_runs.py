@@ -40,7 +40,9 @@ CASE is one of:
   tiled         tests/mpi/scenes/tiled_pour.toml (20000 grains placed by 5 layers of tiles,
                 each rank creating only its part of them) at N = 1 and at N = 2, 3 and 4 with
                 "auto" dims and at 2 x 2 blocks: the particle ids are those of one rank and the
-                final states equal bit for bit; the time series agree as in same-physics.
+                final states equal bit for bit; the time series agree as in same-physics. The
+                same for tests/mpi/scenes/layered_pour.toml (two overlapping layers placed by
+                tiles, then stones placed sequentially among them) at N = 1, 3 and 4.
   killed-checkpoint
                 tests/mpi/scenes/periodic_gas.toml checkpointed every step, alternately on 2
                 and 3 ranks; each round is killed (SIGKILL to every process group of its
@@ -62,7 +64,9 @@ CASE is one of:
                 print the same summary line with the counts over all ranks. Then
                 tests/mpi/scenes/bed_start.toml starts from the N = 1 bed as its only source
                 (each rank reads its part of the rows and springs) at N = 1, 2 and 3: the same
-                final state bit for bit and the same time series.
+                final state bit for bit and the same time series; and so does
+                tests/mpi/scenes/bed_topped.toml (the bed, then a layer placed by tiles that
+                reaches into its top) at N = 1 and 3.
   cuda          tests/mpi/scenes/settle.toml on the CUDA backend (ranks sharing the one GPU) at
                 N = 1, 2 slabs and 2 x 2 blocks, and leaking_gas.toml at N = 1 and 2 slabs: the
                 final states equal N = 1 on the device bit for bit (and leaking_gas's particle
@@ -304,6 +308,13 @@ def tiled(runner):
                                  ("tiled_auto_n4", 4, 'decomposition.dims="auto"'),
                                  ("tiled_blocks_2x2", 4, "decomposition.dims=[2,2,1]")):
         out = runner.run(name, scene, ranks, setting)
+        compare_states(runner, name, reference, out)
+        compare_series(runner, name, reference, out)
+    layered = SCENES / "layered_pour.toml"
+    reference = runner.run("layered_n1", layered, 1)
+    for ranks in (3, 4):
+        name = f"layered_n{ranks}"
+        out = runner.run(name, layered, ranks, 'decomposition.dims="auto"')
         compare_states(runner, name, reference, out)
         compare_series(runner, name, reference, out)
 
@@ -619,8 +630,9 @@ def bed(runner):
 
 
 def bed_start(runner, bed_file):
-    """A scene whose only source is `bed_file`: each rank reads its part of the bed's rows and
-    springs, and 2 and 3 ranks must end where one rank does."""
+    """A scene whose only source is `bed_file`, and one that tops it with a tiled layer: each
+    rank reads its part of the bed's rows and springs, and 2 and 3 ranks must end where one rank
+    does."""
     scene = SCENES / "bed_start.toml"
     source = f'insert.0.bed="{bed_file}"'
     reference = runner.run("bed_start_n1", scene, 1, source)
@@ -629,6 +641,11 @@ def bed_start(runner, bed_file):
         out = runner.run(name, scene, ranks, source)
         compare_states(runner, name, reference, out)
         compare_series(runner, name, reference, out)
+    topped = SCENES / "bed_topped.toml"
+    reference = runner.run("bed_topped_n1", topped, 1, source)
+    out = runner.run("bed_topped_n3", topped, 3, source)
+    compare_states(runner, "bed_topped_n3", reference, out)
+    compare_series(runner, "bed_topped_n3", reference, out)
 
 
 def read_bed(path):

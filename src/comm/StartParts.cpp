@@ -1,0 +1,67 @@
+#include "comm/StartParts.hpp"
+
+#include <cstdint>
+#include <vector>
+
+#include "comm/StartupShares.hpp"
+#include "comm/TiledParts.hpp"
+#include "core/RowShare.hpp"
+
+namespace gpudem {
+namespace {
+
+bool is_tiled_box(const ParticleSource& src) {
+  return src.kind == SourceKind::Box && src.placement == Placement::Tiled;
+}
+
+/// Source i (a CSV file, or a box placed sequentially) made whole on every rank, avoiding the
+/// spheres of every rank's `part` that reach a box source's region, with ids from `first_id`.
+/// Collective.
+ParticleStore create_whole(MPI_Comm comm, const Scene& scene, std::size_t i,
+                           const ParticleStore& part, ParticleId first_id) {
+  const ParticleSource& src = scene.sources[i];
+  std::vector<Real4> avoid;
+  if (src.kind == SourceKind::Box)
+    avoid = gather_spheres(
+        comm, spheres_reaching(scene.domain, part.position_radius, src.region_min, src.region_max));
+  return agree_on_input(comm, [&] {
+    ParticleStore whole;
+    ParticleId next_id = first_id;
+    create_source(scene, i, avoid, whole, next_id);
+    return whole;
+  });
+}
+
+}  // namespace
+
+ParticleStore create_start_part(MPI_Comm comm, const Scene& scene, const BedReader& read_bed_part) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  const std::size_t bed_index = bed_source_index(scene);
+  ParticleStore bed;
+  if (bed_index < scene.sources.size())
+    bed = agree_on_input(comm, [&] { return read_bed_source(scene, bed_index, read_bed_part); });
+  ParticleId next_id = max_over_ranks(comm, id_after(bed));
+  ParticleStore part;
+  for (std::size_t i = 0; i < scene.sources.size(); ++i) {
+    if (i == bed_index) {
+      agree_on_input(comm, [&] {
+        append_bed_particles(scene, i, bed, part);
+        return 0;
+      });
+      bed = ParticleStore{};
+    } else if (is_tiled_box(scene.sources[i])) {
+      const ParticleStore mine = create_tiled_part(comm, scene, i, part.position_radius, next_id);
+      next_id += sum_over_ranks(comm, mine.size());
+      part.append(mine);
+    } else {
+      const ParticleStore whole = create_whole(comm, scene, i, part, next_id);
+      next_id += whole.size();
+      part.append(share_of(whole, rank, ranks));
+    }
+  }
+  return part;
+}
+
+}  // namespace gpudem
