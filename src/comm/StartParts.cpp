@@ -52,9 +52,7 @@ ParticleStore create_start_part(MPI_Comm comm, const Scene& scene, const BedRead
       });
       bed = ParticleStore{};
     } else if (is_tiled_box(scene.sources[i])) {
-      const ParticleStore mine = create_tiled_part(comm, scene, i, part.position_radius, next_id);
-      next_id += sum_over_ranks(comm, mine.size());
-      part.append(mine);
+      next_id += sum_over_ranks(comm, append_tiled_part(comm, scene, i, part, next_id));
     } else {
       const ParticleStore whole = create_whole(comm, scene, i, part, next_id);
       next_id += whole.size();

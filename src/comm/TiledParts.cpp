@@ -31,7 +31,7 @@ std::vector<BoundarySphere> send_receive(MPI_Comm comm, const std::vector<Bounda
                kCountTag, comm, MPI_STATUS_IGNORE);
   const std::uint64_t limit = std::numeric_limits<int>::max() / sizeof(BoundarySphere);
   if (count_out > limit || count_in > limit)
-    throw std::length_error("create_tiled_part: a layer of tiles too large for one message");
+    throw std::length_error("append_tiled_part: a layer of tiles too large for one message");
   std::vector<BoundarySphere> in(count_in);
   MPI_Sendrecv(out.data(), static_cast<int>(count_out * sizeof(BoundarySphere)), MPI_BYTE, to,
                kSpheresTag, in.data(), static_cast<int>(count_in * sizeof(BoundarySphere)),
@@ -117,7 +117,7 @@ std::vector<Real4> earlier_spheres_near_part(MPI_Comm comm, const DomainSettings
   std::vector<Real4> send;
   for (int p = 0; p < ranks; ++p) {
     if (out[p].size() > std::numeric_limits<int>::max() / sizeof(Real4))
-      throw std::length_error("create_tiled_part: too many earlier spheres for one message");
+      throw std::length_error("append_tiled_part: too many earlier spheres for one message");
     send_bytes[p] = static_cast<int>(out[p].size() * sizeof(Real4));
     if (p > 0) send_offsets[p] = send_offsets[p - 1] + send_bytes[p - 1];
     send.insert(send.end(), out[p].begin(), out[p].end());
@@ -129,7 +129,7 @@ std::vector<Real4> earlier_spheres_near_part(MPI_Comm comm, const DomainSettings
     receive_offsets[p] = static_cast<int>(received);
     received += static_cast<std::size_t>(receive_bytes[p]);
     if (received > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-      throw std::length_error("create_tiled_part: too many earlier spheres for one rank");
+      throw std::length_error("append_tiled_part: too many earlier spheres for one rank");
   }
   std::vector<Real4> near(received / sizeof(Real4));
   MPI_Alltoallv(send.data(), send_bytes.data(), send_offsets.data(), MPI_BYTE, near.data(),
@@ -139,11 +139,11 @@ std::vector<Real4> earlier_spheres_near_part(MPI_Comm comm, const DomainSettings
 
 }  // namespace
 
-ParticleStore create_tiled_part(MPI_Comm comm, const Scene& scene, std::size_t i,
-                                const std::vector<Real4>& earlier_part, ParticleId first_id) {
+std::size_t append_tiled_part(MPI_Comm comm, const Scene& scene, std::size_t i, ParticleStore& part,
+                              ParticleId first_id) {
   const ParticleSource& src = scene.sources[i];
   if (src.kind != SourceKind::Box || src.placement != Placement::Tiled)
-    throw std::logic_error("create_tiled_part: source " + std::to_string(i) +
+    throw std::logic_error("append_tiled_part: source " + std::to_string(i) +
                            " is not a tiled box");
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
@@ -152,26 +152,30 @@ ParticleStore create_tiled_part(MPI_Comm comm, const Scene& scene, std::size_t i
     check_box_source(scene, i);
     return insertion_tiles(scene, i);
   });
-  const std::vector<Real4> earlier =
-      earlier_spheres_near_part(comm, scene.domain, tiles, max_radius(src.radius), earlier_part);
   std::optional<TiledFill> fill;
-  agree_on_input(comm, [&] {
-    fill.emplace(scene, i, FilePart{rank, ranks}, earlier);
-    return 0;
-  });
+  {
+    const std::vector<Real4> earlier = earlier_spheres_near_part(
+        comm, scene.domain, tiles, max_radius(src.radius), part.position_radius);
+    agree_on_input(comm, [&] {
+      fill.emplace(scene, i, FilePart{rank, ranks}, earlier);
+      return 0;
+    });
+  }
   for (int phase = 0; phase < kTilePhases; ++phase) {
     fill->fill_phase(phase);
     exchange_boundaries(comm, *fill);
   }
-  ParticleStore part = agree_on_input(comm, [&] {
-    ParticleStore placed;
+  const std::size_t first_row = part.size();
+  agree_on_input(comm, [&] {
     ParticleId next_id = first_id;
-    fill->append_to(placed, next_id);
-    return placed;
+    fill->append_to(part, next_id);
+    return 0;
   });
-  const ParticleId before = ids_before_rank(comm, part.size());
-  for (ParticleId& id : part.id) id += before;
-  return part;
+  fill.reset();
+  const std::size_t placed = part.size() - first_row;
+  const ParticleId before = ids_before_rank(comm, placed);
+  for (std::size_t n = first_row; n < part.size(); ++n) part.id[n] += before;
+  return placed;
 }
 
 }  // namespace gpudem

@@ -33,6 +33,17 @@ struct ParticleStore {
     material.push_back(mat);
   }
 
+  /// Room for `rows` rows in every array.
+  void reserve(std::size_t rows) {
+    position_radius.reserve(rows);
+    velocity_inv_mass.reserve(rows);
+    angular_velocity.reserve(rows);
+    force.reserve(rows);
+    torque.reserve(rows);
+    id.reserve(rows);
+    material.reserve(rows);
+  }
+
   /// Appends every row of `more`.
   void append(const ParticleStore& more) {
     const auto extend = [](auto& to, const auto& from) {

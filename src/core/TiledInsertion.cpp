@@ -282,6 +282,10 @@ void TiledFill::append_to(ParticleStore& store, ParticleId& next_id) const {
                          " (its solid fraction " + four_digits(solid / tiles_.tile_volume()) +
                          "); enlarge the region or lower count/volume_fraction");
   }
+  std::size_t placed = 0;
+  for (std::size_t t = own_first_; t < own_first_ + own_count_; ++t)
+    placed += tile(t).spheres.size();
+  store.reserve(store.size() + placed);
   const double density = scene_.materials[src_.material].density;
   for (std::size_t t = own_first_; t < own_first_ + own_count_; ++t)
     for (const Real4& p : tile(t).spheres)

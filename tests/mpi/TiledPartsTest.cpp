@@ -35,7 +35,9 @@ TEST(TiledParts, EachRankPlacesItsRowsOfTheWholeWithGlobalIds) {
   const Scene scene = long_bed();
   ParticleStore all;
   create_particles(scene, all);
-  const ParticleStore part = create_tiled_part(MPI_COMM_WORLD, scene, 0, {}, 0);
+  ParticleStore part;
+  const std::size_t placed = append_tiled_part(MPI_COMM_WORLD, scene, 0, part, 0);
+  EXPECT_EQ(placed, part.size());
   EXPECT_EQ(sum_over_ranks(part.size()), all.size());
   std::size_t differ = 0;
   for (std::size_t n = 0; n < part.size(); ++n) {
@@ -62,7 +64,8 @@ TEST(TiledParts, ARegionTooFullFailsOnEveryRankAsOnOne) {
   }
   ASSERT_NE(alone.find("could only place"), std::string::npos) << alone;
   try {
-    create_tiled_part(MPI_COMM_WORLD, scene, 0, {}, 0);
+    ParticleStore part;
+    append_tiled_part(MPI_COMM_WORLD, scene, 0, part, 0);
     ADD_FAILURE() << "no InputError on rank " << test::comm_rank();
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), alone);
@@ -72,7 +75,8 @@ TEST(TiledParts, ARegionTooFullFailsOnEveryRankAsOnOne) {
 TEST(TiledParts, ASourceThatIsNotATiledBoxIsALogicError) {
   Scene scene = long_bed();
   scene.sources[0].placement = Placement::Sequential;
-  EXPECT_THROW(create_tiled_part(MPI_COMM_WORLD, scene, 0, {}, 0), std::logic_error);
+  ParticleStore part;
+  EXPECT_THROW(append_tiled_part(MPI_COMM_WORLD, scene, 0, part, 0), std::logic_error);
 }
 
 }  // namespace
