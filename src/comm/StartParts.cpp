@@ -14,16 +14,13 @@ bool is_tiled_box(const ParticleSource& src) {
   return src.kind == SourceKind::Box && src.placement == Placement::Tiled;
 }
 
-/// Source i (a CSV file, or a box placed sequentially) made whole on every rank, avoiding the
-/// spheres of every rank's `part` that reach a box source's region, with ids from `first_id`.
-/// Collective.
-ParticleStore create_whole(MPI_Comm comm, const Scene& scene, std::size_t i,
-                           const ParticleStore& part, ParticleId first_id) {
+/// Box source i placed sequentially, whole on every rank, avoiding the spheres of every rank's
+/// `part` that reach its region, with ids from `first_id`. Collective.
+ParticleStore place_sequential_box(MPI_Comm comm, const Scene& scene, std::size_t i,
+                                   const ParticleStore& part, ParticleId first_id) {
   const ParticleSource& src = scene.sources[i];
-  std::vector<Real4> avoid;
-  if (src.kind == SourceKind::Box)
-    avoid = gather_spheres(
-        comm, spheres_reaching(scene.domain, part.position_radius, src.region_min, src.region_max));
+  const std::vector<Real4> avoid = gather_spheres(
+      comm, spheres_reaching(scene.domain, part.position_radius, src.region_min, src.region_max));
   return agree_on_input(comm, [&] {
     ParticleStore whole;
     ParticleId next_id = first_id;
@@ -51,10 +48,14 @@ ParticleStore create_start_part(MPI_Comm comm, const Scene& scene, const BedRead
         return 0;
       });
       bed = ParticleStore{};
+    } else if (scene.sources[i].kind == SourceKind::Csv) {
+      next_id += agree_on_input(comm, [&] {
+        return import_csv_part(scene, i, FilePart{rank, ranks}, part, next_id);
+      });
     } else if (is_tiled_box(scene.sources[i])) {
       next_id += sum_over_ranks(comm, append_tiled_part(comm, scene, i, part, next_id));
     } else {
-      const ParticleStore whole = create_whole(comm, scene, i, part, next_id);
+      const ParticleStore whole = place_sequential_box(comm, scene, i, part, next_id);
       next_id += whole.size();
       part.append(share_of(whole, rank, ranks));
     }

@@ -16,7 +16,7 @@ namespace gpudem {
 /// - a box placed sequentially: placed whole on every rank, avoiding the earlier spheres
 ///   that reach its region (gathered from every rank), of which the rank keeps its share of the
 ///   rows;
-/// - a CSV file: read whole on every rank, which keeps its share of the rows.
+/// - a CSV file: its part of the rows (every rank reads the file through, parsing only those).
 /// Ids as create_particles gives them: a bed's own, the others' consecutive in scene order
 /// after the bed's largest. An input problem any rank finds is thrown on every rank, as the
 /// lowest rank finding one words it. Collective.

@@ -46,6 +46,15 @@ class CsvReader {
     return true;
   }
 
+  /// Passes over the next non-blank row unread; false at the end of the file.
+  bool skip() {
+    std::string text;
+    do {
+      if (!read_line(text)) return false;
+    } while (is_blank(text));
+    return true;
+  }
+
   /// The whole of `field` (in column `column` of the line read last) as a finite number.
   double number(const std::string& field, const std::string& column) const {
     const char* begin = field.c_str();

@@ -14,6 +14,7 @@
 #include "core/FreeCentre.hpp"
 #include "core/InputError.hpp"
 #include "core/PeriodicImages.hpp"
+#include "core/RowShare.hpp"
 #include "core/SphereHash.hpp"
 #include "core/TiledInsertion.hpp"
 
@@ -277,28 +278,33 @@ void check_in_domain(const Scene& scene, const CsvReader& csv, Vec3 centre) {
                      outside_domain_text(scene, centre, k));
 }
 
-void import_csv(const Scene& scene, std::size_t i, ParticleStore& store, ParticleId& next_id) {
+/// The rows of a CSV file after its header, blank lines left out.
+std::size_t csv_row_count(const std::string& path) {
+  CsvReader csv(path);
+  std::size_t rows = 0;
+  while (csv.skip()) ++rows;
+  return rows;
+}
+
+/// Appends particle `id` of CSV row `f` of source i.
+void add_csv_particle(const Scene& scene, std::size_t i, const CsvReader& csv,
+                      const CsvColumns& col, const std::vector<std::string>& f, ParticleId id,
+                      ParticleStore& out) {
   const ParticleSource& src = scene.sources[i];
-  CsvReader csv(src.csv_file);
-  const CsvColumns col = csv_columns(csv);
-  if (col.material < 0) check_material(scene, i);
-  std::vector<std::string> f;
-  while (csv.next(f)) {
-    const auto optional = [&](int k, const char* name, double fallback) {
-      return k < 0 ? fallback : csv.number(f[k], name);
-    };
-    const Vec3 centre{csv.number(f[col.x], "x"), csv.number(f[col.y], "y"),
-                      csv.number(f[col.z], "z")};
-    const double r = csv.number(f[col.r], "r");
-    if (!(r > 0))
-      throw InputError(csv.path(), csv.line(), "r", "radius must be > 0, got " + f[col.r]);
-    const MaterialId mat =
-        col.material < 0 ? src.material : csv_material(scene, csv, f[col.material]);
-    check_in_domain(scene, csv, centre);
-    const Vec3 v{optional(col.vx, "vx", src.velocity.x), optional(col.vy, "vy", src.velocity.y),
-                 optional(col.vz, "vz", src.velocity.z)};
-    store.add(next_id++, centre, r, mat, v, 1.0 / sphere_mass(scene.materials[mat].density, r));
-  }
+  const auto optional = [&](int k, const char* name, double fallback) {
+    return k < 0 ? fallback : csv.number(f[k], name);
+  };
+  const Vec3 centre{csv.number(f[col.x], "x"), csv.number(f[col.y], "y"),
+                    csv.number(f[col.z], "z")};
+  const double r = csv.number(f[col.r], "r");
+  if (!(r > 0))
+    throw InputError(csv.path(), csv.line(), "r", "radius must be > 0, got " + f[col.r]);
+  const MaterialId mat =
+      col.material < 0 ? src.material : csv_material(scene, csv, f[col.material]);
+  check_in_domain(scene, csv, centre);
+  const Vec3 v{optional(col.vx, "vx", src.velocity.x), optional(col.vy, "vy", src.velocity.y),
+               optional(col.vz, "vz", src.velocity.z)};
+  out.add(id, centre, r, mat, v, 1.0 / sphere_mass(scene.materials[mat].density, r));
 }
 
 /// Fails on the `bed` key of source i with `what`.
@@ -331,7 +337,7 @@ void create_source(const Scene& scene, std::size_t i, const std::vector<Real4>& 
       insert_box(scene, i, avoid, out, next_id);
       return;
     case SourceKind::Csv:
-      import_csv(scene, i, out, next_id);
+      next_id += import_csv_part(scene, i, FilePart{}, out, next_id);
       return;
     case SourceKind::Bed:
       throw std::logic_error("create_source: a bed source is read with read_bed_source");
@@ -347,6 +353,24 @@ std::vector<Real4> spheres_reaching(const DomainSettings& domain, const std::vec
     if (reaches) reaching.push_back(p);
   }
   return reaching;
+}
+
+std::size_t import_csv_part(const Scene& scene, std::size_t i, FilePart part, ParticleStore& out,
+                            ParticleId first_id) {
+  const std::string& path = scene.sources[i].csv_file;
+  const RowRange rows =
+      part.count == 1 ? RowRange{0, ~std::size_t{0}} : part.rows_of(csv_row_count(path));
+  CsvReader csv(path);
+  const CsvColumns col = csv_columns(csv);
+  if (col.material < 0) check_material(scene, i);
+  std::size_t row = 0;
+  for (; row < rows.first && csv.skip(); ++row) {
+  }
+  std::vector<std::string> f;
+  for (; row - rows.first < rows.count && csv.next(f); ++row)
+    add_csv_particle(scene, i, csv, col, f, first_id + row, out);
+  while (csv.skip()) ++row;
+  return row;
 }
 
 std::size_t bed_source_index(const Scene& scene) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/ParticleStore.hpp"
+#include "core/RowShare.hpp"
 #include "core/Scene.hpp"
 
 namespace gpudem {
@@ -57,6 +58,13 @@ void create_source(const Scene& scene, std::size_t i, const std::vector<Real4>& 
 /// must avoid.
 std::vector<Real4> spheres_reaching(const DomainSettings& domain, const std::vector<Real4>& spheres,
                                     Vec3 lo, Vec3 hi);
+
+/// Appends part `part` of the rows of CSV source i (columns as for create_particles) to `out`:
+/// row k after the header, blank lines left out, gets id first_id + k. Returns the rows of the
+/// whole file. Throws InputError (file, line, column) for a bad header or a bad row of the
+/// part: the parts in order report the first bad row of the file first.
+std::size_t import_csv_part(const Scene& scene, std::size_t i, FilePart part, ParticleStore& out,
+                            ParticleId first_id);
 
 /// Index of the scene's bed source; scene.sources.size() when it has none.
 std::size_t bed_source_index(const Scene& scene);

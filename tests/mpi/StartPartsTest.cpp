@@ -182,5 +182,31 @@ TEST(StartParts, AProblemInOneRanksPartOfTheBedFailsOnEveryRankAsOnOne) {
   }
 }
 
+TEST(StartParts, ABadCsvRowInOneRanksPartFailsOnEveryRankAsOnOne) {
+  for (const char* name : {"not_a_number.csv", "field_count.csv", "radius_zero.csv",
+                           "unknown_material.csv", "outside_domain.csv"}) {
+    SCOPED_TRACE(name);
+    Scene scene = test::insertion_scene();
+    ParticleSource rows;
+    rows.kind = SourceKind::Csv;
+    rows.csv_file = test::source_dir() + "/tests/data/csv/" + name;  // the second row is bad
+    scene.sources.push_back(rows);
+    std::string alone;
+    try {
+      ParticleStore whole;
+      create_particles(scene, whole);
+    } catch (const InputError& e) {
+      alone = e.what();
+    }
+    ASSERT_FALSE(alone.empty());
+    try {
+      create_start_part(MPI_COMM_WORLD, scene, {});
+      ADD_FAILURE() << "no InputError on rank " << test::comm_rank();
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), alone);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gpudem

@@ -383,6 +383,32 @@ TEST(CsvImport, BadFilesNameFileLineAndColumn) {
   expect_csv_error("outside_domain.csv", 3, "z");
 }
 
+TEST(CsvImport, PartsOfTheRowsInOrderAreTheWholeFile) {
+  Scene scene = make_scene();
+  scene.sources.push_back(csv_source("rows_with_blanks.csv"));  // 7 rows among blank lines
+  for (int parts = 1; parts <= 9; ++parts) {
+    ParticleStore joined;
+    for (int p = 0; p < parts; ++p)
+      EXPECT_EQ(import_csv_part(scene, 0, FilePart{p, parts}, joined, 100), 7u);
+    ASSERT_EQ(joined.size(), 7u) << parts << " parts";
+    for (std::size_t k = 0; k < 7; ++k) {
+      EXPECT_EQ(joined.id[k], 100 + k);
+      EXPECT_DOUBLE_EQ(joined.position_radius[k].x, 0.1 * double(k + 1));
+      EXPECT_DOUBLE_EQ(joined.velocity_inv_mass[k].z, double(k + 1));
+    }
+  }
+}
+
+TEST(CsvImport, APartReportsOnlyTheBadRowsItHolds) {
+  Scene scene = make_scene();
+  scene.sources.push_back(csv_source("not_a_number.csv"));  // row 1 of rows 0 and 1 is bad
+  ParticleStore first;
+  EXPECT_EQ(import_csv_part(scene, 0, FilePart{0, 2}, first, 0), 2u);
+  EXPECT_EQ(first.size(), 1u);
+  ParticleStore second;
+  EXPECT_THROW(import_csv_part(scene, 0, FilePart{1, 2}, second, 0), InputError);
+}
+
 TEST(CsvImport, OutsideAlongAPeriodicAxisIsAccepted) {
   Scene scene = make_scene();
   scene.domain.periodic[2] = true;
