@@ -17,6 +17,7 @@
 #include "core/InputError.hpp"
 #include "core/ParticleSources.hpp"
 #include "core/RowShare.hpp"
+#include "support/InputErrorText.hpp"
 #include "support/InsertionChecks.hpp"
 #include "support/MpiRank.hpp"
 #include "support/TestPaths.hpp"
@@ -166,20 +167,15 @@ TEST(StartParts, AProblemInOneRanksPartOfTheBedFailsOnEveryRankAsOnOne) {
   ParticleStore bed = bed_particles();
   bed.material.back() = 5;  // in the last rank's part
   const Scene scene = layered_scene(true);
-  std::string alone;
-  try {
+  const std::string alone = test::input_error_text([&] {
     ParticleStore whole;
     create_particles(scene, whole, whole_reader(bed));
-  } catch (const InputError& e) {
-    alone = e.what();
-  }
+  });
   ASSERT_NE(alone.find("material index 5"), std::string::npos) << alone;
-  try {
-    create_start_part(MPI_COMM_WORLD, scene, part_reader(bed));
-    ADD_FAILURE() << "no InputError on rank " << test::comm_rank();
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), alone);
-  }
+  EXPECT_EQ(
+      test::input_error_text([&] { create_start_part(MPI_COMM_WORLD, scene, part_reader(bed)); }),
+      alone)
+      << "on rank " << test::comm_rank();
 }
 
 TEST(StartParts, ABadCsvRowInOneRanksPartFailsOnEveryRankAsOnOne) {
@@ -191,20 +187,13 @@ TEST(StartParts, ABadCsvRowInOneRanksPartFailsOnEveryRankAsOnOne) {
     rows.kind = SourceKind::Csv;
     rows.csv_file = test::source_dir() + "/tests/data/csv/" + name;  // the second row is bad
     scene.sources.push_back(rows);
-    std::string alone;
-    try {
+    const std::string alone = test::input_error_text([&] {
       ParticleStore whole;
       create_particles(scene, whole);
-    } catch (const InputError& e) {
-      alone = e.what();
-    }
+    });
     ASSERT_FALSE(alone.empty());
-    try {
-      create_start_part(MPI_COMM_WORLD, scene, {});
-      ADD_FAILURE() << "no InputError on rank " << test::comm_rank();
-    } catch (const InputError& e) {
-      EXPECT_EQ(std::string(e.what()), alone);
-    }
+    EXPECT_EQ(test::input_error_text([&] { create_start_part(MPI_COMM_WORLD, scene, {}); }), alone)
+        << "on rank " << test::comm_rank();
   }
 }
 

@@ -10,6 +10,7 @@
 #include "comm/TiledParts.hpp"
 #include "core/InputError.hpp"
 #include "core/ParticleSources.hpp"
+#include "support/InputErrorText.hpp"
 #include "support/InsertionChecks.hpp"
 #include "support/MpiRank.hpp"
 
@@ -55,21 +56,17 @@ TEST(TiledParts, EachRankPlacesItsRowsOfTheWholeWithGlobalIds) {
 TEST(TiledParts, ARegionTooFullFailsOnEveryRankAsOnOne) {
   Scene scene = long_bed();
   scene.sources[0].count = 1000000;
-  std::string alone;
-  try {
+  const std::string alone = test::input_error_text([&] {
     ParticleStore all;
     create_particles(scene, all);
-  } catch (const InputError& e) {
-    alone = e.what();
-  }
+  });
   ASSERT_NE(alone.find("could only place"), std::string::npos) << alone;
-  try {
-    ParticleStore part;
-    append_tiled_part(MPI_COMM_WORLD, scene, 0, part, 0);
-    ADD_FAILURE() << "no InputError on rank " << test::comm_rank();
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), alone);
-  }
+  EXPECT_EQ(test::input_error_text([&] {
+              ParticleStore part;
+              append_tiled_part(MPI_COMM_WORLD, scene, 0, part, 0);
+            }),
+            alone)
+      << "on rank " << test::comm_rank();
 }
 
 TEST(TiledParts, ASourceThatIsNotATiledBoxIsALogicError) {
