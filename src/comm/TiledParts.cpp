@@ -19,6 +19,9 @@
 namespace gpudem {
 namespace {
 
+/// The most bytes one MPI call with int counts moves.
+constexpr std::size_t kMaxMessageBytes = std::numeric_limits<int>::max();
+
 /// `rank`, or MPI_PROC_NULL for none (-1).
 int rank_or_null(int rank) { return rank < 0 ? MPI_PROC_NULL : rank; }
 
@@ -29,9 +32,11 @@ std::vector<BoundarySphere> send_receive(MPI_Comm comm, const std::vector<Bounda
   std::uint64_t count_out = out.size(), count_in = 0;
   MPI_Sendrecv(&count_out, 1, MPI_UINT64_T, to, kCountTag, &count_in, 1, MPI_UINT64_T, from,
                kCountTag, comm, MPI_STATUS_IGNORE);
-  const std::uint64_t limit = std::numeric_limits<int>::max() / sizeof(BoundarySphere);
-  if (count_out > limit || count_in > limit)
-    throw std::length_error("append_tiled_part: a layer of tiles too large for one message");
+  const std::uint64_t limit = kMaxMessageBytes / sizeof(BoundarySphere);
+  throw_first_failure(comm, {count_out > limit || count_in > limit
+                                 ? "tiled insertion: the spheres one phase placed in a layer of "
+                                   "tiles are too many for one message"
+                                 : ""});
   std::vector<BoundarySphere> in(count_in);
   MPI_Sendrecv(out.data(), static_cast<int>(count_out * sizeof(BoundarySphere)), MPI_BYTE, to,
                kSpheresTag, in.data(), static_cast<int>(count_in * sizeof(BoundarySphere)),
@@ -112,12 +117,17 @@ std::vector<Real4> earlier_spheres_near_part(MPI_Comm comm, const DomainSettings
         }
     });
   }
+  std::size_t sending = 0;
+  for (const std::vector<Real4>& spheres : out) sending += spheres.size() * sizeof(Real4);
+  throw_first_failure(comm, {sending > kMaxMessageBytes
+                                 ? "tiled insertion: a rank has too many earlier spheres near "
+                                   "other ranks' tiles for one message"
+                                 : ""});
   std::vector<int> send_bytes(ranks), send_offsets(ranks, 0), receive_bytes(ranks),
       receive_offsets(ranks, 0);
   std::vector<Real4> send;
+  send.reserve(sending / sizeof(Real4));
   for (int p = 0; p < ranks; ++p) {
-    if (out[p].size() > std::numeric_limits<int>::max() / sizeof(Real4))
-      throw std::length_error("append_tiled_part: too many earlier spheres for one message");
     send_bytes[p] = static_cast<int>(out[p].size() * sizeof(Real4));
     if (p > 0) send_offsets[p] = send_offsets[p - 1] + send_bytes[p - 1];
     send.insert(send.end(), out[p].begin(), out[p].end());
@@ -126,11 +136,13 @@ std::vector<Real4> earlier_spheres_near_part(MPI_Comm comm, const DomainSettings
   MPI_Alltoall(send_bytes.data(), 1, MPI_INT, receive_bytes.data(), 1, MPI_INT, comm);
   std::size_t received = 0;
   for (int p = 0; p < ranks; ++p) {
-    receive_offsets[p] = static_cast<int>(received);
+    receive_offsets[p] = static_cast<int>(std::min<std::size_t>(received, kMaxMessageBytes));
     received += static_cast<std::size_t>(receive_bytes[p]);
-    if (received > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-      throw std::length_error("append_tiled_part: too many earlier spheres for one rank");
   }
+  throw_first_failure(comm, {received > kMaxMessageBytes
+                                 ? "tiled insertion: the earlier spheres near a rank's tiles "
+                                   "are too many for one message"
+                                 : ""});
   std::vector<Real4> near(received / sizeof(Real4));
   MPI_Alltoallv(send.data(), send_bytes.data(), send_offsets.data(), MPI_BYTE, near.data(),
                 receive_bytes.data(), receive_offsets.data(), MPI_BYTE, comm);
