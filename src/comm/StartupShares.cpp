@@ -1,7 +1,6 @@
 #include "comm/StartupShares.hpp"
 
 #include <cstdint>
-#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <vector>
@@ -9,16 +8,13 @@
 namespace gpudem {
 namespace {
 
-/// The most bytes one MPI call with int counts can move.
-constexpr int kMaxMessageBytes = std::numeric_limits<int>::max();
-
 /// Every rank's `part` concatenated in rank order, on every rank (T holds plain values).
 template <class T>
 std::vector<T> gather_rows(MPI_Comm comm, const std::vector<T>& part) {
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
   const std::uint64_t part_bytes = part.size() * sizeof(T);
-  if (sum_over_ranks(comm, part_bytes) > static_cast<std::uint64_t>(kMaxMessageBytes))
+  if (sum_over_ranks(comm, part_bytes) > kMaxMessageBytes)
     throw std::length_error("gathering rows on every rank: more than 2^31 - 1 bytes in all");
   const int bytes = static_cast<int>(part_bytes);
   std::vector<int> counts(ranks), offsets(ranks, 0);

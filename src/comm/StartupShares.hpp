@@ -5,8 +5,10 @@
 /// time step, the particle count.
 #include <mpi.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -16,6 +18,9 @@
 #include "core/ParticleStore.hpp"
 
 namespace gpudem {
+
+/// The most bytes one MPI call with int counts moves.
+inline constexpr std::size_t kMaxMessageBytes = std::numeric_limits<int>::max();
 
 /// A failure of one rank, to be thrown on every rank.
 struct RankFailure {

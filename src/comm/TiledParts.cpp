@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -18,9 +17,6 @@
 
 namespace gpudem {
 namespace {
-
-/// The most bytes one MPI call with int counts moves.
-constexpr std::size_t kMaxMessageBytes = std::numeric_limits<int>::max();
 
 /// `rank`, or MPI_PROC_NULL for none (-1).
 int rank_or_null(int rank) { return rank < 0 ? MPI_PROC_NULL : rank; }
