@@ -55,9 +55,8 @@ class LayerOwners {
  public:
   LayerOwners(const InsertionTiles& tiles, int parts)
       : layers_(static_cast<std::int64_t>(tiles.count() / tiles.layer_size())), first_(parts + 1) {
-    for (int p = 0; p <= parts; ++p)
+    for (int p = 0; p <= parts; ++p)  // part `parts` (none) starts at the layer count
       first_[p] = static_cast<std::int64_t>(share_of_rows(layers_, p, parts).first);
-    first_[parts] = layers_;
   }
   /// The part owning layer `layer` (clamped to the grid).
   int owner(std::int64_t layer) const {
