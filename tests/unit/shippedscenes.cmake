@@ -1,6 +1,7 @@
 # Every scene shipped in inputs/ that does not start from the bed an earlier stage writes passes
 # `gpudem-mpi --check` (the scene, its meshes, CSV files and sources read and checked, the
-# particles created, nothing run), so that the examples keep up with the input format.
+# particles created, nothing run; exit 0 only for a valid scene), so that the examples keep up
+# with the input format.
 file(GLOB_RECURSE GPUDEM_SHIPPED_SCENES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/inputs/*.toml)
 foreach(scene ${GPUDEM_SHIPPED_SCENES})
   file(STRINGS ${scene} bed_source REGEX "^bed *=")
@@ -12,6 +13,5 @@ foreach(scene ${GPUDEM_SHIPPED_SCENES})
   add_test(NAME shipped_scene_${name}
     COMMAND $<TARGET_FILE:gpudem-mpi> ${scene} --check --backend host)
   set_tests_properties(shipped_scene_${name} PROPERTIES LABELS unit TIMEOUT 300
-    PASS_REGULAR_EXPRESSION "scene is valid"
     ENVIRONMENT "OMP_NUM_THREADS=1;OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
 endforeach()
