@@ -10,10 +10,6 @@
 namespace gpudem {
 namespace {
 
-bool is_tiled_box(const ParticleSource& src) {
-  return src.kind == SourceKind::Box && src.placement == Placement::Tiled;
-}
-
 /// Box source i placed sequentially, whole on every rank, avoiding the spheres of every rank's
 /// `part` that reach its region, with ids from `first_id`. Collective.
 ParticleStore place_sequential_box(MPI_Comm comm, const Scene& scene, std::size_t i,

@@ -1,7 +1,6 @@
 #include "comm/TiledParts.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -72,18 +71,10 @@ class LayerOwners {
   std::vector<std::int64_t> first_;  ///< first layer of each part; the layer count last
 };
 
-/// Whether sphere p, its box widened by `reach`, meets the box [lo, hi].
-bool meets(const Real4& p, double reach, Vec3 lo, Vec3 hi) {
-  for (int k = 0; k < 3; ++k)
-    if (axis(xyz(p), k) + p.w + reach < axis(lo, k) || axis(xyz(p), k) - p.w - reach > axis(hi, k))
-      return false;
-  return true;
-}
-
 /// The spheres of every rank's `earlier_part` that may reach this rank's tiles of `tiles`: each
 /// rank sends each sphere of its part to the ranks owning a layer that a periodic image of it
-/// meets, its box widened by twice the new source's largest radius `r_max` (a tile avoids the
-/// earlier spheres within one r_max of it; the second r_max covers rounding). Collective.
+/// reaches, the tiles widened by twice the new source's largest radius `r_max` (a tile avoids
+/// the earlier spheres within one r_max of it; the second r_max covers rounding). Collective.
 std::vector<Real4> earlier_spheres_near_part(MPI_Comm comm, const DomainSettings& domain,
                                              const InsertionTiles& tiles, double r_max,
                                              const std::vector<Real4>& earlier_part) {
@@ -91,20 +82,17 @@ std::vector<Real4> earlier_spheres_near_part(MPI_Comm comm, const DomainSettings
   MPI_Comm_size(comm, &ranks);
   const LayerOwners owners(tiles, ranks);
   const int slab = tiles.slab_axis();
-  const Vec3 grid_lo = tiles.lo(), grid_hi = tiles.tile_hi(tiles.coords(tiles.count() - 1));
-  const double reach = 2 * r_max, origin = axis(grid_lo, slab), edge = axis(tiles.edge(), slab);
-  const auto layer_of = [&](double x) {
-    return static_cast<std::int64_t>(std::floor((x - origin) / edge));
-  };
+  const double reach = 2 * r_max;
+  const Vec3 widen{reach, reach, reach}, lo = tiles.lo() - widen, hi = tiles.hi() + widen;
   std::vector<std::vector<Real4>> out(ranks);
   std::vector<std::size_t> sent_last(ranks, ~std::size_t{0});  // the sphere last sent to a rank
   for (std::size_t n = 0; n < earlier_part.size(); ++n) {
     const Real4& s = earlier_part[n];
     for_each_image_in_domain(domain, s, [&](const Real4& q) {
-      if (!meets(q, reach, grid_lo, grid_hi)) return;
+      if (!sphere_reaches_box(q, lo, hi)) return;
       const double c = axis(xyz(q), slab);
-      const int first = owners.owner(layer_of(c - q.w - reach));
-      const int last = owners.owner(layer_of(c + q.w + reach));
+      const int first = owners.owner(tiles.index_along(slab, c - q.w - reach));
+      const int last = owners.owner(tiles.index_along(slab, c + q.w + reach));
       for (int p = first; p <= last; ++p)
         if (owners.owns_layers(p) && sent_last[p] != n) {
           out[p].push_back(s);
@@ -149,7 +137,7 @@ std::vector<Real4> earlier_spheres_near_part(MPI_Comm comm, const DomainSettings
 std::size_t append_tiled_part(MPI_Comm comm, const Scene& scene, std::size_t i, ParticleStore& part,
                               ParticleId first_id) {
   const ParticleSource& src = scene.sources[i];
-  if (src.kind != SourceKind::Box || src.placement != Placement::Tiled)
+  if (!is_tiled_box(src))
     throw std::logic_error("append_tiled_part: source " + std::to_string(i) +
                            " is not a tiled box");
   int rank = 0, ranks = 1;

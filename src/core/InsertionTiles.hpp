@@ -1,6 +1,7 @@
 #pragma once
 /// The grid of tiles over a box region that tiled insertion fills (core/TiledInsertion.hpp).
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -32,6 +33,12 @@ class InsertionTiles {
   Vec3 tile_lo(const Coords& c) const;
   Vec3 tile_hi(const Coords& c) const;
   Vec3 lo() const { return lo_; }
+  Vec3 hi() const { return hi_; }
+  /// Index along axis k of the tiles whose slab holds coordinate x, ⌊(x − lo_k) / edge_k⌋
+  /// (outside [0, along(k)) for x outside the region).
+  std::int64_t index_along(int k, double x) const {
+    return static_cast<std::int64_t>(std::floor((x - axis(lo_, k)) / axis(edge_, k)));
+  }
   Vec3 edge() const { return edge_; }
   double tile_volume() const { return edge_.x * edge_.y * edge_.z; }
   /// Colour 0..7 of a tile: the parities of its indices, the slab axis' the highest bit.

@@ -143,19 +143,13 @@ std::vector<double> box_radii(const Scene& scene, std::size_t i, std::mt19937_64
   return radii;
 }
 
-/// Whether sphere p reaches into the box [lo, hi].
-bool reaches_box(const Real4& p, Vec3 lo, Vec3 hi) {
-  return p.x + p.w > lo.x && p.x - p.w < hi.x && p.y + p.w > lo.y && p.y - p.w < hi.y &&
-         p.z + p.w > lo.z && p.z - p.w < hi.z;
-}
-
 /// The images of `spheres` in the domain (for_each_image_in_domain) that reach into [lo, hi].
 std::vector<Real4> images_reaching(const DomainSettings& domain, const std::vector<Real4>& spheres,
                                    Vec3 lo, Vec3 hi) {
   std::vector<Real4> images;
   for (const Real4& p : spheres)
     for_each_image_in_domain(domain, p, [&](const Real4& q) {
-      if (reaches_box(q, lo, hi)) images.push_back(q);
+      if (sphere_reaches_box(q, lo, hi)) images.push_back(q);
     });
   return images;
 }
@@ -349,7 +343,8 @@ std::vector<Real4> spheres_reaching(const DomainSettings& domain, const std::vec
   std::vector<Real4> reaching;
   for (const Real4& p : spheres) {
     bool reaches = false;
-    for_each_image_in_domain(domain, p, [&](const Real4& q) { reaches |= reaches_box(q, lo, hi); });
+    for_each_image_in_domain(domain, p,
+                             [&](const Real4& q) { reaches |= sphere_reaches_box(q, lo, hi); });
     if (reaches) reaching.push_back(p);
   }
   return reaching;

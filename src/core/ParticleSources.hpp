@@ -53,6 +53,17 @@ void create_particles(const Scene& scene, ParticleStore& store, const BedReader&
 void create_source(const Scene& scene, std::size_t i, const std::vector<Real4>& avoid,
                    ParticleStore& out, ParticleId& next_id);
 
+/// Whether a box source is placed by tiles.
+inline bool is_tiled_box(const ParticleSource& src) {
+  return src.kind == SourceKind::Box && src.placement == Placement::Tiled;
+}
+
+/// Whether sphere p (centre, radius) reaches into the box [lo, hi] (overlaps its inside).
+inline bool sphere_reaches_box(const Real4& p, Vec3 lo, Vec3 hi) {
+  return p.x + p.w > lo.x && p.x - p.w < hi.x && p.y + p.w > lo.y && p.y - p.w < hi.y &&
+         p.z + p.w > lo.z && p.z - p.w < hi.z;
+}
+
 /// The spheres of `spheres` that reach into the region [lo, hi], themselves or by a periodic
 /// image in the domain (core/PeriodicImages.hpp): those a box source placed sequentially there
 /// must avoid.

@@ -156,19 +156,15 @@ void TiledFill::copy_earlier_spheres(const std::vector<Real4>& earlier) {
 }
 
 void TiledFill::copy_to_tiles(const Real4& p) {
-  const Vec3 origin = tiles_.lo(), edge = tiles_.edge();
   const InsertionTiles::Coords first = tiles_.coords(first_held_);
   const InsertionTiles::Coords last = tiles_.coords(first_held_ + tiles_held_.size() - 1);
   const int slab = tiles_.slab_axis();
   InsertionTiles::Coords lo{}, hi{};
   for (int k = 0; k < 3; ++k) {  // the tiles whose box the sphere's, widened by r_max, meets
     const double reach = p.w + r_max_;
-    lo[k] = std::max<std::int64_t>(
-        0, static_cast<std::int64_t>(
-               std::floor((axis(xyz(p), k) - reach - axis(origin, k)) / axis(edge, k))));
-    hi[k] = std::min<std::int64_t>(
-        tiles_.along(k) - 1, static_cast<std::int64_t>(std::floor(
-                                 (axis(xyz(p), k) + reach - axis(origin, k)) / axis(edge, k))));
+    lo[k] = std::max<std::int64_t>(0, tiles_.index_along(k, axis(xyz(p), k) - reach));
+    hi[k] =
+        std::min<std::int64_t>(tiles_.along(k) - 1, tiles_.index_along(k, axis(xyz(p), k) + reach));
   }
   lo[slab] = std::max(lo[slab], first[slab]);
   hi[slab] = std::min(hi[slab], last[slab]);
