@@ -1,6 +1,7 @@
 #pragma once
-/// Rank 0's progress line: simulated time, step, steps/s, particle-steps/s, ETA and, on several
-/// ranks, the load imbalance, printed at most once per `interval` seconds of wall time.
+/// Rank 0's progress line: simulated time, step, steps/s, particle-steps/s, ETA, the particles
+/// removed so far (when any were) and, on several ranks, the load imbalance, printed at most
+/// once per `interval` seconds of wall time.
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -18,10 +19,11 @@ class Progress {
         last_(start_),
         last_step_(first_step) {}
 
-  /// Prints when the interval has passed or `force` is set. imbalance: max/mean work over the
-  /// ranks (shown when above 1).
-  void update(double time, std::uint64_t step, std::size_t particles, double imbalance,
-              bool force = false) {
+  /// Prints when the interval has passed or `force` is set. removed: particles that left the
+  /// domain since the run began (shown when any did); imbalance: max/mean work over the ranks
+  /// (shown when above 1).
+  void update(double time, std::uint64_t step, std::size_t particles, std::uint64_t removed,
+              double imbalance, bool force = false) {
     if (!enabled_) return;
     const auto now = Clock::now();
     if (!force && seconds(last_, now) < interval_) return;
@@ -34,6 +36,7 @@ class Progress {
         "elapsed %.1f s  ETA %.1f s",
         time, static_cast<unsigned long long>(step), static_cast<unsigned long long>(total_), rate,
         rate * static_cast<double>(particles), elapsed, eta);
+    if (removed > 0) std::printf("  removed %llu", static_cast<unsigned long long>(removed));
     if (imbalance > 1) std::printf("  imbalance %.3f", imbalance);
     std::printf("\n");
     std::fflush(stdout);

@@ -238,7 +238,8 @@ class TimeLoop {
       if (settled && !snapshot) write_snapshot(step * dt_, step);
       if (checkpoint_every_ > 0 && (last || settled || step % checkpoint_every_ == 0))
         checkpoint(step);
-      progress_.update(step * dt_, step, engine_.particle_count(), imbalance_, last || settled);
+      progress_.update(step * dt_, step, engine_.particle_count(), engine_.removed_count(),
+                       imbalance_, last || settled);
       if (settled) {
         settled_step_ = step;
         return finish(step);
@@ -328,11 +329,12 @@ class TimeLoop {
     std::optional<Diagnostics> row;
     if (step % series_every_ == 0 || snapshot) {
       const std::uint64_t removed = engine_.removed_count();
-      if (removed > reported_removed_ && mpi_.is_root())
-        std::printf("warning: %llu particle(s) left the domain and were removed (total %llu)\n",
-                    static_cast<unsigned long long>(removed - reported_removed_),
-                    static_cast<unsigned long long>(removed));
-      reported_removed_ = removed;
+      if (removed > 0 && !removal_reported_ && mpi_.is_root())
+        std::printf(
+            "warning: %llu particle(s) left the domain and were removed; later removals are "
+            "counted in the progress lines and in timeseries.csv (column removed)\n",
+            static_cast<unsigned long long>(removed));
+      removal_reported_ = removal_reported_ || removed > 0;
       row = engine_.diagnostics();
       imbalance_ = balance_.imbalance(engine_);
       series_.append(timeseries_row(time, step, *row, removed, imbalance_));
@@ -398,9 +400,9 @@ class TimeLoop {
   bool resumed_;
   const SettleCheck* settle_;  ///< null: run to end_time
   std::optional<std::uint64_t> settled_step_;
-  std::uint64_t reported_removed_ = 0;
-  double imbalance_ = 1;       ///< at the last time-series row
-  double output_seconds_ = 0;  ///< time series, snapshots and checkpoints [s]
+  bool removal_reported_ = false;  ///< the first removal was warned of
+  double imbalance_ = 1;           ///< at the last time-series row
+  double output_seconds_ = 0;      ///< time series, snapshots and checkpoints [s]
 };
 
 /// A restart continues with the checkpoint's time step and skin (DESIGN §8): an explicit

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <sstream>
 #include <string>
 
 #include "support/RunBinary.hpp"
@@ -200,6 +202,37 @@ TEST_F(CommandLine, MoreThreadsThanCoresIsWarnedOf) {
                                                gpudem::test::binary_path() + args);
   ASSERT_EQ(one.exit_code, 0) << one.output;
   EXPECT_EQ(one.output.find("OpenMP threads than the cores"), std::string::npos) << one.output;
+}
+
+/// Without the floor the 50 spheres fall out through the bottom over many time-series rows: one
+/// warning at the first removal, then the count in the progress lines (the last says all 50).
+TEST_F(CommandLine, ParticlesLeavingTheDomainAreWarnedOfOnceThenCounted) {
+  const std::string no_floor = edit(
+      "[[wall]]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\nmaterial = \"sand\"\n", "");
+  const Result r = run(scene(no_floor) + " --output-dir " + out() +
+                       " --set simulation.end_time=0.2 --set output.timeseries_every=0.005");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string warning = "left the domain and were removed";
+  const std::size_t first = r.output.find(warning);
+  ASSERT_NE(first, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(warning, first + 1), std::string::npos) << r.output;
+  std::ifstream series(fs::path(out()) / "timeseries.csv");
+  std::string row;
+  std::set<std::string> removed_counts;
+  std::getline(series, row);
+  while (std::getline(series, row)) {
+    std::stringstream fields(row);
+    std::string field;
+    for (int column = 0; column <= 9; ++column) std::getline(fields, field, ',');
+    removed_counts.insert(field);  // column 9: removed
+  }
+  EXPECT_GT(removed_counts.size(), 3u) << "the removals should span several rows";
+  const std::size_t last_progress = r.output.rfind("\nt = ");
+  ASSERT_NE(last_progress, std::string::npos) << r.output;
+  const std::string line =
+      r.output.substr(last_progress + 1, r.output.find('\n', last_progress + 1) - last_progress);
+  EXPECT_NE(line.find("  removed 50"), std::string::npos) << line;
+  EXPECT_NE(r.output.find("50 particles removed (left the domain)"), std::string::npos) << r.output;
 }
 
 TEST_F(CommandLine, VerboseAndQuietExcludeEachOther) {
