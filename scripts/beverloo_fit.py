@@ -14,8 +14,8 @@ through a round orifice of diameter D is steady (independent of the head) and
 
     W = C ρ_b √g (D − k d)^{5/2},
 
-with ρ_b the bulk density, d the grain diameter, C ≈ 0.55–0.65 and k ≈ 1.3–1.5 (Nedderman,
-Statics and Kinematics of Granular Materials, 1992). Hence W^{2/5} is linear in D: slope
+with ρ_b the bulk density, d the grain diameter and, as usually quoted for cohesionless grains,
+C ≈ 0.55–0.65 and k ≈ 1.3–1.5. Hence W^{2/5} is linear in D: slope
 s = (C ρ_b √g)^{2/5}, intercept −s k d, and a least-squares line through (D, W^{2/5}) gives
 C = s^{5/2} / (ρ_b √g) and k = −intercept / (s d), with standard errors from the line's
 covariance (first-order propagation).
@@ -70,10 +70,11 @@ def discharge_rate(run, window, mass):
     t0 = window[0]
     t1 = window[1] if window[1] is not None else t[-1]
     mid = 0.5 * (t0 + t1)
+
     def rate(a, b):
         sel = (t >= a) & (t <= b)
         if sel.sum() < 3:
-            sys.exit(f"beverloo_fit.py: {run}: fewer than 3 time-series rows in {a}..{b} s")
+            raise KeyError(f"{run}: fewer than 3 time-series rows in {a}..{b} s")
         return mass * slope(t[sel], removed[sel])
     return rate(t0, t1), rate(t0, mid), rate(mid, t1), int(removed[-1])
 
@@ -115,12 +116,16 @@ def main():
               file=sys.stderr)
         return 2
     runs.sort()
-    phi, d, mass, grains = bed_properties(args.bed, args.density)
+    try:
+        phi, d, mass, grains = bed_properties(args.bed, args.density)
+        measured = [discharge_rate(run, window, mass) for _, run in runs]
+    except (OSError, KeyError) as e:
+        print(f"beverloo_fit.py: cannot read a bed or time series: {e}", file=sys.stderr)
+        return 2
     rho_b = phi * args.density
     print(f"bed: {grains} grains, mean diameter {d * 1e3:.3f} mm, core solid fraction {phi:.4f}, "
           f"bulk density {rho_b:.1f} kg/m^3")
     diameters = np.array([D for D, _ in runs])
-    measured = [discharge_rate(run, window, mass) for _, run in runs]
     if args.rates_only:
         for (D, run), (w, first, second, left) in zip(runs, measured):
             print(f"{run}: D {D * 1e3:.1f} mm, W = {w:.5f} kg/s (halves {first:.5f}, "
