@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Side by side on one machine: the silo discharge of inputs/silo/silo_discharge.toml in
 # gpudem-mpi (host backend, one rank, NP OpenMP threads) and in LIGGGHTS (Debian's liggghts, NP
-# MPI ranks) from the same settled bed, through the same STL plates, with the same contact law,
-# materials, time step and skin (inputs/bench/liggghts_silo.in), for each orifice diameter.
+# MPI ranks) from the same settled bed, through the same STL plates, with the same materials,
+# Hertz-Mindlin stiffnesses and dashpots, time step and skin (inputs/bench/liggghts_silo.in;
+# the Coulomb limits differ in detail), for each orifice diameter.
 # Prints each run's wall time, then each code's discharge rates and, with four diameters or
 # more, its Beverloo fit (scripts/beverloo_fit.py). Installs Debian's liggghts when missing.
 # The bed is BED (default: the one scripts/silo_beverloo.sh leaves in out/silo/fill/bed.h5;
