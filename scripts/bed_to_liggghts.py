@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Writes the particles of a bed or checkpoint file (HDF5) as a LIGGGHTS data file for
-atom_style granular (id, type 1, diameter, density, x, y, z, then velocities and spins), in a
-box given on the command line.
+atom_style granular (id, type, diameter, density, x, y, z, then velocities and spins), in a
+box given on the command line. Every grain is atom type 1 and has the one density given (a bed
+of one material); type 2 is left to the walls.
 
 Usage: scripts/bed_to_liggghts.py BED_H5 OUT.data --density RHO --box XLO XHI YLO YHI ZLO ZHI
 """
