@@ -2,12 +2,12 @@
 """Fits Beverloo's law to silo discharge runs and compares its constants with the literature.
 
 Usage: scripts/beverloo_fit.py BED_H5 D1=RUN1 D2=RUN2 ... [--window T0 T1] [--png FILE]
-                               [--csv FILE] [--gravity G] [--rates-only]
+                               [--csv FILE] [--gravity G]
 
 BED_H5 is the settled bed the runs started from (a bed or checkpoint file); each Di=RUNi names
 an orifice diameter in metres and the output folder of its discharge run (its timeseries.csv:
-the columns `time` and `removed` are read). --rates-only prints the discharge rates (any number
-of runs) and fits nothing.
+the columns `time` and `removed` are read). With fewer than four runs (too few for a line and
+its errors) it prints their discharge rates and fits nothing.
 
 Beverloo et al. (1961), Chem. Eng. Sci. 15:260: the mass flow rate from a flat-bottomed silo
 through a round orifice of diameter D is steady (independent of the head) and
@@ -103,17 +103,12 @@ def main():
     parser.add_argument("--window", nargs=2, default=["0.1", "end"], metavar=("T0", "T1"))
     parser.add_argument("--png")
     parser.add_argument("--csv")
-    parser.add_argument("--rates-only", action="store_true")
     args = parser.parse_args()
     try:
         runs = [(float(a), b) for a, b in (item.split("=", 1) for item in args.runs)]
         window = (float(args.window[0]), None if args.window[1] == "end" else float(args.window[1]))
     except ValueError as e:
         print(f"beverloo_fit.py: bad argument: {e}", file=sys.stderr)
-        return 2
-    if len(runs) < 4 and not args.rates_only:
-        print("beverloo_fit.py: need at least four orifice diameters (a line and its errors)",
-              file=sys.stderr)
         return 2
     runs.sort()
     try:
@@ -126,7 +121,7 @@ def main():
     print(f"bed: {grains} grains, mean diameter {d * 1e3:.3f} mm, core solid fraction {phi:.4f}, "
           f"bulk density {rho_b:.1f} kg/m^3")
     diameters = np.array([D for D, _ in runs])
-    if args.rates_only:
+    if len(runs) < 4:
         for (D, run), (w, first, second, left) in zip(runs, measured):
             print(f"{run}: D {D * 1e3:.1f} mm, W = {w:.5f} kg/s (halves {first:.5f}, "
                   f"{second:.5f}), {left} grains left")

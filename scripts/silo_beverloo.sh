@@ -4,8 +4,8 @@
 # orifices of several diameters (inputs/silo/silo_discharge.toml with a floor plate from
 # scripts/make_orifice_stl.py for each); scripts/beverloo_fit.py fits W = C ρ_b √g (D − k d)^{5/2}
 # to the discharge rates and says whether C and k agree with the literature (exit status 1 if
-# not). Writes beverloo.csv and beverloo.png under OUT. With fewer than four diameters it prints
-# the discharge rates only.
+# not). Writes beverloo.csv and beverloo.png under OUT; with fewer than four diameters it
+# prints the discharge rates only.
 # Usage: scripts/silo_beverloo.sh [OUT (default out/silo)]
 #   DIAMETERS  orifice diameters in m (default "0.024 0.028 0.032 0.036 0.040": 6 to 10 grains)
 #   SET        scene overrides for both stages, e.g. "material.0.young=2e7 simulation.dt=1e-5"
@@ -40,9 +40,5 @@ for D in $DIAMETERS; do
     --set "mesh.0.file=\"$dir/orifice.stl\""
   runs+=("$D=$dir")
 done
-if ((${#runs[@]} < 4)); then
-  /usr/bin/python3 scripts/beverloo_fit.py "$OUT/fill/bed.h5" "${runs[@]}" --rates-only
-else
-  /usr/bin/python3 scripts/beverloo_fit.py "$OUT/fill/bed.h5" "${runs[@]}" \
-    --csv "$OUT/beverloo.csv" --png "$OUT/beverloo.png"
-fi
+/usr/bin/python3 scripts/beverloo_fit.py "$OUT/fill/bed.h5" "${runs[@]}" \
+  --csv "$OUT/beverloo.csv" --png "$OUT/beverloo.png"

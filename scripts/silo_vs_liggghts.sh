@@ -56,11 +56,9 @@ for D in $DIAMETERS; do
   ours+=("$D=$dir/gpudem")
   theirs+=("$D=$dir/liggghts")
 done
-fit=(--rates-only)
-(( ${#ours[@]} >= 4 )) && fit=()
 for code in gpudem-mpi LIGGGHTS; do
   echo "$code:"
   runs=("${ours[@]}")
   [[ $code = LIGGGHTS ]] && runs=("${theirs[@]}")
-  /usr/bin/python3 scripts/beverloo_fit.py "$BED" "${runs[@]}" "${fit[@]}" || true
+  /usr/bin/python3 scripts/beverloo_fit.py "$BED" "${runs[@]}" || true
 done
