@@ -5,7 +5,7 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh > /dev/null
 out=$(mktemp -d)
 for t in test_dynamics test_settling test_contact_history test_normal_impact test_oblique_impact \
-    test_friction; do
+    test_friction test_janssen; do
   OMP_NUM_THREADS=${OMP_NUM_THREADS:-2} "build/tests/$t" --gtest_filter='*/0' \
     --gtest_output="xml:$out/$t.xml" > /dev/null
 done
