@@ -61,13 +61,14 @@ std::vector<MeshWallSetup> side_walls(double top, const PrescribedMotion& motion
       rectangle({0, -e, lo}, {0, w, 0}, up), rectangle({kSide, -e, lo}, {0, w, 0}, up),
       rectangle({-e, 0, lo}, {w, 0, 0}, up), rectangle({-e, kSide, lo}, {w, 0, 0}, up)};
   std::vector<MeshWallSetup> walls;
-  for (const auto& f : faces) walls.push_back({build_mesh(f), 0, motion});
+  for (const auto& f : faces) walls.push_back({build_mesh(f), 1, motion});
   return walls;
 }
 
-/// A column of `count` grains in a box 0.33 full by solid volume, to be poured onto the floor:
-/// Hertz–Mindlin with restitution damping, ρ = 2500 kg/m³, E = 5 MPa, ν = 0.3, e = 0.5,
-/// μ = 0.5 (grains and walls); dt = 0.2 of the critical step.
+/// A column of `count` grains in a box 0.33 full by solid volume, to be poured onto the floor,
+/// as in inputs/silo/janssen_fill.toml: Hertz–Mindlin with restitution damping; grains of
+/// ρ = 2500 kg/m³, E = 5 MPa, walls (material 1) of ρ = 7850 kg/m³, E = 200 MPa, both ν = 0.3,
+/// e = 0.5, μ = 0.5; dt = 0.2 of the critical step.
 Scene column_scene(std::uint64_t count, double& pour_height) {
   const double grain_volume = 4 * kPi / 3 * kRadius * kRadius * kRadius;
   const double inner = kSide - 2 * (kRadius + kSpread);  // where the centres may go
@@ -77,8 +78,14 @@ Scene column_scene(std::uint64_t count, double& pour_height) {
   scene.contact.model = {NormalLaw::Hertz, DampingLaw::Restitution, TangentialLaw::Mindlin,
                          RollingLaw::None, CohesionLaw::None};
   scene.materials[0].young = 5e6;
+  Material steel = scene.materials[0];
+  steel.name = "steel";
+  steel.density = 7850;
+  steel.young = 2e8;
+  scene.materials.push_back(steel);
   scene.simulation.dt_fraction = 0.2;
   add_floor(scene);
+  scene.walls[0].material = 1;
   add_box_source(scene, {0, 0, 0}, {kSide, kSide, pour_height}, count, kRadius, kSpread);
   return scene;
 }
@@ -225,11 +232,14 @@ TEST_P(Janssen, FloorLoadSaturatesWithFillMass) {
   RecordProperty("solid_fraction_4400", significant(tallest.solid_fraction));
   RecordProperty("janssen_k",
                  significant(bulk_density * std::pow(kSide, 3) / (4 * mobilised * saturation)));
-  // The tallest column (M ≈ 4.6 M_sat) is far from hydrostatic, and the Janssen curve
-  // describes all five to a few per cent of M_sat.
+  // The tallest column (M ≈ 5 M_sat) is far from hydrostatic, adding grains to it hardly
+  // loads the floor, and the Janssen curve describes all five columns to within 8 % of M_sat:
+  // one column's load changes by up to 5 % of M_sat from one realisation to another (two codes
+  // sliding the same settled columns, docs/validation.md), and its time average carries a
+  // standard error of about 1 %.
   EXPECT_LT(load.back(), 0.35 * mass.back());
   EXPECT_LT(load.back() - load[load.size() - 2], 0.2 * (mass.back() - mass[mass.size() - 2]));
-  EXPECT_LT(worst, 0.05);
+  EXPECT_LT(worst, 0.08);
 }
 
 GPUDEM_INSTANTIATE_BACKENDS(Janssen);
