@@ -14,6 +14,7 @@ struct RunOptions {
   std::vector<std::string> overrides;  ///< --set key=value, in order
   std::string output_dir;              ///< --output-dir (empty: the scene's output.dir)
   std::string restart_file;            ///< --restart: checkpoint to continue from (empty: none)
+  bool resume = false;  ///< --resume: continue from <output dir>/checkpoint.h5 if it exists
   BackendChoice backend = BackendChoice::Auto;
   GpuAwareChoice gpu_aware_mpi = GpuAwareChoice::Auto;  ///< --gpu-aware-mpi
   bool check_only = false;                              ///< --check

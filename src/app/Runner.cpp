@@ -14,6 +14,7 @@
 #include "app/LoadBalance.hpp"
 #include "app/MemoryReport.hpp"
 #include "app/Progress.hpp"
+#include "app/Resume.hpp"
 #include "app/ThreadCores.hpp"
 #include "comm/Checkpoint.hpp"
 #include "comm/OutputDirectory.hpp"
@@ -511,12 +512,21 @@ int finish_preparation(const Scene& scene, const MpiContext& mpi, const StepEngi
 
 }  // namespace
 
-int run_scene(const RunOptions& options, const MpiContext& mpi) {
-  Scene scene = load_scene(options.scene_file, options.overrides);
-  if (!options.output_dir.empty()) scene.output.dir = options.output_dir;
+int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
+  Scene scene = load_scene(command_line.scene_file, command_line.overrides);
+  if (!command_line.output_dir.empty()) scene.output.dir = command_line.output_dir;
+  RunOptions options = command_line;
+  if (options.resume) options.restart_file = resume_checkpoint(scene, mpi);
   BedLoader bed;
   StartShare share = load_start_share(scene, options, mpi, bed);
   const Checkpoint* checkpoint = share.checkpoint ? &*share.checkpoint : nullptr;
+  if (options.resume && checkpoint &&
+      checkpoint->step >= step_count(scene.simulation.end_time, checkpoint->dt)) {
+    if (mpi.is_root())
+      std::printf("run complete: %s is at t = %.6g s, end_time = %.6g s; nothing to do\n",
+                  options.restart_file.c_str(), checkpoint->time, scene.simulation.end_time);
+    return kExitOk;
+  }
   const ParticleStore deciding =
       gather_particles(mpi.comm(), setup_deciding_particles(scene, share.particles()));
   const std::uint64_t particle_count = sum_over_ranks(mpi.comm(), share.particles().size());

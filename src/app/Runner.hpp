@@ -13,8 +13,9 @@ enum ExitCode : int {
   kExitUnstable = 3,  ///< the run blew up (NaN or excessive overlap); last snapshot written
 };
 
-/// Runs (or, with --check, validates) the scene. Throws InputError for bad input before any
-/// output is written.
+/// Runs (or, with --check, validates) the scene; with --resume from the output directory's
+/// checkpoint when there is one, returning kExitOk at once when that checkpoint has reached
+/// end_time. Throws InputError for bad input before any output is written.
 int run_scene(const RunOptions& options, const MpiContext& mpi);
 
 }  // namespace gpudem

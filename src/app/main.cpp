@@ -29,10 +29,16 @@ int main(int argc, char** argv) {
                  "override a scene key, e.g. --set simulation.end_time=0.5 (repeatable)")
       ->type_name("KEY=VALUE");
   app.add_option("--output-dir", options.output_dir, "output directory (overrides output.dir)");
-  app.add_option("--restart", options.restart_file,
-                 "continue from a checkpoint: particles, contact history and time come from FILE, "
-                 "everything else from the scene")
-      ->type_name("FILE");
+  CLI::Option* restart =
+      app.add_option("--restart", options.restart_file,
+                     "continue from a checkpoint: particles, contact history and time come from "
+                     "FILE, everything else from the scene")
+          ->type_name("FILE");
+  app.add_flag("--resume", options.resume,
+               "continue from the output directory's checkpoint.h5 when there is one (and do "
+               "nothing when it has reached end_time), otherwise start the scene anew: the "
+               "same command line for every job of a batch chain")
+      ->excludes(restart);
   const std::map<std::string, gpudem::BackendChoice> backends{
       {"auto", gpudem::BackendChoice::Auto},
       {"host", gpudem::BackendChoice::Host},

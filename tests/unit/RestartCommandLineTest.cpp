@@ -4,7 +4,8 @@
 // SIGKILL while writing a checkpoint every step always leaves a checkpoint that reads back and
 // continues; a bad checkpoint or a restart that cannot continue (another time step, a contact
 // law keeping another number of history values per contact) exits 2 with a message naming the
-// problem and writes nothing.
+// problem and writes nothing. With --resume a chain of jobs on the same command line starts the
+// run, continues it from its own checkpoint and stops once it is complete.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -115,6 +116,59 @@ TEST_F(RestartCommandLine, RestartedRunEqualsStraightRun) {
   EXPECT_EQ(read_text(legs / "particles.xmf"), read_text(straight / "particles.xmf"));
   EXPECT_EQ(read_text(legs / "timeseries.csv"), read_text(straight / "timeseries.csv"));
   EXPECT_EQ(read_checkpoint(checkpoint).step, 4000u) << "a checkpoint ends the run";
+}
+
+/// A chain of jobs that all run the same command line with --resume: the first starts the
+/// scene (here cut short at T, as by a batch time limit), the second continues from the
+/// output directory's checkpoint to 2T and equals a straight run, and the third finds the run
+/// complete and changes nothing.
+TEST_F(RestartCommandLine, ResumedJobsContinueTheRunUntilItIsComplete) {
+  const std::string bed = scene(kBedScene);
+  const fs::path straight = dir_ / "straight", chain = dir_ / "chain";
+  const Result whole = run(bed + " --quiet --output-dir " + straight.string());
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  const std::string job = bed + " --resume --output-dir " + chain.string();
+
+  const Result first = run(job + " --quiet --set simulation.end_time=0.1");
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_EQ(read_checkpoint((chain / "checkpoint.h5").string()).step, 2000u);
+  const Result second = run(job);
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_NE(
+      second.output.find("restart from " + (chain / "checkpoint.h5").string() + " at t = 0.1 s"),
+      std::string::npos)
+      << second.output;
+  for (const char* file : {"particles_000003.h5", "particles_000004.h5"})
+    expect_same_snapshot(straight / file, chain / file);
+  EXPECT_EQ(read_text(chain / "timeseries.csv"), read_text(straight / "timeseries.csv"));
+
+  const auto written = fs::last_write_time(chain / "timeseries.csv");
+  const Result third = run(job);
+  EXPECT_EQ(third.exit_code, 0) << third.output;
+  EXPECT_NE(third.output.find("run complete: " + (chain / "checkpoint.h5").string() +
+                              " is at t = 0.2 s, end_time = 0.2 s; nothing to do"),
+            std::string::npos)
+      << third.output;
+  EXPECT_EQ(fs::last_write_time(chain / "timeseries.csv"), written);
+  EXPECT_FALSE(fs::exists(chain / "particles_000005.h5"));
+  EXPECT_EQ(read_checkpoint((chain / "checkpoint.h5").string()).step, 4000u);
+}
+
+/// --resume without checkpoints in the scene, or together with --restart, exits 2 before
+/// anything is written.
+TEST_F(RestartCommandLine, ResumeIsRefusedWithoutCheckpointsOrWithRestart) {
+  const std::string bed = scene(kBedScene);
+  const fs::path out = dir_ / "out";
+  const Result none = run(bed + " --resume --set checkpoint.every=0 --output-dir " + out.string());
+  EXPECT_EQ(none.exit_code, 2) << none.output;
+  EXPECT_NE(none.output.find("key 'checkpoint.every': --resume needs checkpoints"),
+            std::string::npos)
+      << none.output;
+  const Result both = run(bed + " --resume --restart " + (dir_ / "x.h5").string() +
+                          " --output-dir " + out.string());
+  EXPECT_EQ(both.exit_code, 2) << both.output;
+  EXPECT_NE(both.output.find("--restart excludes --resume"), std::string::npos) << both.output;
+  EXPECT_FALSE(fs::exists(out)) << "output written for a refused --resume";
 }
 
 /// Whether file `path` holds dataset `name`, stored as `type`.
