@@ -83,7 +83,7 @@ grep -q "run complete: out/chain/checkpoint.h5 is at t = 0.1 s, end_time = 0.1 s
   "$work/job3.out" || fail "job 3 did not find the run complete: $(cat "$work/job3.out")"
 last=$(tail -n 1 "$work/out/chain/timeseries.csv" | cut -d, -f1)
 [[ $last == 0.1 ]] || fail "the time series ends at t = $last, not 0.1"
-expected="srun --cpu-bind=cores $binary scene.toml --resume --output-dir out/chain --backend host"
+expected="srun --cpus-per-task=1 --cpu-bind=cores $binary scene.toml --resume --output-dir out/chain --backend host"
 expected+=" --quiet --set simulation.end_time=0.05 OMP_NUM_THREADS=1"
 [[ $(head -n 1 "$work/srun.log") == "$expected" ]] ||
   fail "job 1 ran '$(head -n 1 "$work/srun.log")', expected '$expected'"
