@@ -13,7 +13,8 @@ triangles; the corners are ordered so that every normal points up (+z), towards 
 """
 import argparse
 import math
-import struct
+
+from stl_file import write_binary_stl
 
 
 def hole_circumradius(diameter, sides):
@@ -40,17 +41,6 @@ def plate_triangles(side, diameter, sides):
     return triangles
 
 
-def write_binary_stl(path, triangles):
-    with open(path, "wb") as f:
-        f.write(b"silo floor with an orifice".ljust(80, b" "))
-        f.write(struct.pack("<I", len(triangles)))
-        for tri in triangles:
-            f.write(struct.pack("<3f", 0.0, 0.0, 1.0))
-            for vertex in tri:
-                f.write(struct.pack("<3f", *vertex))
-            f.write(b"\0\0")
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("out")
@@ -62,7 +52,8 @@ def main():
         parser.error("--sides must be a multiple of 8")
     if not 0 < args.diameter < 0.9 * args.side:
         parser.error("--diameter must lie in (0, 0.9 L)")
-    write_binary_stl(args.out, plate_triangles(args.side, args.diameter, args.sides))
+    write_binary_stl(args.out, "silo floor with an orifice",
+                     plate_triangles(args.side, args.diameter, args.sides))
 
 
 if __name__ == "__main__":
