@@ -18,6 +18,7 @@
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"
+#include "support/SphereSlab.hpp"
 
 namespace gpudem::test {
 namespace {
@@ -98,13 +99,7 @@ double solid_fraction(const ParticleStore& particles) {
   std::sort(z.begin(), z.end());
   const double d = 2 * kRadius, lo = 4 * d, hi = z[z.size() * 99 / 100] - 4 * d;
   double solid = 0;
-  for (const Real4& p : particles.position_radius) {
-    auto below = [&](double plane) {  // volume of the sphere below `plane`
-      const double h = std::clamp(plane - (p.z - p.w), 0.0, 2.0 * p.w);
-      return kPi * h * h * (3 * p.w - h) / 3;
-    };
-    solid += below(hi) - below(lo);
-  }
+  for (const Real4& p : particles.position_radius) solid += sphere_volume_between(p.z, p.w, lo, hi);
   return hi > lo ? solid / (kSide * kSide * (hi - lo)) : 0;
 }
 

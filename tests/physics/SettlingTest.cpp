@@ -11,20 +11,10 @@
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"
+#include "support/SphereSlab.hpp"
 
 namespace gpudem::test {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-/// Volume of a sphere (centre height z, radius r) between the planes z = a and z = b.
-double sphere_volume_between(double z, double r, double a, double b) {
-  auto below = [&](double plane) {  // volume of the sphere below `plane`
-    const double h = std::clamp(plane - (z - r), 0.0, 2 * r);
-    return kPi * h * h * (3 * r - h) / 3;
-  };
-  return below(b) - below(a);
-}
 
 class Settling : public BackendTest {};
 
