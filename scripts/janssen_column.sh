@@ -7,7 +7,7 @@
 # scripts/janssen_fit.py then fits M_app = M_sat (1 - exp(-M / M_sat)) to each code's floor
 # loads. Installs Debian's liggghts when missing.
 # Usage: scripts/janssen_column.sh [OUT (default out/janssen)]
-#   COUNTS    grain counts (default "500 1000 1800 2800 4400": fills of about 0.5 to 4.5 L)
+#   COUNTS    grain counts (default "500 1000 1800 2800 4400": fills of about 0.5 to 4 L)
 #   NP        cores for each code (default 2); BUILD_DIR as for setup.sh
 #   LIGGGHTS  0: gpudem-mpi only
 set -euo pipefail
