@@ -8,25 +8,16 @@ Usage: check_cylinder_stl.py SOURCE_DIR WORK_DIR
 """
 import math
 import os
-import struct
 import subprocess
 import sys
 
-
-def read_binary_stl(path):
-    with open(path, "rb") as f:
-        data = f.read()
-    (count,) = struct.unpack_from("<I", data, 80)
-    if len(data) != 84 + 50 * count:
-        sys.exit(f"{path}: {len(data)} bytes for {count} triangles")
-    return [struct.unpack_from("<12f", data, 84 + 50 * i) for i in range(count)]
+from stl_binary import read_binary_stl
 
 
 def check(path, radius, bottom, top, sides):
     problems = []
     area = 0.0
-    for row in read_binary_stl(path):
-        normal, corners = row[:3], [row[3 + 3 * k:6 + 3 * k] for k in range(3)]
+    for normal, corners in read_binary_stl(path):
         for x, y, z in corners:
             if abs(math.hypot(x, y) - radius) > 1e-6 or min(abs(z - bottom), abs(z - top)) > 1e-6:
                 problems.append(f"corner ({x}, {y}, {z}) off the tube")

@@ -7,19 +7,10 @@ Usage: check_orifice_stl.py SOURCE_DIR WORK_DIR
 """
 import math
 import os
-import struct
 import subprocess
 import sys
 
-
-def read_binary_stl(path):
-    with open(path, "rb") as f:
-        data = f.read()
-    (count,) = struct.unpack_from("<I", data, 80)
-    if len(data) != 84 + 50 * count:
-        sys.exit(f"{path}: {len(data)} bytes for {count} triangles")
-    return [[struct.unpack_from("<3f", data, 84 + 50 * i + 12 * (1 + c)) for c in range(3)]
-            for i in range(count)]
+from stl_binary import read_binary_stl
 
 
 def signed_area(tri):
@@ -38,7 +29,7 @@ def covers(tri, x, y):
 
 def check(path, side, diameter, sides):
     failures = []
-    tris = read_binary_stl(path)
+    tris = [corners for _, corners in read_binary_stl(path)]
     if len(tris) != 2 * sides:
         failures.append(f"{len(tris)} triangles, expected {2 * sides}")
     zs = [v[2] for tri in tris for v in tri]
