@@ -4,18 +4,30 @@
 
 #include <filesystem>
 
+#include "app/BedPreparation.hpp"
 #include "core/InputError.hpp"
 
 namespace gpudem {
+namespace {
 
-std::string resume_checkpoint(const Scene& scene, const MpiContext& mpi) {
-  if (scene.checkpoint.every <= 0)
-    throw InputError(scene.file, 0, "checkpoint.every",
-                     "--resume needs checkpoints to resume from: set checkpoint.every > 0");
-  const std::filesystem::path path = std::filesystem::path(scene.output.dir) / "checkpoint.h5";
+/// `path` when rank 0 finds a file there, else "". Collective.
+std::string existing_on_root(const std::filesystem::path& path, const MpiContext& mpi) {
   int found = mpi.is_root() && std::filesystem::is_regular_file(path) ? 1 : 0;
   MPI_Bcast(&found, 1, MPI_INT, 0, mpi.comm());
   return found ? path.string() : std::string();
+}
+
+}  // namespace
+
+ResumePoint find_resume_point(const Scene& scene, const MpiContext& mpi) {
+  if (scene.checkpoint.every <= 0)
+    throw InputError(scene.file, 0, "checkpoint.every",
+                     "--resume needs checkpoints to resume from: set checkpoint.every > 0");
+  ResumePoint point;
+  point.checkpoint =
+      existing_on_root(std::filesystem::path(scene.output.dir) / "checkpoint.h5", mpi);
+  if (scene.preparation.enabled) point.bed = existing_on_root(bed_file_path(scene), mpi);
+  return point;
 }
 
 }  // namespace gpudem

@@ -9,10 +9,16 @@
 
 namespace gpudem {
 
-/// The checkpoint a resumed run continues from: <output.dir>/checkpoint.h5 when rank 0 finds
-/// that file, else "" (the run starts from the scene's sources). Throws InputError naming
-/// checkpoint.every when the scene writes no checkpoints (a resumed chain would restart from
-/// the beginning every time). Collective.
-std::string resume_checkpoint(const Scene& scene, const MpiContext& mpi);
+/// What a resumed run finds in its output folder, as rank 0 sees it.
+struct ResumePoint {
+  std::string checkpoint;  ///< <output.dir>/checkpoint.h5 when that file exists, else ""
+  /// A bed preparation's bed file when it exists (the preparation is complete), else ""
+  std::string bed;
+};
+
+/// Looks for the files a resumed run continues from or is complete with. Throws InputError
+/// naming checkpoint.every when the scene writes no checkpoints (a resumed chain would restart
+/// from the beginning every time). Collective.
+ResumePoint find_resume_point(const Scene& scene, const MpiContext& mpi);
 
 }  // namespace gpudem

@@ -510,23 +510,41 @@ int finish_preparation(const Scene& scene, const MpiContext& mpi, const StepEngi
   return kExitOk;
 }
 
+/// --resume: makes the output folder's checkpoint, if any, the restart file. False, with a
+/// line saying so, when a bed preparation's bed is already written (nothing left to do).
+bool resume_from_output(const Scene& scene, const MpiContext& mpi, RunOptions& options) {
+  const ResumePoint point = find_resume_point(scene, mpi);
+  if (!point.bed.empty()) {
+    if (mpi.is_root())
+      std::printf("run complete: the bed %s is written; nothing to do\n", point.bed.c_str());
+    return false;
+  }
+  options.restart_file = point.checkpoint;
+  return true;
+}
+
+/// Whether a resumed run's checkpoint has reached end_time; prints a line saying so if it has.
+bool reached_end(const Scene& scene, const MpiContext& mpi, const Checkpoint& checkpoint,
+                 const std::string& path) {
+  if (checkpoint.step < step_count(scene.simulation.end_time, checkpoint.dt)) return false;
+  if (mpi.is_root())
+    std::printf("run complete: %s is at t = %.6g s, end_time = %.6g s; nothing to do\n",
+                path.c_str(), checkpoint.time, scene.simulation.end_time);
+  return true;
+}
+
 }  // namespace
 
 int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
   Scene scene = load_scene(command_line.scene_file, command_line.overrides);
   if (!command_line.output_dir.empty()) scene.output.dir = command_line.output_dir;
   RunOptions options = command_line;
-  if (options.resume) options.restart_file = resume_checkpoint(scene, mpi);
+  if (options.resume && !resume_from_output(scene, mpi, options)) return kExitOk;
   BedLoader bed;
   StartShare share = load_start_share(scene, options, mpi, bed);
   const Checkpoint* checkpoint = share.checkpoint ? &*share.checkpoint : nullptr;
-  if (options.resume && checkpoint &&
-      checkpoint->step >= step_count(scene.simulation.end_time, checkpoint->dt)) {
-    if (mpi.is_root())
-      std::printf("run complete: %s is at t = %.6g s, end_time = %.6g s; nothing to do\n",
-                  options.restart_file.c_str(), checkpoint->time, scene.simulation.end_time);
+  if (options.resume && checkpoint && reached_end(scene, mpi, *checkpoint, options.restart_file))
     return kExitOk;
-  }
   const ParticleStore deciding =
       gather_particles(mpi.comm(), setup_deciding_particles(scene, share.particles()));
   const std::uint64_t particle_count = sum_over_ranks(mpi.comm(), share.particles().size());

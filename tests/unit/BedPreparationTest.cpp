@@ -3,7 +3,8 @@
 // the grains above a height and writes the rest, with their contact history, as a checkpoint
 // file; a run that cannot settle in end_time exits 1 with no bed; a scene with
 // `[[insert]] bed = ...` starts from exactly the bed's particles; a missing bed or one whose
-// materials the scene lacks is refused with exit code 2 before anything is written.
+// materials the scene lacks is refused with exit code 2 before anything is written. Resumed
+// (--resume), a preparation whose bed is written has nothing left to do.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -214,6 +215,33 @@ TEST_F(BedPreparation, KeepsTheHistoryOfTheRemainingContacts) {
   EXPECT_EQ(b.history.wall_owner, expected.wall_owner);
   EXPECT_EQ(b.history.wall_index, expected.wall_index);
   EXPECT_EQ(b.history.wall_values, expected.wall_values);
+}
+
+/// --resume on a preparation: with its bed written the run is complete and nothing changes;
+/// with the settle step's checkpoint but no bed (killed before the bed was written) it goes on
+/// from that checkpoint and writes the bed.
+TEST_F(BedPreparation, ResumedPreparationIsCompleteOnceItsBedIsWritten) {
+  const fs::path prep = dir_ / "prep";
+  fs::copy(root_ / "prep", prep, fs::copy_options::recursive);
+  ASSERT_TRUE(fs::exists(prep / "checkpoint.h5")) << "the settle step writes a checkpoint";
+  const std::string job = scene(kPreparationScene) + " --resume --output-dir " + prep.string();
+  const auto written = fs::last_write_time(prep / "bed.h5");
+  const test::RunResult done = test::run_binary(job);
+  EXPECT_EQ(done.exit_code, 0) << done.output;
+  EXPECT_NE(done.output.find("run complete: the bed " + (prep / "bed.h5").string() +
+                             " is written; nothing to do"),
+            std::string::npos)
+      << done.output;
+  EXPECT_EQ(fs::last_write_time(prep / "bed.h5"), written);
+
+  fs::remove(prep / "bed.h5");
+  const test::RunResult resumed = test::run_binary(job + " --quiet");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("bed: "), std::string::npos) << resumed.output;
+  ASSERT_TRUE(fs::exists(prep / "bed.h5"));
+  EXPECT_GT(read_checkpoint((prep / "bed.h5").string()).step,
+            read_checkpoint((root_ / "prep" / "bed.h5").string()).step)
+      << "the resumed preparation settles again after the checkpoint's step";
 }
 
 TEST_F(BedPreparation, UnsettledRunExitsOneWithoutBed) {
