@@ -144,6 +144,11 @@ void print_output_mode(const Scene& scene) {
     std::printf("snapshots: written on a writer thread while the run steps on\n");
 }
 
+/// "1 wall", "2 walls": a count and its noun, plural unless the count is 1.
+std::string counted(std::size_t count, const std::string& noun) {
+  return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
+}
+
 /// The start-up summary; engine_bytes < 0 when no engine was made (--check).
 /// `deciding`: the particles that set the time step (setup_deciding_particles over all ranks);
 /// `count`: the particles on all ranks.
@@ -151,9 +156,10 @@ void print_summary(const Scene& scene, const ParticleStore& deciding, std::uint6
                    const EngineSetup& setup, const StepEngine* engine, double engine_bytes,
                    std::uint64_t steps) {
   const TimeStepLimits limits = time_step_limits(scene, deciding);
-  std::printf("scene %s: %llu particles, %zu materials, %zu walls, contact law %s\n",
-              scene.file.c_str(), static_cast<unsigned long long>(count), scene.materials.size(),
-              scene.walls.size(), contact_model_name(setup.contact_model).c_str());
+  std::printf(
+      "scene %s: %llu particles, %s, %s, contact law %s\n", scene.file.c_str(),
+      static_cast<unsigned long long>(count), counted(scene.materials.size(), "material").c_str(),
+      counted(scene.walls.size(), "wall").c_str(), contact_model_name(setup.contact_model).c_str());
   std::printf(
       "dt = %.4g s (%s; contact duration %.4g s, Rayleigh time %.4g s, stable limit %.4g s), "
       "%llu steps to t = %.4g s, skin %.4g m\n",
