@@ -27,6 +27,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kSide = 0.04;       // column side L [m], 10 grain diameters
 constexpr double kRadius = 2e-3;     // mean grain radius [m]
 constexpr double kSpread = 0.2e-3;   // radii uniform in kRadius ± kSpread [m]
+constexpr double kDensity = 2500;    // grain density [kg/m³]
 constexpr double kFriction = 0.5;    // grains and walls, static and sliding
 constexpr double kWallSpeed = 0.01;  // upward speed of the side walls [m/s]
 constexpr double kGravity = 9.81;    // the scene's default |g| [m/s²]
@@ -78,6 +79,7 @@ Scene column_scene(std::uint64_t count, double& pour_height) {
                             {kSide + 0.003, kSide + 0.003, pour_height + 0.02}, 0, 0.5, kFriction);
   scene.contact.model = {NormalLaw::Hertz, DampingLaw::Restitution, TangentialLaw::Mindlin,
                          RollingLaw::None, CohesionLaw::None};
+  scene.materials[0].density = kDensity;
   scene.materials[0].young = 5e6;
   Material steel = scene.materials[0];
   steel.name = "steel";
@@ -222,7 +224,7 @@ TEST_P(Janssen, FloorLoadSaturatesWithFillMass) {
   RecordProperty("saturation_mass_kg", significant(saturation));
   RecordProperty("largest_residual_over_saturation", significant(worst));
   // K from M_sat, with the bulk density and mobilised friction of the tallest column.
-  const double bulk_density = tallest.solid_fraction * 2500;
+  const double bulk_density = tallest.solid_fraction * kDensity;
   const double mobilised = tallest.wall_shear / tallest.wall_normal;
   RecordProperty("solid_fraction_4400", significant(tallest.solid_fraction));
   RecordProperty("janssen_k",
