@@ -4,8 +4,7 @@
 # Installs Debian's lammps when missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh > /dev/null
-command -v lmp > /dev/null || { apt-get update && apt-get install -y --no-install-recommends lammps; }
+scripts/setup.sh lammps > /dev/null
 source scripts/mpi-env.sh
 work=$(mktemp -d)
 echo "gpudem-mpi (host backend):"

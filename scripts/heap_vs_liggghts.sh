@@ -11,9 +11,7 @@
 #   NP       cores for each code (default 2); BUILD_DIR as for setup.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh > /dev/null
-command -v liggghts > /dev/null ||
-  { apt-get update && apt-get install -y --no-install-recommends liggghts; }
+scripts/setup.sh liggghts > /dev/null
 source scripts/mpi-env.sh
 OUT=${1:-out/heap-liggghts}
 [[ $OUT = /* ]] || OUT="$PWD/$OUT"

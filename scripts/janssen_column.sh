@@ -12,11 +12,10 @@
 #   LIGGGHTS  0: gpudem-mpi only
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh > /dev/null
 PEER=${LIGGGHTS:-1}
-if [[ $PEER != 0 ]] && ! command -v liggghts > /dev/null; then
-  apt-get update && apt-get install -y --no-install-recommends liggghts
-fi
+peers=()
+[[ $PEER != 0 ]] && peers=(liggghts)
+scripts/setup.sh "${peers[@]}" > /dev/null
 source scripts/mpi-env.sh
 OUT=${1:-out/janssen}
 [[ $OUT = /* ]] || OUT="$PWD/$OUT"

@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages gpudem-mpi needs (skipped when all are present) and builds it
 # into ./build. The CUDA backend is built when nvcc is found (CUDA toolkit, not from Debian).
+# Usage: scripts/setup.sh [PACKAGE ...]: further Debian packages to install when missing (the
+# peer codes of the comparison scripts: liggghts, lammps).
 # Environment: BUILD_DIR (default build), GPUDEM_CMAKE_ARGS (extra cmake arguments).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
           hdf5-tools libmetis-dev libcli11-dev libgtest-dev libtoml11-dev
-          python3 python3-h5py python3-numpy python3-matplotlib xz-utils)
+          python3 python3-h5py python3-numpy python3-matplotlib xz-utils "$@")
 
 missing=()
 for p in "${packages[@]}"; do
