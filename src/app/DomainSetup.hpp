@@ -1,6 +1,6 @@
 #pragma once
-/// The domain decomposition of a run on several ranks (DESIGN §5), made once at start-up from
-/// the scene's [decomposition] table and the particles the run starts with.
+/// The domain decomposition of a run on several ranks (docs/architecture.md, "Ranks"), made once at
+/// start-up from the scene's [decomposition] table and the particles the run starts with.
 #include <cstdint>
 #include <memory>
 

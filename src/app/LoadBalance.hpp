@@ -1,8 +1,8 @@
 #pragma once
-/// Load balance (DESIGN §5): the work of each rank (its particles, or its neighbour-list
-/// entries plus one per particle with balance = "contacts"), its imbalance max/mean, and the
-/// periodic rebalance: grid cut planes move toward equal work by at most one coarse cell per
-/// rebalance (so no block gets narrower than the ghost width), METIS re-partitions the coarse
+/// Load balance (docs/architecture.md, "Ranks"): the work of each rank (its particles, or its
+/// neighbour-list entries plus one per particle with balance = "contacts"), its imbalance max/mean,
+/// and the periodic rebalance: grid cut planes move toward equal work by at most one coarse cell
+/// per rebalance (so no block gets narrower than the ghost width), METIS re-partitions the coarse
 /// cells by their work. The new decomposition takes over at the engine's next rebuild step,
 /// so a rebalance never changes the physics.
 #include <cstdint>

@@ -15,13 +15,8 @@ void print_error(const gpudem::MpiContext& mpi, const std::string& message) {
   if (mpi.is_root()) std::fprintf(stderr, "gpudem-mpi: error: %s\n", message.c_str());
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  gpudem::MpiContext mpi(argc, argv);
-  gpudem::RunOptions options;
-
-  CLI::App app{"gpudem-mpi: GPU discrete element solver for granular media (one MPI rank per GPU)"};
+/// The command line's options, bound to `options`.
+void add_options(CLI::App& app, gpudem::RunOptions& options) {
   app.set_version_flag("--version", std::string("gpudem-mpi ") + GPUDEM_VERSION);
   app.add_option("scene", options.scene_file, "scene file (TOML)")->required();
   app.add_flag("--check", options.check_only, "validate the scene and exit");
@@ -60,6 +55,16 @@ int main(int argc, char** argv) {
   app.add_flag("--exact-time-split", options.exact_time_split,
                "wait for the GPU at the end of each part of a step, so that the time split "
                "printed at the end holds each part's own kernels (slows CUDA runs a little)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  gpudem::MpiContext mpi(argc, argv);
+  gpudem::RunOptions options;
+
+  CLI::App app{"gpudem-mpi: GPU discrete element solver for granular media (one MPI rank per GPU)"};
+  add_options(app, options);
 
   try {
     app.parse(argc, argv);

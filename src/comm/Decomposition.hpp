@@ -1,8 +1,8 @@
 #pragma once
-/// Geometry of the domain decomposition (DESIGN §5): the coarse cells of the global box (side at
-/// least the ghost width) and the map from each coarse cell to its owning rank, built either as
-/// an X×Y×Z block grid or from any cell→rank map (METIS). Halo and migration ask this map, so
-/// grid and METIS share one code path. Pure geometry: nothing here communicates.
+/// Geometry of the domain decomposition (docs/architecture.md, "Ranks"): the coarse cells of the
+/// global box (side at least the ghost width) and the map from each coarse cell to its owning rank,
+/// built either as an X×Y×Z block grid or from any cell→rank map (METIS). Halo and migration ask
+/// this map, so grid and METIS share one code path. Pure geometry: nothing here communicates.
 #include <array>
 #include <cstddef>
 #include <string>

@@ -1,7 +1,8 @@
 #pragma once
-/// Whether halo and migration buffers may be handed to MPI as device pointers (DESIGN §5).
-/// Open MPI reports it through MPIX_Query_cuda_support(); other libraries are assumed not to
-/// accept device pointers. Without it, buffers are staged through host memory.
+/// Whether halo and migration buffers may be handed to MPI as device pointers
+/// (docs/architecture.md, "Ranks"). Open MPI reports it through MPIX_Query_cuda_support(); other
+/// libraries are assumed not to accept device pointers. Without it, buffers are staged through host
+/// memory.
 namespace gpudem {
 
 enum class GpuAwareChoice { Auto, On, Off };

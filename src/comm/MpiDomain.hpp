@@ -1,8 +1,8 @@
 #pragma once
-/// The engine's DomainLink over MPI (DESIGN §5): ownership, ghost destinations and bin region
-/// from a Decomposition, reductions by MPI_Allreduce, byte exchanges by point-to-point
-/// messages (sizes first by MPI_Alltoall where the receiver cannot know them), non-blocking
-/// where the caller overlaps them with work.
+/// The engine's DomainLink over MPI (docs/architecture.md, "Ranks"): ownership, ghost destinations
+/// and bin region from a Decomposition, reductions by MPI_Allreduce, byte exchanges by
+/// point-to-point messages (sizes first by MPI_Alltoall where the receiver cannot know them),
+/// non-blocking where the caller overlaps them with work.
 #include <mpi.h>
 
 #include <memory>

@@ -1,7 +1,7 @@
 #pragma once
-/// A new run's particles created by parts (DESIGN §4): each rank makes and keeps only its part
-/// of every [[insert]] source, in scene order, and the parts together are the particles
-/// create_particles makes on one rank, with the same ids.
+/// A new run's particles created by parts (docs/architecture.md, "One time step"): each rank makes
+/// and keeps only its part of every [[insert]] source, in scene order, and the parts together are
+/// the particles create_particles makes on one rank, with the same ids.
 #include <mpi.h>
 
 #include "core/ParticleSources.hpp"

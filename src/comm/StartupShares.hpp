@@ -1,8 +1,8 @@
 #pragma once
-/// Start-up on several ranks from shares (DESIGN §4): each rank holds a share of the particles
-/// (rows of a file it read by parts, or of particles it created), and the ranks agree through
-/// these collectives on what the whole run needs: input errors, the particles that set the
-/// time step, the particle count.
+/// Start-up on several ranks from shares (docs/architecture.md, "One time step"): each rank holds a
+/// share of the particles (rows of a file it read by parts, or of particles it created), and the
+/// ranks agree through these collectives on what the whole run needs: input errors, the particles
+/// that set the time step, the particle count.
 #include <mpi.h>
 
 #include <cstddef>

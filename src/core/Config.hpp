@@ -11,7 +11,8 @@
 namespace gpudem {
 
 /// Floating-point type of particle state and forces (double everywhere for now; the
-/// precision policy of DESIGN §3 replaces this single switch when mixed precision lands).
+/// precision policy of docs/architecture.md, "Precision" replaces this single switch when mixed
+/// precision lands).
 using Real = double;
 
 using ParticleId = std::uint64_t;

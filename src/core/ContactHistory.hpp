@@ -1,10 +1,10 @@
 #pragma once
 /// Contact history independent of particle order and memory space: the history values of
 /// the contacts that hold any (tangential spring, sliding flag, rolling spring, as the
-/// contact law declares), keyed by global particle ids (DESIGN §3). This is what checkpoints
-/// store and what a later migration of particles between ranks will carry. The engine
-/// converts it to and from its history arrays (one record per neighbour-list entry, one per
-/// particle and wall) with collect_history and scatter_history on host copies.
+/// contact law declares), keyed by global particle ids (docs/architecture.md, "Contact history").
+/// This is what checkpoints store and what a later migration of particles between ranks will carry.
+/// The engine converts it to and from its history arrays (one record per neighbour-list entry, one
+/// per particle and wall) with collect_history and scatter_history on host copies.
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>

@@ -71,6 +71,18 @@ std::vector<ContactModel> valid_contact_models() {
   return models;
 }
 
+std::string compiled_contact_models_text() {
+  std::string text;
+  std::size_t compiled = 0;
+  for (const ContactModel& m : valid_contact_models()) {
+    if (!is_compiled_contact_model(m)) continue;
+    text += (compiled++ == 0 ? "" : ", ") + contact_model_name(m);
+  }
+  if (compiled == valid_contact_models().size()) return "every valid law";
+  return std::string("GPUDEM_CONTACT_LAWS=") + GPUDEM_CONTACT_LAWS_OPTION + ": " +
+         (compiled == 0 ? "none" : text);
+}
+
 std::string valid_contact_models_text() {
   std::set<int> rolling, cohesion;
   for (const ContactModel& m : valid_contact_models()) {

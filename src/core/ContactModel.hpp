@@ -1,10 +1,12 @@
 #pragma once
-/// Which contact law a scene uses: one choice per slot (DESIGN §6). The engine instantiates
-/// one template per valid combination; this header is the host-side list of those
-/// combinations and their names, shared by the scene loader and the engine factory.
+/// Which contact law a scene uses: one choice per slot (docs/architecture.md, "Contact law"). The
+/// engine instantiates one template per valid combination; this header is the host-side list of
+/// those combinations and their names, shared by the scene loader and the engine factory.
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "core/CompiledContactLaws.hpp"
 
 namespace gpudem {
 
@@ -48,9 +50,38 @@ constexpr bool is_valid_contact_model(const ContactModel& m) {
 }
 std::vector<ContactModel> valid_contact_models();
 
-/// History values per contact that the law keeps (ContactLaw::history_size, DESIGN §6): the
-/// tangential spring and sliding flag of linear_history and mindlin (4) plus the rolling
-/// spring of epsd (3); the other slots keep none.
+/// A set of contact models: one choice per slot (normal, damping, tangential, rolling,
+/// cohesion) as its enum value, or -1 for any.
+struct ContactModelPattern {
+  int slot[5];
+  constexpr bool matches(const ContactModel& m) const {
+    const int value[5] = {static_cast<int>(m.normal), static_cast<int>(m.damping),
+                          static_cast<int>(m.tangential), static_cast<int>(m.rolling),
+                          static_cast<int>(m.cohesion)};
+    for (int k = 0; k < 5; ++k)
+      if (slot[k] >= 0 && slot[k] != value[k]) return false;
+    return true;
+  }
+};
+
+/// The patterns of the build option GPUDEM_CONTACT_LAWS (all valid laws by default).
+inline constexpr ContactModelPattern kCompiledContactLaws[] = {GPUDEM_CONTACT_LAW_PATTERNS};
+
+/// True for the valid laws this build compiles a force compute for (GPUDEM_CONTACT_LAWS).
+constexpr bool is_compiled_contact_model(const ContactModel& m) {
+  if (!is_valid_contact_model(m)) return false;
+  for (const ContactModelPattern& pattern : kCompiledContactLaws)
+    if (pattern.matches(m)) return true;
+  return false;
+}
+
+/// The laws this build compiles, for error messages: "every valid law" or
+/// "GPUDEM_CONTACT_LAWS=<patterns>: <laws>".
+std::string compiled_contact_models_text();
+
+/// History values per contact that the law keeps (ContactLaw::history_size, docs/architecture.md,
+/// "Contact law"): the tangential spring and sliding flag of linear_history and mindlin (4) plus
+/// the rolling spring of epsd (3); the other slots keep none.
 constexpr std::uint32_t contact_history_width(const ContactModel& m) {
   const std::uint32_t tangential = m.tangential == TangentialLaw::None ? 0 : 4;
   const std::uint32_t rolling = m.rolling == RollingLaw::Epsd ? 3 : 0;

@@ -1,7 +1,7 @@
 #pragma once
-/// Host-side particle state as a structure of arrays (DESIGN §3). Owned particles occupy
-/// [0, size()); ghosts are appended after them once decomposition exists. Device copies of
-/// these arrays live in the step engine; transfers are explicit.
+/// Host-side particle state as a structure of arrays (docs/architecture.md, "Memory").
+/// Owned particles occupy [0, size()); ghosts are appended after them once decomposition exists.
+/// Device copies of these arrays live in the step engine; transfers are explicit.
 #include <cstddef>
 #include <vector>
 

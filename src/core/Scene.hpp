@@ -1,5 +1,5 @@
 #pragma once
-/// The validated scene: plain data filled by SceneLoader from a TOML file (DESIGN §8).
+/// The validated scene: plain data filled by SceneLoader from a TOML file (docs/input.md).
 /// Units are SI throughout. Every field here is documented in docs/input.md.
 #include <array>
 #include <cstdint>
@@ -18,10 +18,10 @@ namespace gpudem {
 
 enum class IntegratorKind { VelocityVerlet, SymplecticEuler };
 
-/// Precision policy (DESIGN §3): Double everywhere; Mixed — positions, velocities and the
-/// distance that forms each overlap in Real, the contact laws, their history and the force and
-/// torque sums in float; Float — as Mixed with the particle state (positions, velocities,
-/// spins) held in float too, converted to Real where it is read.
+/// Precision policy (docs/architecture.md, "Precision"): Double everywhere; Mixed — positions,
+/// velocities and the distance that forms each overlap in Real, the contact laws, their history and
+/// the force and torque sums in float; Float — as Mixed with the particle state (positions,
+/// velocities, spins) held in float too, converted to Real where it is read.
 enum class Precision { Double, Mixed, Float };
 
 struct SimulationSettings {
@@ -120,9 +120,9 @@ struct ParticleSource {
   double volume_fraction = 0;   ///< target solid fraction of the region (box)
   RadiusDistribution radius;
   MaterialId material = 0;
-  Vec3 velocity;         ///< [m/s] initial velocity (box)
+  Vec3 velocity;                                ///< [m/s] initial velocity (box)
   Placement placement = Placement::Sequential;  ///< (box)
-  std::string csv_file;  ///< CSV path, resolved relative to the scene file
+  std::string csv_file;                         ///< CSV path, resolved relative to the scene file
   std::string bed_file;  ///< bed (checkpoint) path, resolved relative to the scene file
   int bed_line = 0;      ///< line of `bed` in the scene file (0: unknown or from --set)
 };
@@ -144,7 +144,7 @@ struct CheckpointSettings {
 enum class DecompositionMethod { Grid, Metis };
 enum class BalanceWork { Particles, Contacts };
 
-/// [decomposition]: how the box is split among the ranks (DESIGN §5).
+/// [decomposition]: how the box is split among the ranks (docs/architecture.md, "Ranks").
 struct DecompositionSettings {
   DecompositionMethod method = DecompositionMethod::Grid;
   std::array<int, 3> dims{0, 0, 0};  ///< 0,0,0 = "auto"; else each >= 1

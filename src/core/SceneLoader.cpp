@@ -15,10 +15,21 @@
 
 #include "core/InputError.hpp"
 #include "core/OutputNames.hpp"
+#include "core/SceneBodies.hpp"
 #include "core/SceneOverrides.hpp"
+#include "core/SceneReading.hpp"
+#include "core/SceneSources.hpp"
 #include "core/TomlReader.hpp"
 
 namespace gpudem {
+
+using scene_reading::material_named;
+using scene_reading::named_choice;
+using scene_reading::read_meshes;
+using scene_reading::read_sources;
+using scene_reading::read_walls;
+using scene_reading::require_extent;
+
 namespace {
 
 /// The parsed tree of `path`; a syntax error keeps toml11's report of line and column.
@@ -44,18 +55,6 @@ double auto_or_positive(const TableReader& table, const std::string& key, const 
   const std::optional<double> x = finite_number(v);
   if (!x || !range.contains(*x)) table.fail_found(key, "\"auto\" or " + range.text("a number"));
   return *x;
-}
-
-/// Fails on `key` with "`what`: ..." unless max > min on every axis.
-void require_extent(const TableReader& table, const std::string& key, Vec3 min, Vec3 max,
-                    const std::string& what) {
-  for (int k = 0; k < 3; ++k) {
-    if (!(axis(max, k) > axis(min, k))) {
-      table.fail(key, what + ": max must exceed min on every axis, got max = " +
-                          format_number(axis(max, k)) + " <= min = " + format_number(axis(min, k)) +
-                          " on " + "xyz"[k]);
-    }
-  }
 }
 
 SimulationSettings read_simulation(const TableReader& root) {
@@ -141,14 +140,6 @@ std::vector<Material> read_materials(const TableReader& root) {
   return materials;
 }
 
-/// The enum value whose name (in `names`, enum order) `key` gives, or `fallback` when absent.
-template <class Enum>
-Enum named_choice(const TableReader& table, const std::string& key,
-                  const std::vector<std::string>& names, Enum fallback) {
-  const std::string name = table.choice(key, names, names[static_cast<std::size_t>(fallback)]);
-  return static_cast<Enum>(std::find(names.begin(), names.end(), name) - names.begin());
-}
-
 /// The slots of [contact]; tangential defaults to the normal law's own spring (hooke:
 /// linear_history, hertz: mindlin).
 ContactModel read_contact_model(const TableReader& table) {
@@ -180,6 +171,14 @@ void require_valid_model(const TableReader& table, const ContactModel& m) {
                       valid_contact_models_text());
 }
 
+/// Fails unless this build compiles the valid law `m` (is_compiled_contact_model).
+void require_compiled_model(const TableReader& table, const ContactModel& m) {
+  if (is_compiled_contact_model(m)) return;
+  table.fail("normal", "the contact law " + contact_model_name(m) +
+                           " is not compiled into this build, which has " +
+                           compiled_contact_models_text());
+}
+
 ContactSettings read_contact(const TableReader& root) {
   const TableReader table = root.optional_table("contact");
   table.allow_only(
@@ -188,6 +187,7 @@ ContactSettings read_contact(const TableReader& root) {
   c.model = read_contact_model(table);
   c.mixing = named_choice(table, "mixing", mixing_rule_names(), c.mixing);
   require_valid_model(table, c.model);
+  require_compiled_model(table, c.model);
   if (c.model.normal == NormalLaw::Hooke) {
     c.stiffness = table.number("stiffness", positive("N/m"));
   } else if (table.has("stiffness")) {
@@ -204,23 +204,6 @@ NeighborSettings read_neighbor(const TableReader& root) {
   NeighborSettings n;
   n.skin = auto_or_positive(table, "skin", "m");
   return n;
-}
-
-/// Index of the material called `name`, given by `key`.
-MaterialId material_named(const TableReader& table, const std::string& key, const std::string& name,
-                          const std::vector<Material>& materials) {
-  std::vector<std::string> names;
-  for (std::size_t i = 0; i < materials.size(); ++i) {
-    if (materials[i].name == name) return static_cast<MaterialId>(i);
-    names.push_back(materials[i].name);
-  }
-  table.fail(key, "unknown material '" + name + "'; " + suggest(name, names, "materials"));
-}
-
-/// Index of the material named by string `key`.
-MaterialId material_index(const TableReader& table, const std::string& key,
-                          const std::vector<Material>& materials) {
-  return material_named(table, key, table.string(key), materials);
 }
 
 /// The pair `materials` = ["a", "b"] of a [[pair]] entry, as material indices.
@@ -283,291 +266,6 @@ std::vector<PairOverride> read_pairs(const TableReader& root,
     pairs.push_back(pair);
   }
   return pairs;
-}
-
-WallSettings read_wall(const TableReader& table, std::size_t index,
-                       const std::vector<Material>& materials) {
-  table.allow_only({"name", "point", "normal", "material"});
-  WallSettings w;
-  w.name = table.string("name", "wall" + std::to_string(index));
-  w.point = table.vec3("point", "m");
-  const Vec3 normal = table.vec3("normal", "");
-  const double length = norm(normal);
-  if (!(length > 0) || !std::isfinite(length)) {
-    table.fail_found("normal", "a normal vector of non-zero, finite length");
-  }
-  w.normal = (1 / length) * normal;
-  w.material = material_index(table, "material", materials);
-  return w;
-}
-
-/// The path string `key` names, resolved relative to the scene file's directory.
-std::string path_beside_scene(const TableReader& table, const std::string& key,
-                              const Scene& scene) {
-  const std::filesystem::path path = table.string(key);
-  const std::filesystem::path scene_dir = std::filesystem::path(scene.file).parent_path();
-  return path.is_absolute() ? path.string() : (scene_dir / path).lexically_normal().string();
-}
-
-/// [mesh.motion]: keyframe times [s], velocities [m/s] and angular velocities [rad/s] (zero
-/// when absent), one per time, times strictly increasing; the centre defaults to `offset`.
-void read_motion(const TableReader& mesh, MeshSettings& m) {
-  m.centre = m.placement.offset;
-  if (!mesh.has("motion")) return;
-  const TableReader motion = mesh.table("motion");
-  motion.allow_only({"centre", "times", "velocities", "angular_velocities"});
-  m.centre = motion.vec3("centre", "m", m.centre);
-  const std::vector<double> times = motion.numbers("times", any_value("s"));
-  for (std::size_t k = 1; k < times.size(); ++k)
-    if (!(times[k] > times[k - 1]))
-      motion.fail("times",
-                  "keyframe times must increase strictly (index " + std::to_string(k) + ")");
-  const std::vector<Vec3> v = motion.vec3s("velocities", "m/s", times.size());
-  const std::vector<Vec3> w = motion.has("angular_velocities")
-                                  ? motion.vec3s("angular_velocities", "rad/s", times.size())
-                                  : std::vector<Vec3>(times.size());
-  for (std::size_t k = 0; k < times.size(); ++k) m.keyframes.push_back({times[k], v[k], w[k]});
-}
-
-MeshSettings read_mesh(const TableReader& table, std::size_t index, const Scene& scene) {
-  table.allow_only(
-      {"name", "file", "material", "scale", "offset", "rotation_axis", "rotation_angle", "motion"});
-  MeshSettings m;
-  m.name = table.string("name", "mesh" + std::to_string(index));
-  m.file = path_beside_scene(table, "file", scene);
-  m.line = table.line("file");
-  m.material = table.has("material") ? material_index(table, "material", scene.materials) : 0;
-  m.placement.scale = table.number("scale", positive(""), 1.0);
-  m.placement.offset = table.vec3("offset", "m", Vec3{});
-  m.placement.rotation_axis = table.vec3("rotation_axis", "", Vec3{0, 0, 1});
-  if (!(norm(m.placement.rotation_axis) > 0)) table.fail_found("rotation_axis", "a non-zero axis");
-  m.placement.rotation_angle = table.number("rotation_angle", any_value("rad"), 0.0);
-  read_motion(table, m);
-  return m;
-}
-
-/// The [[mesh]] tables; names label force columns, so they differ from each other and from
-/// the walls' names, and name the mesh's output files.
-std::vector<MeshSettings> read_meshes(const TableReader& root, const Scene& scene) {
-  std::vector<MeshSettings> meshes;
-  const std::vector<TableReader> tables = root.array_of_tables("mesh");
-  for (std::size_t i = 0; i < tables.size(); ++i) {
-    MeshSettings mesh = read_mesh(tables[i], i, scene);
-    if (const char* problem = mesh_output_name_problem(mesh.name, kParticlesBasename))
-      tables[i].fail("name", "name '" + mesh.name + "' " + problem +
-                                 "; it names the mesh's output file <name>.xmf");
-    bool taken = false;
-    for (const WallSettings& w : scene.walls) taken = taken || w.name == mesh.name;
-    for (const MeshSettings& m : meshes) taken = taken || m.name == mesh.name;
-    if (taken)
-      tables[i].fail("name", "name '" + mesh.name +
-                                 "' is already used by a wall or mesh; names label the force "
-                                 "columns");
-    meshes.push_back(std::move(mesh));
-  }
-  return meshes;
-}
-
-std::vector<WallSettings> read_walls(const TableReader& root,
-                                     const std::vector<Material>& materials) {
-  std::vector<WallSettings> walls;
-  const std::vector<TableReader> tables = root.array_of_tables("wall");
-  for (std::size_t i = 0; i < tables.size(); ++i) {
-    WallSettings wall = read_wall(tables[i], i, materials);
-    for (std::size_t j = 0; j < walls.size(); ++j) {
-      if (walls[j].name == wall.name) {
-        tables[i].fail("name", "duplicate wall name '" + wall.name + "' (also used by wall[" +
-                                   std::to_string(j) + "]); names label the force columns");
-      }
-    }
-    walls.push_back(std::move(wall));
-  }
-  return walls;
-}
-
-/// radius = {distribution = "uniform", mean, spread}: radii in mean ± spread.
-RadiusDistribution read_uniform_radius(const TableReader& table) {
-  table.allow_only({"distribution", "mean", "spread"});
-  RadiusDistribution r;
-  r.kind = RadiusDistributionKind::Uniform;
-  r.mean = table.number("mean", positive("m"));
-  r.spread = table.number("spread", non_negative("m"), 0);
-  if (!(r.spread < r.mean)) {
-    table.fail_found("spread", "a number < mean = " + format_number(r.mean) +
-                                   " [m] so that every radius is > 0");
-  }
-  return r;
-}
-
-/// radius = {distribution = "normal", mean, stddev, min, max}: truncated normal.
-RadiusDistribution read_normal_radius(const TableReader& table) {
-  table.allow_only({"distribution", "mean", "stddev", "min", "max"});
-  RadiusDistribution r;
-  r.kind = RadiusDistributionKind::TruncatedNormal;
-  r.mean = table.number("mean", positive("m"));
-  r.stddev = table.number("stddev", positive("m"));
-  r.min = table.number("min", positive("m"));
-  r.max = table.number("max", positive("m"));
-  const std::string mean = format_number(r.mean);
-  if (r.min > r.mean) table.fail_found("min", "a number <= mean = " + mean + " [m]");
-  if (r.max < r.mean) table.fail_found("max", "a number >= mean = " + mean + " [m]");
-  return r;
-}
-
-/// radius = {distribution = "discrete", values, weights}: radii drawn from a list.
-RadiusDistribution read_discrete_radius(const TableReader& table) {
-  table.allow_only({"distribution", "values", "weights"});
-  RadiusDistribution r;
-  r.kind = RadiusDistributionKind::Discrete;
-  r.values = table.numbers("values", positive("m"));
-  r.weights = table.has("weights") ? table.numbers("weights", positive())
-                                   : std::vector<double>(r.values.size(), 1.0);
-  if (r.weights.size() != r.values.size()) {
-    table.fail("weights", "expected as many weights as values (" + std::to_string(r.values.size()) +
-                              "), got " + std::to_string(r.weights.size()));
-  }
-  return r;
-}
-
-/// `radius`: a number (every particle the same) or a distribution table.
-RadiusDistribution read_radius(const TableReader& source) {
-  if (source.has("radius") && source.value("radius").is_table()) {
-    const TableReader table = source.table("radius");
-    const std::string kind =
-        table.choice("distribution", {"uniform", "normal", "discrete"}, "uniform");
-    if (kind == "normal") return read_normal_radius(table);
-    if (kind == "discrete") return read_discrete_radius(table);
-    return read_uniform_radius(table);
-  }
-  RadiusDistribution r;
-  r.mean = source.number("radius", positive("m"));
-  return r;
-}
-
-/// The box `region` of a source, which must lie inside the domain (touching it is allowed).
-void read_region(const TableReader& source, const DomainSettings& domain, ParticleSource& s) {
-  const TableReader region = source.table("region");
-  region.allow_only({"min", "max"});
-  s.region_min = region.vec3("min", "m");
-  s.region_max = region.vec3("max", "m");
-  require_extent(region, "max", s.region_min, s.region_max, "the source region is empty");
-  for (int k = 0; k < 3; ++k) {
-    const double lo = axis(s.region_min, k), hi = axis(s.region_max, k);
-    if (lo < axis(domain.min, k) || hi > axis(domain.max, k)) {
-      source.fail("region", std::string("source region lies outside the domain on ") + "xyz"[k] +
-                                ": [" + format_number(lo) + ", " + format_number(hi) +
-                                "] is not inside [" + format_number(axis(domain.min, k)) + ", " +
-                                format_number(axis(domain.max, k)) + "]");
-    }
-  }
-}
-
-/// Keys that only box (region) sources take.
-const std::vector<std::string> kBoxOnlyKeys = {"region", "count", "volume_fraction", "radius",
-                                               "velocity", "placement"};
-
-ParticleSource read_box_source(const TableReader& table, const Scene& scene) {
-  ParticleSource s;
-  s.kind = SourceKind::Box;
-  read_region(table, scene.domain, s);
-  if (table.has("count") && table.has("volume_fraction")) {
-    table.fail("volume_fraction", "give either count or volume_fraction, not both");
-  }
-  if (table.has("volume_fraction")) {
-    s.volume_fraction = table.number("volume_fraction", interval(0, true, 0.6, false));
-  } else if (table.has("count")) {
-    s.count = static_cast<std::uint64_t>(table.integer("count", positive()));
-  } else {
-    table.fail("count", "missing 'count' or 'volume_fraction' in [[insert]] (give exactly one)");
-  }
-  s.radius = read_radius(table);
-  s.material = material_index(table, "material", scene.materials);
-  s.velocity = table.vec3("velocity", "m/s", s.velocity);
-  s.placement = named_choice(table, "placement", {"sequential", "tiled"}, s.placement);
-  return s;
-}
-
-/// Fails on the first of `keys` the table holds, saying why it does not belong there.
-void refuse_keys(const TableReader& table, const std::vector<std::string>& keys,
-                 const std::string& why) {
-  for (const std::string& key : keys)
-    if (table.has(key)) table.fail(key, "'" + key + "' " + why);
-}
-
-/// A CSV source; its file is resolved relative to the scene file's directory, not opened.
-ParticleSource read_csv_source(const TableReader& table, const Scene& scene) {
-  refuse_keys(table, kBoxOnlyKeys,
-              "belongs to region sources; a csv source takes only csv and material");
-  ParticleSource s;
-  s.kind = SourceKind::Csv;
-  s.csv_file = path_beside_scene(table, "csv", scene);
-  s.material = table.has("material") ? material_index(table, "material", scene.materials) : 0;
-  return s;
-}
-
-/// A bed source: the particles of a saved bed file (resolved like a CSV file, not opened).
-ParticleSource read_bed_source(const TableReader& table, const Scene& scene) {
-  std::vector<std::string> other_keys = kBoxOnlyKeys;
-  other_keys.push_back("material");
-  refuse_keys(table, other_keys,
-              "does not apply to a bed source, whose particles keep their own values; a bed "
-              "source takes only bed");
-  ParticleSource s;
-  s.kind = SourceKind::Bed;
-  s.bed_file = path_beside_scene(table, "bed", scene);
-  s.bed_line = table.line("bed");
-  return s;
-}
-
-/// The one source kind an [[insert]] entry names by its `region`, `csv` or `bed` key.
-SourceKind source_kind(const TableReader& table) {
-  const std::pair<std::string, SourceKind> kinds[] = {
-      {"region", SourceKind::Box}, {"csv", SourceKind::Csv}, {"bed", SourceKind::Bed}};
-  const std::pair<std::string, SourceKind>* chosen = nullptr;
-  for (const auto& kind : kinds) {
-    if (!table.has(kind.first)) continue;
-    if (chosen) {
-      table.fail(kind.first, "an [[insert]] takes either " + kind.first + " or " + chosen->first +
-                                 ", not both");
-    }
-    chosen = &kind;
-  }
-  if (!chosen) {
-    table.fail("region",
-               "missing 'region' (random insertion in a box), 'csv' (particles from a file) or "
-               "'bed' (the particles of a saved bed) in [[insert]]");
-  }
-  return chosen->second;
-}
-
-ParticleSource read_source(const TableReader& table, const Scene& scene) {
-  table.allow_only(
-      {"csv", "region", "bed", "count", "volume_fraction", "radius", "material", "velocity",
-       "placement"});
-  switch (source_kind(table)) {
-    case SourceKind::Csv:
-      return read_csv_source(table, scene);
-    case SourceKind::Bed:
-      return read_bed_source(table, scene);
-    case SourceKind::Box:
-      break;
-  }
-  return read_box_source(table, scene);
-}
-
-std::vector<ParticleSource> read_sources(const TableReader& root, const Scene& scene) {
-  std::vector<ParticleSource> sources;
-  const std::vector<TableReader> tables = root.array_of_tables("insert");
-  for (std::size_t i = 0; i < tables.size(); ++i) {
-    sources.push_back(read_source(tables[i], scene));
-    for (std::size_t j = 0; j < i; ++j) {
-      if (sources[i].kind == SourceKind::Bed && sources[j].kind == SourceKind::Bed) {
-        tables[i].fail("bed", "a scene takes at most one bed source (also given by insert[" +
-                                  std::to_string(j) + "])");
-      }
-    }
-  }
-  return sources;
 }
 
 OutputSettings read_output(const TableReader& root) {
@@ -651,6 +349,47 @@ PreparationSettings read_preparation(const TableReader& root, Vec3 gravity) {
 }
 
 }  // namespace
+
+namespace scene_reading {
+
+/// Fails on `key` with "`what`: ..." unless max > min on every axis.
+void require_extent(const TableReader& table, const std::string& key, Vec3 min, Vec3 max,
+                    const std::string& what) {
+  for (int k = 0; k < 3; ++k) {
+    if (!(axis(max, k) > axis(min, k))) {
+      table.fail(key, what + ": max must exceed min on every axis, got max = " +
+                          format_number(axis(max, k)) + " <= min = " + format_number(axis(min, k)) +
+                          " on " + "xyz"[k]);
+    }
+  }
+}
+
+/// Index of the material called `name`, given by `key`.
+MaterialId material_named(const TableReader& table, const std::string& key, const std::string& name,
+                          const std::vector<Material>& materials) {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    if (materials[i].name == name) return static_cast<MaterialId>(i);
+    names.push_back(materials[i].name);
+  }
+  table.fail(key, "unknown material '" + name + "'; " + suggest(name, names, "materials"));
+}
+
+/// Index of the material named by string `key`.
+MaterialId material_index(const TableReader& table, const std::string& key,
+                          const std::vector<Material>& materials) {
+  return material_named(table, key, table.string(key), materials);
+}
+
+/// The path string `key` names, resolved relative to the scene file's directory.
+std::string path_beside_scene(const TableReader& table, const std::string& key,
+                              const Scene& scene) {
+  const std::filesystem::path path = table.string(key);
+  const std::filesystem::path scene_dir = std::filesystem::path(scene.file).parent_path();
+  return path.is_absolute() ? path.string() : (scene_dir / path).lexically_normal().string();
+}
+
+}  // namespace scene_reading
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
   toml::value tree = parse_scene_file(path);

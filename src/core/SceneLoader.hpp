@@ -1,5 +1,5 @@
 #pragma once
-/// Reads a scene TOML file into a validated Scene (DESIGN §8; every key in docs/input.md).
+/// Reads a scene TOML file into a validated Scene (docs/input.md; every key in docs/input.md).
 #include <string>
 #include <vector>
 

@@ -1,7 +1,8 @@
 #pragma once
 /// The part of the global box one rank bins into cells: its block grown by the ghost width
-/// (DESIGN §5). Positions stay in the global box's coordinates everywhere (wrapped on periodic
-/// axes, displacements by minimum image); only binning looks at them through the region.
+/// (docs/architecture.md, "Ranks"). Positions stay in the global box's coordinates everywhere
+/// (wrapped on periodic axes, displacements by minimum image); only binning looks at them through
+/// the region.
 #include <cmath>
 
 #include "core/Config.hpp"

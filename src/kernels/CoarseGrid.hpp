@@ -1,8 +1,8 @@
 #pragma once
-/// The coarse cells of the global box that the domain decomposition hands to ranks (DESIGN §5),
-/// and the cell -> rank map as the engine reads it. The cell lookup is a host and device
-/// function, so that the host's decomposition and the engine's kernels place a point in the
-/// same cell.
+/// The coarse cells of the global box that the domain decomposition hands to ranks
+/// (docs/architecture.md, "Ranks"), and the cell -> rank map as the engine reads it. The cell
+/// lookup is a host and device function, so that the host's decomposition and the engine's kernels
+/// place a point in the same cell.
 #include <array>
 #include <cmath>
 #include <cstddef>

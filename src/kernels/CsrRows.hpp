@@ -25,13 +25,14 @@ struct RowLength {
   }
 };
 
-/// Row rows[k]'s entries to [out_offsets[k], out_offsets[k + 1]).
+/// Row rows[k]'s entries (`width` values each) to [out_offsets[k], out_offsets[k + 1]).
 template <class Key, class Value>
 struct GatherRow {
   const std::uint32_t* rows;
   const std::uint32_t* offsets;
   const Key* keys;
   const Value* values;
+  std::uint32_t width;
   const std::uint32_t* out_offsets;
   Key* out_keys;
   Value* out_values;
@@ -39,7 +40,8 @@ struct GatherRow {
     std::uint32_t to = out_offsets[k];
     for (std::uint32_t e = offsets[rows[k]]; e < offsets[rows[k] + 1]; ++e, ++to) {
       out_keys[to] = keys[e];
-      out_values[to] = values[e];
+      for (std::uint32_t v = 0; v < width; ++v)
+        out_values[std::size_t(to) * width + v] = values[std::size_t(e) * width + v];
     }
   }
 };
@@ -54,12 +56,14 @@ struct Shifted {
 
 }  // namespace csr_row_kernels
 
-/// A CSR table in Space memory; empty offsets mean no rows.
+/// A CSR table in Space memory, each entry a key and `value_width` values; empty offsets mean
+/// no rows.
 template <class Space, class Key, class Value>
 struct CsrRows {
   DeviceArray<std::uint32_t, Space> offsets;
   DeviceArray<Key, Space> keys;
-  DeviceArray<Value, Space> values;
+  DeviceArray<Value, Space> values;  ///< value_width per entry
+  std::uint32_t value_width = 1;
 
   std::size_t rows() const { return offsets.size() == 0 ? 0 : offsets.size() - 1; }
   std::size_t bytes() const { return offsets.bytes() + keys.bytes() + values.bytes(); }
@@ -79,11 +83,11 @@ struct CsrRows {
     const std::uint64_t total = counts_to_offsets<Space>(
         picked_offsets.data(), n, "CsrRows: more than 2^32 - 1 entries in the rows read out");
     DeviceArray<Key, Space> picked_keys(total);
-    DeviceArray<Value, Space> picked_values(total);
+    DeviceArray<Value, Space> picked_values(total * value_width);
     parallel_for(Space{}, n,
-                 csr_row_kernels::GatherRow<Key, Value>{rows, offsets.data(), keys.data(),
-                                                        values.data(), picked_offsets.data(),
-                                                        picked_keys.data(), picked_values.data()});
+                 csr_row_kernels::GatherRow<Key, Value>{
+                     rows, offsets.data(), keys.data(), values.data(), value_width,
+                     picked_offsets.data(), picked_keys.data(), picked_values.data()});
     picked_offsets.download(out_offsets);
     picked_keys.download(out_keys);
     picked_values.download(out_values);
@@ -109,9 +113,9 @@ struct CsrRows {
                  csr_row_kernels::Shifted{ends.data(), static_cast<std::uint32_t>(first_entry),
                                           offsets.data() + first_row + 1});
     keys.resize(first_entry + more_keys.size());
-    values.resize(first_entry + more_values.size());
+    values.resize(first_entry * value_width + more_values.size());
     upload_values<Space>(more_keys, keys.data() + first_entry);
-    upload_values<Space>(more_values, values.data() + first_entry);
+    upload_values<Space>(more_values, values.data() + first_entry * value_width);
   }
 };
 

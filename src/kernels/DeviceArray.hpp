@@ -1,6 +1,7 @@
 #pragma once
 /// A typed buffer in one memory space. Copies between spaces are explicit calls
-/// (`upload`, `download`); nothing syncs behind the caller's back (DESIGN §2, rule 7).
+/// (`upload`, `download`); nothing syncs behind the caller's back (docs/architecture.md, "One
+/// source, two backends", rule 7).
 #include <cstddef>
 #include <utility>
 #include <vector>

@@ -1,8 +1,9 @@
 #pragma once
-/// What the step engine asks of the domain decomposition (DESIGN §4–5): where this rank bins,
-/// who owns a position, which ranks need a particle as a ghost, reductions over all ranks and
-/// the exchange of byte buffers between ranks. The engine knows nothing of MPI: comm/MpiDomain
-/// implements this over MPI, OneRankDomain for a run on one rank (nothing to exchange).
+/// What the step engine asks of the domain decomposition (docs/architecture.md, "One time step"
+/// and "Ranks"): where this rank bins, who owns a position, which ranks need a particle as a ghost,
+/// reductions over all ranks and the exchange of byte buffers between ranks. The engine knows
+/// nothing of MPI: comm/MpiDomain implements this over MPI, OneRankDomain for a run on one rank
+/// (nothing to exchange).
 #include <cstddef>
 #include <cstdint>
 #include <cstring>

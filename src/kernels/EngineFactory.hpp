@@ -1,51 +1,35 @@
 #pragma once
-/// Turns the run-time contact model of a scene into the compile-time law of a step engine:
-/// one instantiation of StepEngineImpl per valid combination of slots, selected once at
+/// Turns the run-time contact model of a scene into the compile-time law of a force compute:
+/// one instantiation of ContactForceCompute per valid combination of slots, selected once at
 /// start-up. Each backend instantiates it per normal law and precision policy in its own
-/// translation unit (generated from StepEngineInstance.in by kernels.cmake), so the
+/// translation unit (generated from ForceComputeInstance.in by kernels.cmake), so the
 /// combinations compile in parallel.
 #include <memory>
 #include <stdexcept>
 
-#include "kernels/StepEngineImpl.hpp"
+#include "kernels/ContactForceCompute.hpp"
+#include "kernels/EngineInstances.hpp"
 
 namespace gpudem::factory {
 
-/// The scalars of a precision policy (Scene.hpp): the contact law's (its arithmetic, history
-/// and force sums) and the particle state's (positions, velocities, spins).
-template <Precision>
-struct PrecisionScalars;
-template <>
-struct PrecisionScalars<Precision::Double> {
-  using Law = double;
-  using State = double;
-};
-template <>
-struct PrecisionScalars<Precision::Mixed> {
-  using Law = float;
-  using State = double;
-};
-template <>
-struct PrecisionScalars<Precision::Float> {
-  using Law = float;
-  using State = float;
-};
-
 template <class Space, Precision Pr, NormalLaw N, DampingLaw D, TangentialLaw T, RollingLaw R,
           CohesionLaw C>
-std::unique_ptr<StepEngine> make(const EngineSetup& setup) {
-  if constexpr (is_valid_contact_model(ContactModel{N, D, T, R, C})) {
+ForceComputeOf<Space, Pr> make(const EngineSetup& setup) {
+  if constexpr (is_compiled_contact_model(ContactModel{N, D, T, R, C})) {
     using Scalars = PrecisionScalars<Pr>;
     using Law = ContactLawOf<N, D, T, R, C, typename Scalars::Law>;
-    return std::make_unique<StepEngineImpl<Space, Law, typename Scalars::State>>(setup);
+    static_assert(Law::history_size == contact_history_width(ContactModel{N, D, T, R, C}),
+                  "the history width the host side declares (ContactModel.hpp) is the law's");
+    return std::make_unique<ContactForceCompute<Space, Law, typename Scalars::State>>(
+        setup.pair_params);
   } else {
-    throw std::invalid_argument("no step engine for contact law " +
+    throw std::invalid_argument("no force compute for contact law " +
                                 contact_model_name(setup.contact_model));
   }
 }
 
 template <class Space, Precision Pr, NormalLaw N, DampingLaw D, TangentialLaw T, RollingLaw R>
-std::unique_ptr<StepEngine> make(const EngineSetup& setup) {
+ForceComputeOf<Space, Pr> make(const EngineSetup& setup) {
   switch (setup.contact_model.cohesion) {
     case CohesionLaw::None:
       return make<Space, Pr, N, D, T, R, CohesionLaw::None>(setup);
@@ -56,7 +40,7 @@ std::unique_ptr<StepEngine> make(const EngineSetup& setup) {
 }
 
 template <class Space, Precision Pr, NormalLaw N, DampingLaw D, TangentialLaw T>
-std::unique_ptr<StepEngine> make(const EngineSetup& setup) {
+ForceComputeOf<Space, Pr> make(const EngineSetup& setup) {
   switch (setup.contact_model.rolling) {
     case RollingLaw::None:
       return make<Space, Pr, N, D, T, RollingLaw::None>(setup);
@@ -69,7 +53,7 @@ std::unique_ptr<StepEngine> make(const EngineSetup& setup) {
 }
 
 template <class Space, Precision Pr, NormalLaw N, DampingLaw D>
-std::unique_ptr<StepEngine> make(const EngineSetup& setup) {
+ForceComputeOf<Space, Pr> make(const EngineSetup& setup) {
   switch (setup.contact_model.tangential) {
     case TangentialLaw::None:
       return make<Space, Pr, N, D, TangentialLaw::None>(setup);
@@ -81,9 +65,9 @@ std::unique_ptr<StepEngine> make(const EngineSetup& setup) {
   throw std::invalid_argument("unknown tangential law");
 }
 
-/// The engine for setup.contact_model, whose normal law must be N, in precision policy Pr.
+/// The force compute of setup.contact_model, whose normal law must be N, in precision policy Pr.
 template <class Space, NormalLaw N, Precision Pr>
-std::unique_ptr<StepEngine> make_for_normal_law(const EngineSetup& setup) {
+ForceComputeOf<Space, Pr> make_for_normal_law(const EngineSetup& setup) {
   switch (setup.contact_model.damping) {
     case DampingLaw::None:
       return make<Space, Pr, N, DampingLaw::None>(setup);

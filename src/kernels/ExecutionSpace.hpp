@@ -1,6 +1,6 @@
 #pragma once
 /// Execution/memory space tags. A buffer lives in exactly one space; kernels run in the space
-/// of the buffers they touch (DESIGN §2).
+/// of the buffers they touch (docs/architecture.md, "One source, two backends").
 namespace gpudem {
 
 /// Host CPU: serial loops, or OpenMP threads when built with GPUDEM_ENABLE_OPENMP.

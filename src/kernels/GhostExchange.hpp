@@ -1,12 +1,12 @@
 #pragma once
-/// Ghost particles (DESIGN §4, plan then execute): on a rebuild step `plan` decides which owned
-/// particles each other rank needs (those within the ghost width of its cells, asked of the
-/// DomainLink for the particles the device finds near another rank's cells), sends their full
-/// records once and keeps the plan; every other step `update` (or `begin_update`, work,
-/// `finish_update`) sends only the fields a contact evaluation reads (position and radius, velocity
-/// and inverse mass, and the spin when the law uses it), packed in the engine's memory space, one
-/// non-blocking message per rank. Ghosts occupy the slots after the owned particles, in the order
-/// of the ranks that sent them.
+/// Ghost particles (docs/architecture.md, "One time step", plan then execute): on a rebuild step
+/// `plan` decides which owned particles each other rank needs (those within the ghost width of its
+/// cells, asked of the DomainLink for the particles the device finds near another rank's cells),
+/// sends their full records once and keeps the plan; every other step `update` (or `begin_update`,
+/// work, `finish_update`) sends only the fields a contact evaluation reads (position and radius,
+/// velocity and inverse mass, and the spin when the law uses it), packed in the engine's memory
+/// space, one non-blocking message per rank. Ghosts occupy the slots after the owned particles, in
+/// the order of the ranks that sent them.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -197,14 +197,16 @@ struct HaloStaging<CudaSpace, P> {
   CudaStream stream;
 };
 
-/// The ghosts of an engine whose state is in scalar P, with the spin when kSpin.
-template <class Space, bool kSpin, class P>
+/// The ghosts of an engine whose state is in scalar P; the per-step refresh carries the spin
+/// when the contact law reads it.
+template <class Space, class P>
 class GhostExchange {
-  using Fields = ghost_kernels::StepFields<kSpin, P>;
   using Arrays = ParticleArrays<P>;
   using Record = GhostRecord<P>;
 
  public:
+  explicit GhostExchange(bool spin) : spin_(spin) {}
+
   /// Plans the exchange from the owned particles' positions and sends their records; returns
   /// the number of ghosts received, to be written by `fill` once the caller has made room for
   /// them after its `owned` particles. Only the particles in cells near another rank's
@@ -234,7 +236,7 @@ class GhostExchange {
     RankBuffers outgoing;
     split(packed, sizeof(Record), outgoing);
     domain.exchange(outgoing, incoming);
-    const std::size_t row_bytes = Fields::width * sizeof(P);
+    const std::size_t row_bytes = width() * sizeof(P);
     send_bytes_.assign(domain.ranks(), 0);
     receive_bytes_.assign(domain.ranks(), 0);
     for (int q = 0; q < domain.ranks(); ++q) {
@@ -264,11 +266,12 @@ class GhostExchange {
   void begin_update(const DomainLink& domain, const Arrays& particles) {
     if (in_flight_) throw std::logic_error("GhostExchange: a refresh is already in flight");
     in_flight_ = true;
-    packed_fields_.resize(send_index_.size() * Fields::width);
-    fields_.resize(ghosts() * Fields::width);
-    parallel_for(
-        Space{}, send_index_.size(),
-        ghost_kernels::PackFields<kSpin, P>{particles, send_index_.data(), packed_fields_.data()});
+    packed_fields_.resize(send_index_.size() * width());
+    fields_.resize(ghosts() * width());
+    if (spin_)
+      pack_fields<true>(particles);
+    else
+      pack_fields<false>(particles);
     staged_ = kDeviceMemory && !domain.device_buffers();
     if constexpr (kDeviceMemory) {
       if (staged_) return post_staged(domain);
@@ -288,13 +291,15 @@ class GhostExchange {
       // Queued on a blocking stream: the unpacking kernel below waits for it.
       if (staged_) copy_async(staging_.receive, fields_, fields_.size(), staging_.stream);
     }
-    parallel_for(Space{}, ghosts(),
-                 ghost_kernels::UnpackFields<kSpin, P>{fields_.data(), particles, owned});
+    if (spin_)
+      unpack_fields<true>(particles, owned);
+    else
+      unpack_fields<false>(particles, owned);
   }
 
   std::size_t ghosts() const { return received_.size(); }
   /// Bytes one refresh sends (the halo volume of this rank per step).
-  std::size_t refresh_bytes() const { return send_index_.size() * Fields::width * sizeof(P); }
+  std::size_t refresh_bytes() const { return send_index_.size() * width() * sizeof(P); }
   std::size_t memory_bytes() const {
     return send_index_.bytes() + received_.bytes() + packed_fields_.bytes() + fields_.bytes();
   }
@@ -311,6 +316,25 @@ class GhostExchange {
     staging_.stream.synchronize();
     pending_ = domain.start_exchange(bytes_of(staging_.send.data()), send_bytes_,
                                      bytes_of(staging_.receive.data()), receive_bytes_);
+  }
+
+  /// Values per particle in a refresh (ghost_kernels::StepFields).
+  int width() const {
+    return spin_ ? ghost_kernels::StepFields<true, P>::width
+                 : ghost_kernels::StepFields<false, P>::width;
+  }
+
+  template <bool kSpin>
+  void pack_fields(const Arrays& particles) {
+    parallel_for(
+        Space{}, send_index_.size(),
+        ghost_kernels::PackFields<kSpin, P>{particles, send_index_.data(), packed_fields_.data()});
+  }
+
+  template <bool kSpin>
+  void unpack_fields(const Arrays& particles, std::size_t owned) {
+    parallel_for(Space{}, ghosts(),
+                 ghost_kernels::UnpackFields<kSpin, P>{fields_.data(), particles, owned});
   }
 
   static const char* bytes_of(const P* values) { return reinterpret_cast<const char*>(values); }
@@ -344,6 +368,7 @@ class GhostExchange {
     out.upload(host);
   }
 
+  bool spin_;                                     ///< the refresh carries the spin
   DeviceArray<std::uint32_t, Space> send_index_;  ///< owned particles to send, rank by rank
   std::vector<std::size_t> send_count_;           ///< per rank
   DeviceArray<Record, Space> received_;           ///< records of the last plan, rank by rank

@@ -1,7 +1,7 @@
 #pragma once
 /// Host copies of engine arrays in the scalars the host side works in: state arrays (in the
 /// state scalar P) and force arrays (in the law's scalar) to and from Real, and contact history
-/// records to and from flat rows of values.
+/// values to and from Real.
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -51,30 +51,18 @@ void upload_rounded(const std::vector<Vec3>& host, DeviceArray<Vec3T<S>, Space>&
     a.upload(converted(host, vec_cast<S, Real>));
 }
 
-/// History records (ContactState) as Width values per record, in Real.
-template <std::uint32_t Width, class State>
-std::vector<Real> flat_values(const std::vector<State>& host) {
-  std::vector<Real> values;
-  values.reserve(host.size() * Width);
-  for (const State& s : host) values.insert(values.end(), s.value, s.value + Width);
-  return values;
+/// Host copy of a history array (records of the law's width, in its scalar S), in Real.
+template <class S, class Space>
+std::vector<Real> history_in_real(const DeviceArray<S, Space>& history) {
+  std::vector<S> host;
+  history.download(host);
+  return std::vector<Real>(host.begin(), host.end());
 }
 
-/// Host copy of a history array as Width values per record.
-template <std::uint32_t Width, class State, class Space>
-std::vector<Real> flat_values(const DeviceArray<State, Space>& states) {
-  std::vector<State> host;
-  states.download(host);
-  return flat_values<Width>(host);
-}
-
-/// Width values per record as history records, rounded to the records' scalar.
-template <std::uint32_t Width, class State>
-std::vector<State> states_of(const std::vector<Real>& values) {
-  std::vector<State> host(values.size() / Width);
-  for (std::size_t k = 0; k < host.size(); ++k)
-    for (std::uint32_t v = 0; v < Width; ++v) host[k].value[v] = values[k * Width + v];
-  return host;
+/// Uploads history values in Real into a history array of scalar S, rounded to S.
+template <class S, class Space>
+void upload_history(const std::vector<Real>& values, DeviceArray<S, Space>& history) {
+  history.upload(std::vector<S>(values.begin(), values.end()));
 }
 
 }  // namespace gpudem

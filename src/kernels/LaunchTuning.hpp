@@ -1,6 +1,6 @@
 #pragma once
 /// Block sizes of the tunable CUDA launches, chosen once per run by timing and identical on every
-/// rank (DESIGN rule 12, after HOOMD-blue's Autotuner). Host code: no CUDA header.
+/// rank (after HOOMD-blue's Autotuner). Host code: no CUDA header.
 ///
 /// How a backend is meant to use it (collective: every rank calls it, for the same slots in the
 /// same order, whether or not it holds particles):

@@ -6,15 +6,15 @@
 /// when the distance from i's centre to t is below r_i + skin: valid while the particle and
 /// the mesh each move less than skin / 2.
 ///
-/// Search (DESIGN §3, plan then execute): triangles are binned by their bounding boxes in a
-/// uniform grid over the mesh, cells at least as large as the largest reach; a particle then
-/// scans the at most 2 × 2 × 2 cells its reach box overlaps, and takes a triangle only from the
-/// lowest cell shared by the triangle's box and its own, so no triangle is seen twice. A rank
-/// bins only the triangles whose boxes meet its bin region (the box, or its block grown by the
-/// ghost width) grown by the largest reach. In a box with periodic axes a particle
-/// meets each mesh as its periodic image nearest the mesh's image centre (MeshImages), so a
-/// particle queries the grid once per mesh, and a rank bins the triangles that meet its region
-/// or one of its periodic images.
+/// Search (docs/architecture.md, "Triangle meshes (STL)", plan then execute): triangles are binned
+/// by their bounding boxes in a uniform grid over the mesh, cells at least as large as the largest
+/// reach; a particle then scans the at most 2 × 2 × 2 cells its reach box overlaps, and takes a
+/// triangle only from the lowest cell shared by the triangle's box and its own, so no triangle is
+/// seen twice. A rank bins only the triangles whose boxes meet its bin region (the box, or its
+/// block grown by the ghost width) grown by the largest reach. In a box with periodic axes a
+/// particle meets each mesh as its periodic image nearest the mesh's image centre (MeshImages), so
+/// a particle queries the grid once per mesh, and a rank bins the triangles that meet its region or
+/// one of its periodic images.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

@@ -73,41 +73,45 @@ struct VertexDisplacement {
   GPUDEM_HD Real operator()(std::size_t k) const { return norm2(current[k] - at_build[k]); }
 };
 
-/// History of particle k's new list entries from its old entries with the same triangle.
-template <class State>
+/// History of particle k's new list entries (`width` values each) from its old entries with the
+/// same triangle.
+template <class S>
 struct RemapEntries {
   const std::uint32_t* offsets;
   const std::uint32_t* triangles;
   const std::uint32_t* previous_index;
   const std::uint32_t* previous_offsets;
   const std::uint32_t* previous_triangles;
-  const State* previous_history;
-  State* history;
+  const S* previous_history;
+  S* history;
+  std::uint32_t width;
   GPUDEM_HD void operator()(std::size_t k) const {
     const std::uint32_t old = previous_index[k];
     for (std::uint32_t e = offsets[k]; e < offsets[k + 1]; ++e) {
-      State carried{};
+      S* record = history + std::size_t(e) * width;
+      for (std::uint32_t v = 0; v < width; ++v) record[v] = S{};
       for (std::uint32_t f = previous_offsets[old]; f < previous_offsets[old + 1]; ++f)
         if (previous_triangles[f] == triangles[e]) {
-          carried = previous_history[f];
+          for (std::uint32_t v = 0; v < width; ++v)
+            record[v] = previous_history[std::size_t(f) * width + v];
           break;
         }
-      history[e] = carried;
     }
   }
 };
 
 }  // namespace mesh_wall_kernels
 
-/// `Law` decides whether entries keep history (Law::history_size > 0).
-template <class Space, class Law>
+/// Each candidate-list entry keeps `history_width` values of scalar S (the contact law's
+/// history; none when 0).
+template <class Space, class S>
 class MeshWalls {
-  using State = typename Law::State;
-
  public:
   MeshWalls() = default;
-  MeshWalls(const std::vector<MeshWallSetup>& meshes, const PeriodicBox& box)
-      : setups_(meshes), box_(box) {
+  MeshWalls(const std::vector<MeshWallSetup>& meshes, const PeriodicBox& box,
+            std::uint32_t history_width)
+      : setups_(meshes), box_(box), history_width_(history_width) {
+    kept_.value_width = history_width;
     std::vector<Vec3> vertices;
     std::vector<TriangleCorners> corners;
     std::vector<TriangleIds> ids;
@@ -188,7 +192,7 @@ class MeshWalls {
   /// Keeps the current lists' history as rows keyed by triangle index, for the next rebuild
   /// (call before the particles are reordered or migrated; their rows follow previous_index).
   void keep_rows() {
-    if constexpr (Law::history_size > 0) {
+    if (history_width_ > 0) {
       if (empty()) return;
       copy_values(candidates_.offsets(), candidates_.size() + 1, kept_.offsets);
       copy_values(candidates_.triangles(), candidates_.pairs(), kept_.keys);
@@ -198,8 +202,8 @@ class MeshWalls {
 
   /// The kept rows: those of the owned particles at keep time (each read through its
   /// previous_index), then those of particles that arrived from other ranks, appended.
-  CsrRows<Space, std::uint32_t, State>& kept_rows() { return kept_; }
-  const CsrRows<Space, std::uint32_t, State>& kept_rows() const { return kept_; }
+  CsrRows<Space, std::uint32_t, S>& kept_rows() { return kept_; }
+  const CsrRows<Space, std::uint32_t, S>& kept_rows() const { return kept_; }
 
   /// New candidate lists for the n particles (in their new order, all inside `region` on
   /// this rank), with the history carried over from the kept rows: previous_index[k] is
@@ -213,16 +217,16 @@ class MeshWalls {
     candidates_.build(vertices_.data(), vertices_.size(), corners_.data(), ids_.size(), region,
                       images, position_radius, n, max_radius, skin);
     parallel_for(Space{}, vertices_.size(), CopyArray<Vec3>{vertices_.data(), at_build_.data()});
-    if constexpr (Law::history_size > 0) {
-      DeviceArray<State, Space> fresh(candidates_.pairs());
+    if (history_width_ > 0) {
+      DeviceArray<S, Space> fresh(candidates_.pairs() * history_width_);
       if (had_lists) {
         parallel_for(Space{}, n,
-                     mesh_wall_kernels::RemapEntries<State>{candidates_.offsets(),
-                                                            candidates_.triangles(), previous_index,
-                                                            kept_.offsets.data(), kept_.keys.data(),
-                                                            kept_.values.data(), fresh.data()});
+                     mesh_wall_kernels::RemapEntries<S>{
+                         candidates_.offsets(), candidates_.triangles(), previous_index,
+                         kept_.offsets.data(), kept_.keys.data(), kept_.values.data(), fresh.data(),
+                         history_width_});
       } else {
-        parallel_for(Space{}, fresh.size(), Fill<State>{fresh.data(), State{}});
+        parallel_for(Space{}, fresh.size(), Fill<S>{fresh.data(), S{}});
       }
       history_.swap(fresh);
     }
@@ -234,15 +238,15 @@ class MeshWalls {
     return download_values<Space>(candidates_.offsets(), empty() ? 0 : candidates_.size() + 1);
   }
 
-  /// Host copy of the history of each candidate-list entry.
-  std::vector<State> entry_history() const {
-    std::vector<State> history;
+  /// Host copy of the history of each candidate-list entry (history_width values each).
+  std::vector<S> entry_history() const {
+    std::vector<S> history;
     history_.download(history);
     return history;
   }
 
-  /// Replaces the history of the candidate-list entries (one State per entry).
-  void set_history(const std::vector<State>& history) { history_.upload(history); }
+  /// Replaces the history of the candidate-list entries (history_width values each).
+  void set_history(const std::vector<S>& history) { history_.upload(history); }
 
   /// Triangles in all meshes.
   std::uint32_t triangle_count() const { return static_cast<std::uint32_t>(ids_.size()); }
@@ -275,10 +279,10 @@ class MeshWalls {
                     candidates_.triangles(),
                     image_centre_.data()};
   }
-  State* history() { return history_.data(); }
-  /// Number of candidate-list entries (history records).
-  std::size_t entry_count() const { return history_.size(); }
-  const State* history() const { return history_.data(); }
+  S* history() { return history_.data(); }
+  /// History values of all candidate-list entries.
+  std::size_t history_values() const { return history_.size(); }
+  const S* history() const { return history_.data(); }
   std::size_t memory_bytes() const {
     return initial_.bytes() + vertices_.bytes() + at_build_.bytes() + corners_.bytes() +
            ids_.bytes() + triangle_mesh_.bytes() + history_.bytes() + candidates_.memory_bytes() +
@@ -313,9 +317,10 @@ class MeshWalls {
   DeviceArray<MeshKinematics, Space> kinematics_;
   DeviceArray<Vec3, Space> image_centre_;  ///< per mesh, at the time of set_time [m]
   MeshCandidateList<Space> candidates_;
-  DeviceArray<State, Space> history_;  ///< per candidate-list entry
+  std::uint32_t history_width_ = 0;  ///< history values per candidate-list entry
+  DeviceArray<S, Space> history_;    ///< per candidate-list entry
   // The rows kept for the next rebuild: per particle, (triangle, history) entries.
-  CsrRows<Space, std::uint32_t, State> kept_;
+  CsrRows<Space, std::uint32_t, S> kept_;
 };
 
 }  // namespace gpudem

@@ -1,7 +1,8 @@
 #pragma once
 /// Host backend of the portable kernel layer: `parallel_for`, reductions, scan and sort over
 /// index ranges, with the same signatures as the CUDA backend in ParallelForCuda.cuh. Physics
-/// code calls only these, so one functor runs on both backends (DESIGN §2).
+/// code calls only these, so one functor runs on both backends (docs/architecture.md, "One source,
+/// two backends").
 #include <algorithm>
 #include <array>
 #include <chrono>

@@ -1,7 +1,7 @@
 #pragma once
-/// The decomposition's cell map in the engine's memory space (DESIGN §4–5), so that a rebuild
-/// finds on the device the owned particles that leave for another rank and the few that may be
-/// another rank's ghosts; only those travel to the host.
+/// The decomposition's cell map in the engine's memory space (docs/architecture.md, "One time
+/// step"–5), so that a rebuild finds on the device the owned particles that leave for another rank
+/// and the few that may be another rank's ghosts; only those travel to the host.
 #include <cstddef>
 #include <cstdint>
 #include <limits>

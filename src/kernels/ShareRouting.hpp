@@ -1,9 +1,9 @@
 #pragma once
-/// Start-up on several ranks (DESIGN §4): each rank hands the engine a share of the particles
-/// and of their contact history (any subset; the shares together hold each particle and each
-/// record once, e.g. the rows of a file that each rank reads by slices), and this host code
-/// sends every particle to the rank that owns it and every history record to the rank that
-/// owns the record's owner particle, over DomainLink::exchange. Besides its share and what it
+/// Start-up on several ranks (docs/architecture.md, "One time step"): each rank hands the engine a
+/// share of the particles and of their contact history (any subset; the shares together hold each
+/// particle and each record once, e.g. the rows of a file that each rank reads by slices), and this
+/// host code sends every particle to the rank that owns it and every history record to the rank
+/// that owns the record's owner particle, over DomainLink::exchange. Besides its share and what it
 /// owns, a rank holds only the records passing through it as the directory rank of their owner
 /// id (about a P-th of all when ids are spread evenly); buffers are sized exactly and freed once
 /// read.

@@ -1,4 +1,5 @@
-/// CUDA-backend step engine: picks the instantiation for the scene's contact law and precision.
+/// CUDA-backend step engine: the particle system with the force compute of the scene's contact
+/// law and precision.
 #include <stdexcept>
 
 #include "kernels/CudaMemory.hpp"
@@ -9,10 +10,8 @@ namespace gpudem {
 std::unique_ptr<StepEngine> make_cuda_engine(const EngineSetup& setup) {
   if (cuda::device_count() == 0)
     throw std::runtime_error("--backend cuda: no CUDA device is visible on this node");
-  require_valid_contact_model(setup);
-  return make_for_law_and_precision(setup, [&setup](auto law, auto policy) {
-    return make_cuda_engine_for<decltype(law)::value, decltype(policy)::value>(setup);
-  });
+  require_compiled_contact_model(setup);
+  return make_engine_in<CudaSpace>(setup);
 }
 
 }  // namespace gpudem

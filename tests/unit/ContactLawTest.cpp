@@ -196,5 +196,40 @@ TEST_P(EveryContactLaw, RefusesAnInvalidCombination) {
 
 GPUDEM_INSTANTIATE_BACKENDS(EveryContactLaw);
 
+TEST(CompiledContactLaws, APatternMatchesItsChoicesAndAnyWhereItSaysSo) {
+  // hertz / any damping / mindlin / any rolling / none
+  const ContactModelPattern pattern{{1, -1, 2, -1, 0}};
+  const ContactModel hertz_mindlin{NormalLaw::Hertz, DampingLaw::Viscoelastic,
+                                   TangentialLaw::Mindlin, RollingLaw::Epsd, CohesionLaw::None};
+  EXPECT_TRUE(pattern.matches(hertz_mindlin));
+  ContactModel other = hertz_mindlin;
+  other.cohesion = CohesionLaw::Sjkr;
+  EXPECT_FALSE(pattern.matches(other));
+  other = hertz_mindlin;
+  other.normal = NormalLaw::Hooke;
+  EXPECT_FALSE(pattern.matches(other));
+  other = hertz_mindlin;
+  other.tangential = TangentialLaw::None;
+  EXPECT_FALSE(pattern.matches(other));
+}
+
+TEST(CompiledContactLaws, TheDefaultBuildCompilesEveryValidLawAndNoOther) {
+  std::size_t compiled = 0;
+  for (int n = 0; n < 2; ++n)
+    for (int d = 0; d < 3; ++d)
+      for (int t = 0; t < 3; ++t)
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 2; ++c) {
+            const ContactModel m{static_cast<NormalLaw>(n), static_cast<DampingLaw>(d),
+                                 static_cast<TangentialLaw>(t), static_cast<RollingLaw>(r),
+                                 static_cast<CohesionLaw>(c)};
+            EXPECT_EQ(is_compiled_contact_model(m), is_valid_contact_model(m))
+                << contact_model_name(m);
+            compiled += is_compiled_contact_model(m) ? 1 : 0;
+          }
+  EXPECT_EQ(compiled, 60u);
+  EXPECT_EQ(compiled_contact_models_text(), "every valid law");
+}
+
 }  // namespace
 }  // namespace gpudem::test

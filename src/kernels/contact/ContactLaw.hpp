@@ -1,8 +1,8 @@
 #pragma once
-/// A contact law is one choice per slot (DESIGN §6): normal, damping, tangential, rolling and
-/// cohesion, each a stateless struct of __host__ __device__ functions with capability flags.
-/// ContactLaw<...> composes them and derives the flags the contact sweep uses to load only
-/// what the law reads: history values per contact, spins, R*, inertias, contact area. A
+/// A contact law is one choice per slot (docs/architecture.md, "Contact law"): normal, damping,
+/// tangential, rolling and cohesion, each a stateless struct of __host__ __device__ functions with
+/// capability flags. ContactLaw<...> composes them and derives the flags the contact sweep uses to
+/// load only what the law reads: history values per contact, spins, R*, inertias, contact area. A
 /// switched-off slot compiles to nothing. The law's Scalar is the precision of its arithmetic,
 /// its history and the forces it returns: Real, or float under the mixed precision policy
 /// (positions and velocities stay Real).
