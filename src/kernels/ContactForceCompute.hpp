@@ -35,26 +35,24 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
   void compute(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,
                const ForceOutputs<S>& out, const std::uint32_t* subset,
                std::size_t count) const override {
-    const ComputeForces<Law, P> kernel{
-        view(in),  scene(in),  gravity,          dt, records(out.history),
-        out.force, out.torque, out.overlap_ratio};
-    if (subset)
-      parallel_for(Space{}, count, AtIndices<ComputeForces<Law, P>>{subset, kernel},
-                   LaunchSlot::forces);
-    else
-      parallel_for(Space{}, count, kernel, LaunchSlot::forces);
+    parallel_for(Space{}, count,
+                 ComputeForces<Law, P>{view(in), scene(in), gravity, dt, records(out.history),
+                                       out.force, out.torque, out.overlap_ratio, subset},
+                 LaunchSlot::forces);
   }
 
   void contact_terms(const ContactInputs<P, S>& in, std::size_t count,
                      const ContactTermOutputs& out) const override {
     parallel_for(Space{}, count,
                  ContactTerms<Law, P>{view(in), scene(in), out.contacts, out.energy, out.body_force,
-                                      out.mesh_torque});
+                                      out.mesh_torque, nullptr});
   }
 
   void mesh_entry_loads(const ContactInputs<P, S>& in, std::size_t count,
                         Vec3* entry_load) const override {
-    parallel_for(Space{}, count, MeshEntryLoads<Law, P>{view(in), scene(in), entry_load});
+    parallel_for(
+        Space{}, count,
+        ContactTerms<Law, P>{view(in), scene(in), nullptr, nullptr, nullptr, nullptr, entry_load});
   }
 
  private:

@@ -63,7 +63,8 @@ struct ForceSum {
 };
 
 /// F_i = m_i g + Σ contacts, T_i = Σ (arm × F + rolling torque) (one thread per particle), from
-/// a state held in scalar P.
+/// a state held in scalar P; thread k computes particle subset[k], or particle k when subset is
+/// null (one kernel for both launches: each law's force kernel is compiled once per backend).
 template <class Law, class P>
 struct ComputeForces {
   using S = typename Law::Scalar;
@@ -75,21 +76,15 @@ struct ComputeForces {
   Vec3T<S>* force;
   Vec3T<S>* torque;
   Real* overlap_ratio;
-  GPUDEM_HD void operator()(std::size_t i) const {
+  const std::uint32_t* subset = nullptr;
+  GPUDEM_HD void operator()(std::size_t k) const {
+    const std::size_t i = subset ? subset[k] : k;
     ForceSum<Law> sum{history, dt, Vec3T<S>{}, Vec3T<S>{}, Real(0)};
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, sum);
     force[i] = sum.force + vec_cast<S>((Real(1) / particles.velocity(i).w) * gravity);
     if constexpr (Law::needs_spin) torque[i] = sum.torque;
     overlap_ratio[i] = sum.mesh_overflow ? kMeshOverflowScore : sum.worst_overlap_ratio;
   }
-};
-
-/// A per-particle functor run over a list of particle indices: k -> per_particle(list[k]).
-template <class F>
-struct AtIndices {
-  const std::uint32_t* list;
-  F per_particle;
-  GPUDEM_HD void operator()(std::size_t k) const { per_particle(list[k]); }
 };
 
 }  // namespace gpudem

@@ -42,9 +42,11 @@ struct GravityEnergy {
 /// Particle i's contact terms, written per particle so that the sums need no law-specific
 /// reduction: its share of the contact count and of the elastic energy (a particle pair is
 /// seen from both sides, so each side adds ½), the force it exerts on each body (plane walls
-/// w, then meshes wall_count + m) and its torque on each mesh about the mesh's centre, its
-/// lever from the periodic image of the particle that the mesh meets. The stored history is
-/// read, not advanced (dt = 0).
+/// w, then meshes wall_count + m), its torque on each mesh about the mesh's centre, its lever
+/// from the periodic image of the particle that the mesh meets, and the force it exerts on the
+/// triangle of each of its mesh candidate-list entries (zero for an entry not in contact). The
+/// stored history is read, not advanced (dt = 0). A null output is not written: the mesh loads
+/// are asked for alone (one kernel for both: each law's is compiled once per backend).
 template <class Law, class P>
 struct ContactTerms {
   ParticleView<P> particles;
@@ -53,12 +55,14 @@ struct ContactTerms {
   Real* energy;       ///< per particle [J]
   Vec3* body_force;   ///< per (particle, body): i·body_count + body [N]
   Vec3* mesh_torque;  ///< per (particle, mesh): i·mesh_count + m [N m]
-  struct Tally : IgnoreSeparated {
+  Vec3* entry_load;   ///< per mesh candidate-list entry [N]
+  struct Tally {
     Real contacts = 0;
     Real energy = 0;
     Vec3 centre;
     Vec3* body_force;
     Vec3* mesh_torque;
+    Vec3* entry_load;
     PeriodicBox box;
     MeshView mesh;
     std::uint32_t wall_count;
@@ -70,29 +74,40 @@ struct ContactTerms {
       if (pair) return;
       const Vec3 load = -vec_cast<Real>(evaluate_contact(c, c.state.value, 0).force);
       if (c.wall >= 0) {
-        body_force[c.wall] += load;
-      } else {
-        body_force[wall_count + c.mesh] += load;
-        const auto m = static_cast<std::uint32_t>(c.mesh);
-        const Vec3 at = mesh.image_for(box, centre, m) + c.arm * c.point.normal;
-        mesh_torque[m] += cross(at - mesh.kinematics[m].centre, load);
+        if (body_force) body_force[c.wall] += load;
+        return;
       }
+      if (entry_load) entry_load[c.slot] = load;
+      if (!body_force) return;
+      body_force[wall_count + c.mesh] += load;
+      const auto m = static_cast<std::uint32_t>(c.mesh);
+      const Vec3 at = mesh.image_for(box, centre, m) + c.arm * c.point.normal;
+      mesh_torque[m] += cross(at - mesh.kinematics[m].centre, load);
     }
+    GPUDEM_HD void separated(std::uint32_t) {}
+    GPUDEM_HD void separated_from_wall(std::uint32_t) {}
+    GPUDEM_HD void separated_from_mesh(std::uint32_t e) {
+      if (entry_load) entry_load[e] = Vec3{};
+    }
+    GPUDEM_HD void mesh_overflow_seen() {}
   };
   GPUDEM_HD void operator()(std::size_t i) const {
     const std::uint32_t bodies = scene.wall_count + scene.mesh.mesh_count;
     Tally t;
-    t.body_force = body_force + i * bodies;
-    t.mesh_torque = mesh_torque + i * scene.mesh.mesh_count;
-    for (std::uint32_t b = 0; b < bodies; ++b) t.body_force[b] = Vec3{};
-    for (std::uint32_t m = 0; m < scene.mesh.mesh_count; ++m) t.mesh_torque[m] = Vec3{};
+    t.body_force = body_force ? body_force + i * bodies : nullptr;
+    t.mesh_torque = body_force ? mesh_torque + i * scene.mesh.mesh_count : nullptr;
+    t.entry_load = entry_load;
+    if (body_force) {
+      for (std::uint32_t b = 0; b < bodies; ++b) t.body_force[b] = Vec3{};
+      for (std::uint32_t m = 0; m < scene.mesh.mesh_count; ++m) t.mesh_torque[m] = Vec3{};
+    }
     t.centre = xyz(particles.position(i));
     t.box = scene.box;
     t.mesh = scene.mesh;
     t.wall_count = scene.wall_count;
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, t);
-    contacts[i] = t.contacts;
-    energy[i] = t.energy;
+    if (contacts) contacts[i] = t.contacts;
+    if (energy) energy[i] = t.energy;
   }
 };
 
@@ -105,30 +120,6 @@ struct LoadComponent {
   int component;
   GPUDEM_HD Real operator()(std::size_t i) const {
     return axis(per_particle[i * columns + column], component);
-  }
-};
-
-/// The load of particle i's mesh contacts per mesh candidate-list entry: entry_load[e] is the
-/// force the particle exerts on the triangle of its entry e, −F with F the law's force on the
-/// particle as in ContactTerms [N], and zero for an entry not in contact. The stored history is
-/// read, not advanced (dt = 0).
-template <class Law, class P>
-struct MeshEntryLoads {
-  ParticleView<P> particles;
-  ContactScene<Law> scene;
-  Vec3* entry_load;  ///< per mesh candidate-list entry
-  struct Record : IgnoreSeparated {
-    Vec3* entry_load;
-    GPUDEM_HD void operator()(ContactSample<Law>& c) {
-      if (c.mesh >= 0)
-        entry_load[c.slot] = -vec_cast<Real>(evaluate_contact(c, c.state.value, 0).force);
-    }
-    GPUDEM_HD void separated_from_mesh(std::uint32_t e) { entry_load[e] = Vec3{}; }
-  };
-  GPUDEM_HD void operator()(std::size_t i) const {
-    Record r;
-    r.entry_load = entry_load;
-    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, r);
   }
 };
 

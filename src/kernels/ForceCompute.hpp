@@ -77,7 +77,7 @@ class ForceCompute {
   /// The diagnostics' contact terms of particles [0, count), the history read, not advanced.
   virtual void contact_terms(const ContactInputs<P, S>& in, std::size_t count,
                              const ContactTermOutputs& out) const = 0;
-  /// The load of particles [0, count) on each mesh candidate-list entry (MeshEntryLoads).
+  /// The load of particles [0, count) on each mesh candidate-list entry (ContactTerms).
   virtual void mesh_entry_loads(const ContactInputs<P, S>& in, std::size_t count,
                                 Vec3* entry_load) const = 0;
 };

@@ -314,7 +314,7 @@ class ParticleSystem final : public StepEngine {
   Diagnostics local_diagnostics(double& contact_share) const;
 
   /// The force the particles of all ranks exert on each triangle of all meshes, as x, y, z
-  /// per global triangle index [N]: the loads of this rank's mesh contacts (MeshEntryLoads)
+  /// per global triangle index [N]: the loads of this rank's mesh contacts (ContactTerms)
   /// added up per triangle on the host, then summed over the ranks. Collective.
   std::vector<double> triangle_loads() const;
 
