@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   ParticleStore share;
   try {
-    share = create_start_part(MPI_COMM_WORLD, scene, {});
+    share = create_start_part(MpiRankGroup(MPI_COMM_WORLD), scene, {});
   } catch (const InputError& e) {  // a region too full (on every rank alike)
     if (rank == 0)
       std::printf("| %s | %d | %d | %d | failed: %s |\n", placement.c_str(), layers, ranks, threads,

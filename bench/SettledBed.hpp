@@ -9,7 +9,7 @@
 #endif
 
 #include "core/ParticleSources.hpp"
-#include "core/SceneSetup.hpp"
+#include "engine/SceneSetup.hpp"
 #include "support/SceneBuilder.hpp"
 
 namespace gpudem {

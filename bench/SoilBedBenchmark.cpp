@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "SettledBed.hpp"
-#include "kernels/CudaMemory.hpp"
+#include "engine/CudaMemory.hpp"
 
 namespace gpudem {
 namespace {

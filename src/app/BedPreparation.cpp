@@ -14,7 +14,6 @@
 #include <utility>
 #include <vector>
 
-#include "comm/StartupShares.hpp"
 #include "core/ContactModel.hpp"
 #include "core/InputError.hpp"
 #include "core/RowShare.hpp"
@@ -93,23 +92,15 @@ struct TrimResult {
 
 /// The trim results of all ranks together (each trims the particles it owns). Collective.
 TrimResult over_ranks(const MpiContext& mpi, const TrimResult& mine) {
-  unsigned long long counts[2] = {mine.kept, mine.removed};
-  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, mpi.comm());
-  TrimResult all{counts[0], counts[1], mine.bed_height};
-  MPI_Allreduce(MPI_IN_PLACE, &all.bed_height, 1, MPI_DOUBLE, MPI_MAX, mpi.comm());
-  return all;
+  std::vector<std::uint64_t> counts = {mine.kept, mine.removed};
+  mpi.group().sum(counts);
+  return TrimResult{counts[0], counts[1], mpi.group().max<double>(mine.bed_height)};
 }
 
 /// The ids of `mine` of every rank. Collective.
 std::unordered_set<ParticleId> ids_of_all_ranks(const MpiContext& mpi,
                                                 const std::vector<ParticleId>& mine) {
-  const int count = static_cast<int>(mine.size());
-  std::vector<int> counts(mpi.size()), offsets(mpi.size(), 0);
-  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, mpi.comm());
-  for (int r = 1; r < mpi.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-  std::vector<ParticleId> all(static_cast<std::size_t>(offsets.back() + counts.back()));
-  MPI_Allgatherv(mine.data(), count, MPI_UINT64_T, all.data(), counts.data(), offsets.data(),
-                 MPI_UINT64_T, mpi.comm());
+  const std::vector<ParticleId> all = mpi.group().gather(mine);
   return std::unordered_set<ParticleId>(all.begin(), all.end());
 }
 
@@ -165,14 +156,10 @@ void write_bed_file(const MpiContext& mpi, const fs::path& path, const Checkpoin
   const fs::path staging = path.string() + ".staging";
   std::error_code ec;
   if (mpi.is_root()) fs::create_directories(staging, ec);
-  int failed = ec ? 1 : 0;
-  MPI_Bcast(&failed, 1, MPI_INT, 0, mpi.comm());
-  if (failed) throw std::runtime_error("cannot create folder '" + staging.string() + "'");
+  throw_first_failure(mpi.group(),
+                      {ec ? "cannot create folder '" + staging.string() + "'" : std::string()});
   write_checkpoint(mpi.comm(), staging.string(), bed);
-  const std::string error = mpi.is_root() ? publish_bed(staging, path) : std::string();
-  failed = error.empty() ? 0 : 1;
-  MPI_Bcast(&failed, 1, MPI_INT, 0, mpi.comm());
-  if (failed) throw std::runtime_error(mpi.is_root() ? error : "rank 0 could not write the bed");
+  throw_first_failure(mpi.group(), {mpi.is_root() ? publish_bed(staging, path) : std::string()});
 }
 
 void print_bed_summary(const Scene& scene, const TrimResult& r, double time,
@@ -267,7 +254,7 @@ void BedLoader::apply_history(const Scene& scene, const MpiContext& mpi, StepEng
     return;
   }
   const std::uint64_t dropped =
-      sum_over_ranks(mpi.comm(), keep_known_walls(history, scene.walls.size()));
+      mpi.group().sum<std::uint64_t>(keep_known_walls(history, scene.walls.size()));
   if (dropped > 0 && mpi.is_root())
     std::printf(
         "bed %s: %llu wall contact record(s) name walls this scene does not have; dropped\n",

@@ -11,7 +11,7 @@
 #include "core/ParticleSources.hpp"
 #include "core/RowShare.hpp"
 #include "core/Scene.hpp"
-#include "kernels/StepEngine.hpp"
+#include "engine/StepEngine.hpp"
 
 namespace gpudem {
 

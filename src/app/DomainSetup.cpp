@@ -15,17 +15,16 @@ namespace gpudem {
 namespace {
 
 /// Largest radius over all ranks' shares, or 0. Collective.
-Real largest_radius(MPI_Comm comm, const ParticleStore& share) {
-  double r_max = 0, all = 0;
+Real largest_radius(const RankGroup& ranks, const ParticleStore& share) {
+  double r_max = 0;
   for (const Real4& p : share.position_radius) r_max = std::max(r_max, double(p.w));
-  MPI_Allreduce(&r_max, &all, 1, MPI_DOUBLE, MPI_MAX, comm);
-  return Real(all);
+  return Real(ranks.max(r_max));
 }
 
 /// The bounding box [lo, hi] of the spheres of all ranks' shares; the box without particles.
 /// Collective.
-std::pair<Vec3, Vec3> bed_bounds(MPI_Comm comm, const ParticleStore& share, const PeriodicBox& box,
-                                 std::uint64_t count) {
+std::pair<Vec3, Vec3> bed_bounds(const RankGroup& ranks, const ParticleStore& share,
+                                 const PeriodicBox& box, std::uint64_t count) {
   if (count == 0) return {box.lo, box.lo + box.length};
   constexpr double kHuge = std::numeric_limits<double>::max();
   double lo[3] = {kHuge, kHuge, kHuge}, minus_hi[3] = {kHuge, kHuge, kHuge};
@@ -34,8 +33,8 @@ std::pair<Vec3, Vec3> bed_bounds(MPI_Comm comm, const ParticleStore& share, cons
       lo[k] = std::min(lo[k], double(axis(xyz(p), k) - p.w));
       minus_hi[k] = std::min(minus_hi[k], -double(axis(xyz(p), k) + p.w));
     }
-  MPI_Allreduce(MPI_IN_PLACE, lo, 3, MPI_DOUBLE, MPI_MIN, comm);
-  MPI_Allreduce(MPI_IN_PLACE, minus_hi, 3, MPI_DOUBLE, MPI_MIN, comm);
+  ranks.reduce(Reduction::Min, lo, 3);
+  ranks.reduce(Reduction::Min, minus_hi, 3);
   return {Vec3{Real(lo[0]), Real(lo[1]), Real(lo[2])},
           Vec3{Real(-minus_hi[0]), Real(-minus_hi[1]), Real(-minus_hi[2])}};
 }
@@ -44,11 +43,10 @@ std::pair<Vec3, Vec3> bed_bounds(MPI_Comm comm, const ParticleStore& share, cons
 constexpr Real kSettledPacking = 0.6;
 
 /// Σ 4/3 π r³ over all ranks' shares [m³]. Collective.
-Real solid_volume(MPI_Comm comm, const ParticleStore& share) {
-  double solid = 0, all = 0;
+Real solid_volume(const RankGroup& ranks, const ParticleStore& share) {
+  double solid = 0;
   for (const Real4& p : share.position_radius) solid += 4.0 / 3.0 * M_PI * p.w * p.w * p.w;
-  MPI_Allreduce(&solid, &all, 1, MPI_DOUBLE, MPI_SUM, comm);
-  return Real(all);
+  return Real(ranks.sum(solid));
 }
 
 /// The bed as auto dims judge it, from the bounding box `bed` and the spheres' volume `solid`.
@@ -78,12 +76,11 @@ std::pair<Vec3, Vec3> settled_bed(Real solid, std::uint64_t count, std::pair<Vec
 }
 
 /// Particles per coarse cell over all ranks' shares. Collective.
-std::vector<double> particles_per_cell(MPI_Comm comm, const CoarseGrid& cells,
+std::vector<double> particles_per_cell(const RankGroup& ranks, const CoarseGrid& cells,
                                        const ParticleStore& share) {
   std::vector<double> work(cells.count(), 0.0);
   for (const Real4& p : share.position_radius) work[cells.cell_of(xyz(p))] += 1;
-  MPI_Allreduce(MPI_IN_PLACE, work.data(), static_cast<int>(work.size()), MPI_DOUBLE, MPI_SUM,
-                comm);
+  ranks.sum(work);
   return work;
 }
 
@@ -104,10 +101,10 @@ std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi
                                        const ParticleStore& share, std::uint64_t count,
                                        const EngineSetup& setup, bool gpu_aware) {
   if (mpi.size() == 1) return nullptr;
-  const MPI_Comm comm = mpi.comm();
-  const Real ghost_width = 2 * largest_radius(comm, share) + setup.skin;
+  const RankGroup& ranks = mpi.group();
+  const Real ghost_width = 2 * largest_radius(ranks, share) + setup.skin;
   const CoarseGrid cells = CoarseGrid::over(setup.box, ghost_width);
-  const std::vector<double> work = particles_per_cell(comm, cells, share);
+  const std::vector<double> work = particles_per_cell(ranks, cells, share);
   const DecompositionSettings& settings = scene.decomposition;
   if (settings.method == DecompositionMethod::Metis)
     return std::make_unique<MpiDomain>(
@@ -115,8 +112,8 @@ std::unique_ptr<MpiDomain> make_domain(const Scene& scene, const MpiContext& mpi
         Decomposition::from_owners(cells, metis_parts(scene, cells, work, mpi.size()), mpi.size()),
         ghost_width, gpu_aware);
   // Collectives one by one: the order of evaluation within one argument list is unspecified.
-  const Real volume = solid_volume(comm, share);
-  const auto bounds = bed_bounds(comm, share, setup.box, count);
+  const Real volume = solid_volume(ranks, share);
+  const auto bounds = bed_bounds(ranks, share, setup.box, count);
   const auto [bed_lo, bed_hi] = settled_bed(volume, count, bounds, setup.gravity);
   const std::array<int, 3> dims = choose_grid_dims(mpi.size(), bed_lo, bed_hi, setup.gravity, cells,
                                                    settings.dims, scene.file, settings.dims_line);

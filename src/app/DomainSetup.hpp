@@ -8,7 +8,7 @@
 #include "comm/MpiDomain.hpp"
 #include "core/ParticleStore.hpp"
 #include "core/Scene.hpp"
-#include "kernels/StepEngine.hpp"
+#include "engine/StepEngine.hpp"
 
 namespace gpudem {
 

@@ -1,7 +1,5 @@
 #include "app/LoadBalance.hpp"
 
-#include <mpi.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -21,7 +19,7 @@ LoadBalance::LoadBalance(const Scene& scene, const MpiContext& mpi, MpiDomain* d
     every_ = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(every / dt)));
 }
 
-std::vector<double> LoadBalance::particle_work(const StepEngine& engine) const {
+std::vector<double> LoadBalance::particle_work(const EngineIo& engine) const {
   std::vector<double> work(engine.owned_count(), 1.0);
   if (measure_ == BalanceWork::Contacts) {
     std::vector<std::uint32_t> lengths;
@@ -31,17 +29,15 @@ std::vector<double> LoadBalance::particle_work(const StepEngine& engine) const {
   return work;
 }
 
-double LoadBalance::imbalance(const StepEngine& engine) const {
+double LoadBalance::imbalance(const EngineIo& engine) const {
   if (!domain_) return 1.0;
   const std::vector<double> work = particle_work(engine);
   double mine = 0;
   for (const double w : work) mine += w;
-  std::vector<double> per_rank(mpi_.size());
-  MPI_Allgather(&mine, 1, MPI_DOUBLE, per_rank.data(), 1, MPI_DOUBLE, mpi_.comm());
-  return gpudem::imbalance(per_rank);
+  return gpudem::imbalance(mpi_.group().gather(std::vector<double>{mine}));
 }
 
-std::vector<double> LoadBalance::cell_work(const StepEngine& engine) const {
+std::vector<double> LoadBalance::cell_work(const EngineIo& engine) const {
   const CoarseGrid& cells = domain_->decomposition().cells();
   ParticleStore particles;
   engine.get_particles(particles);
@@ -49,12 +45,11 @@ std::vector<double> LoadBalance::cell_work(const StepEngine& engine) const {
   std::vector<double> per_cell(cells.count(), 0.0);
   for (std::size_t i = 0; i < particles.size(); ++i)
     per_cell[cells.cell_of(xyz(particles.position_radius[i]))] += work[i];
-  MPI_Allreduce(MPI_IN_PLACE, per_cell.data(), static_cast<int>(per_cell.size()), MPI_DOUBLE,
-                MPI_SUM, mpi_.comm());
+  mpi_.group().sum(per_cell);
   return per_cell;
 }
 
-void LoadBalance::maybe_rebalance(std::uint64_t step, const StepEngine& engine) const {
+void LoadBalance::maybe_rebalance(std::uint64_t step, const EngineIo& engine) const {
   if (every_ == 0 || step % every_ != 0) return;
   const Decomposition& now = domain_->decomposition();
   const std::vector<double> work = cell_work(engine);

@@ -11,7 +11,7 @@
 #include "comm/MpiContext.hpp"
 #include "comm/MpiDomain.hpp"
 #include "core/Scene.hpp"
-#include "kernels/StepEngine.hpp"
+#include "engine/StepEngine.hpp"
 
 namespace gpudem {
 
@@ -21,16 +21,16 @@ class LoadBalance {
   LoadBalance(const Scene& scene, const MpiContext& mpi, MpiDomain* domain, double dt);
 
   /// max / mean of the ranks' work; 1 on one rank. Collective.
-  double imbalance(const StepEngine& engine) const;
+  double imbalance(const EngineIo& engine) const;
 
   /// On every rebalance step, proposes the rebalanced decomposition. Collective.
-  void maybe_rebalance(std::uint64_t step, const StepEngine& engine) const;
+  void maybe_rebalance(std::uint64_t step, const EngineIo& engine) const;
 
  private:
   /// Work of each owned particle, in the order of get_particles.
-  std::vector<double> particle_work(const StepEngine& engine) const;
+  std::vector<double> particle_work(const EngineIo& engine) const;
   /// Work per coarse cell, summed over all ranks.
-  std::vector<double> cell_work(const StepEngine& engine) const;
+  std::vector<double> cell_work(const EngineIo& engine) const;
 
   const MpiContext& mpi_;
   MpiDomain* domain_;

@@ -1,17 +1,14 @@
 #include "app/MemoryReport.hpp"
 
-#include <mpi.h>
-
 #include <cstdio>
 
 namespace gpudem {
 
-std::vector<MemoryUse> memory_over_ranks(const MpiContext& mpi, const StepEngine& engine) {
+std::vector<MemoryUse> memory_over_ranks(const MpiContext& mpi, const EngineDiagnostics& engine) {
   std::vector<MemoryUse> use = engine.memory_use();
-  std::vector<unsigned long long> bytes;
+  std::vector<std::uint64_t> bytes;
   for (const MemoryUse& array : use) bytes.push_back(array.bytes);
-  MPI_Allreduce(MPI_IN_PLACE, bytes.data(), static_cast<int>(bytes.size()),
-                MPI_UNSIGNED_LONG_LONG, MPI_SUM, mpi.comm());
+  mpi.group().sum(bytes);
   for (std::size_t k = 0; k < use.size(); ++k) use[k].bytes = bytes[k];
   return use;
 }

@@ -5,12 +5,12 @@
 #include <vector>
 
 #include "comm/MpiContext.hpp"
-#include "kernels/StepEngine.hpp"
+#include "engine/StepEngine.hpp"
 
 namespace gpudem {
 
 /// Each array's bytes summed over the engines of all ranks. Collective.
-std::vector<MemoryUse> memory_over_ranks(const MpiContext& mpi, const StepEngine& engine);
+std::vector<MemoryUse> memory_over_ranks(const MpiContext& mpi, const EngineDiagnostics& engine);
 
 /// Σ bytes of `use`.
 double total_bytes(const std::vector<MemoryUse>& use);

@@ -1,7 +1,5 @@
 #include "app/Resume.hpp"
 
-#include <mpi.h>
-
 #include <filesystem>
 
 #include "app/BedPreparation.hpp"
@@ -12,9 +10,8 @@ namespace {
 
 /// `path` when rank 0 finds a file there, else "". Collective.
 std::string existing_on_root(const std::filesystem::path& path, const MpiContext& mpi) {
-  int found = mpi.is_root() && std::filesystem::is_regular_file(path) ? 1 : 0;
-  MPI_Bcast(&found, 1, MPI_INT, 0, mpi.comm());
-  return found ? path.string() : std::string();
+  const bool here = mpi.is_root() && std::filesystem::is_regular_file(path);
+  return mpi.group().broadcast_value(here, 0) ? path.string() : std::string();
 }
 
 }  // namespace

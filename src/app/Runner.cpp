@@ -21,16 +21,16 @@
 #include "comm/OutputDirectory.hpp"
 #include "comm/SnapshotQueue.hpp"
 #include "comm/StartParts.hpp"
-#include "comm/StartupShares.hpp"
 #include "comm/TimeSeriesWriter.hpp"
 #include "core/ExactDecimal.hpp"
 #include "core/InputError.hpp"
+#include "core/ParticleGather.hpp"
 #include "core/ParticleSources.hpp"
 #include "core/RowShare.hpp"
 #include "core/SceneLoader.hpp"
-#include "core/SceneSetup.hpp"
 #include "core/Stopwatch.hpp"
-#include "kernels/CudaMemory.hpp"
+#include "engine/CudaMemory.hpp"
+#include "engine/SceneSetup.hpp"
 
 namespace gpudem {
 
@@ -47,9 +47,7 @@ std::unique_ptr<StepEngine> make_cuda_engine_on_node(const MpiContext& mpi,
 /// Whether every rank sees a CUDA device, so that all ranks choose the same backend (they run
 /// the same collectives only then). Collective.
 bool every_rank_sees_a_device(const MpiContext& mpi) {
-  int here = cuda::device_count() > 0 ? 1 : 0, everywhere = 0;
-  MPI_Allreduce(&here, &everywhere, 1, MPI_INT, MPI_MIN, mpi.comm());
-  return everywhere == 1;
+  return mpi.group().first_rank_with(cuda::device_count() == 0) == mpi.size();
 }
 
 /// The engine of the chosen backend; `auto` is CUDA when every rank sees a device. Collective
@@ -175,13 +173,13 @@ StartShare load_start_share(const Scene& scene, const RunOptions& options, const
   const int rank = mpi.rank(), ranks = mpi.size();
   if (!options.restart_file.empty()) {
     const std::string& path = options.restart_file;
-    start.checkpoint = agree_on_input(mpi.comm(), [&] {
+    start.checkpoint = agree_on_failure(mpi.group(), [&] {
       Checkpoint part = read_checkpoint(path, FilePart{rank, ranks});
       check_checkpoint_fits_scene(part, path, scene);
       return part;
     });
   } else {
-    start.created = create_start_part(mpi.comm(), scene, bed.reader(FilePart{rank, ranks}));
+    start.created = create_start_part(mpi.group(), scene, bed.reader(FilePart{rank, ranks}));
   }
   return start;
 }
@@ -269,8 +267,8 @@ int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
   if (options.resume && checkpoint && reached_end(scene, mpi, *checkpoint, options.restart_file))
     return kExitOk;
   const ParticleStore deciding =
-      gather_particles(mpi.comm(), setup_deciding_particles(scene, share.particles()));
-  const std::uint64_t particle_count = sum_over_ranks(mpi.comm(), share.particles().size());
+      gather_particles(mpi.group(), setup_deciding_particles(scene, share.particles()));
+  const std::uint64_t particle_count = mpi.group().sum<std::uint64_t>(share.particles().size());
   EngineSetup setup = make_engine_setup(scene, deciding);
   if (checkpoint) adopt_checkpoint_step(setup, scene, *checkpoint, options.restart_file);
   const std::unique_ptr<MpiDomain> domain =

@@ -34,9 +34,7 @@ std::string crowded_threads_warning(const ThreadCores& first, int rank, int crow
 
 std::string crowded_threads_warning(const MpiContext& mpi) {
   const ThreadCores mine = this_rank_thread_cores();
-  const int pair[2] = {mine.threads, mine.cores};
-  std::vector<int> all(2 * static_cast<std::size_t>(mpi.size()));
-  MPI_Gather(pair, 2, MPI_INT, all.data(), 2, MPI_INT, 0, mpi.comm());
+  const std::vector<int> all = mpi.group().gather(std::vector<int>{mine.threads, mine.cores});
   if (!mpi.is_root()) return {};
   int crowded = 0, first = -1;
   for (int r = 0; r < mpi.size(); ++r)

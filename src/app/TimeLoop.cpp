@@ -174,16 +174,16 @@ int TimeLoop::finish(std::uint64_t step) {
 
 void TimeLoop::report_times() const {
   const StepTimes t = engine_.step_times();
-  double slowest[7] = {t.integrate,
-                       t.forces,
-                       t.neighbors,
-                       t.ghosts,
-                       t.migration,
-                       output_seconds_,
-                       snapshots_.write_seconds()};
-  MPI_Allreduce(MPI_IN_PLACE, slowest, 7, MPI_DOUBLE, MPI_MAX, mpi_.comm());
-  double halo[2] = {static_cast<double>(t.halo_bytes), static_cast<double>(t.refreshes)};
-  MPI_Allreduce(MPI_IN_PLACE, halo, 2, MPI_DOUBLE, MPI_SUM, mpi_.comm());
+  std::vector<double> slowest = {t.integrate,
+                                 t.forces,
+                                 t.neighbors,
+                                 t.ghosts,
+                                 t.migration,
+                                 output_seconds_,
+                                 snapshots_.write_seconds()};
+  mpi_.group().max(slowest);
+  std::vector<double> halo = {static_cast<double>(t.halo_bytes), static_cast<double>(t.refreshes)};
+  mpi_.group().sum(halo);
   if (quiet_ || !mpi_.is_root()) return;
   std::printf(
       "time split (slowest rank): integration %.3g s, forces %.3g s, neighbour lists %.3g s, "

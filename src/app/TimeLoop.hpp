@@ -14,7 +14,7 @@
 #include "comm/SnapshotQueue.hpp"
 #include "comm/TimeSeriesWriter.hpp"
 #include "core/Scene.hpp"
-#include "kernels/StepEngine.hpp"
+#include "engine/StepEngine.hpp"
 
 namespace gpudem {
 

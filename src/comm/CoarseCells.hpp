@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "kernels/CoarseGrid.hpp"
+#include "engine/CoarseGrid.hpp"
 
 namespace gpudem::coarse_cells {
 

@@ -10,9 +10,9 @@
 
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
-#include "kernels/BinRegion.hpp"
-#include "kernels/CoarseGrid.hpp"
-#include "kernels/PeriodicBox.hpp"
+#include "engine/BinRegion.hpp"
+#include "engine/CoarseGrid.hpp"
+#include "engine/PeriodicBox.hpp"
 
 namespace gpudem {
 

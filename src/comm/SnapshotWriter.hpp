@@ -13,7 +13,7 @@
 #include "comm/XdmfDocument.hpp"
 #include "core/OutputNames.hpp"
 #include "core/ParticleStore.hpp"
-#include "kernels/StepEngine.hpp"
+#include "engine/StepEngine.hpp"
 
 namespace gpudem {
 

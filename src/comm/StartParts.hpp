@@ -2,7 +2,7 @@
 /// A new run's particles created by parts (docs/architecture.md, "One time step"): each rank makes
 /// and keeps only its part of every [[insert]] source, in scene order, and the parts together are
 /// the particles create_particles makes on one rank, with the same ids.
-#include <mpi.h>
+#include "comm/MpiRankGroup.hpp"
 
 #include "core/ParticleSources.hpp"
 #include "core/Scene.hpp"
@@ -20,6 +20,7 @@ namespace gpudem {
 /// Ids as create_particles gives them: a bed's own, the others' consecutive in scene order
 /// after the bed's largest. An input problem any rank finds is thrown on every rank, as the
 /// lowest rank finding one words it. Collective.
-ParticleStore create_start_part(MPI_Comm comm, const Scene& scene, const BedReader& read_bed_part);
+ParticleStore create_start_part(const MpiRankGroup& ranks, const Scene& scene,
+                                const BedReader& read_bed_part);
 
 }  // namespace gpudem

@@ -1,14 +1,15 @@
 #include "comm/TiledParts.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "comm/StartupShares.hpp"
 #include "core/ParticleSources.hpp"
 #include "core/PeriodicImages.hpp"
 #include "core/RowShare.hpp"
@@ -21,31 +22,33 @@ namespace {
 int rank_or_null(int rank) { return rank < 0 ? MPI_PROC_NULL : rank; }
 
 /// Sends `out` to rank `to` and returns what rank `from` sends (either may be MPI_PROC_NULL).
-std::vector<BoundarySphere> send_receive(MPI_Comm comm, const std::vector<BoundarySphere>& out,
-                                         int to, int from) {
+std::vector<BoundarySphere> send_receive(const MpiRankGroup& group,
+                                         const std::vector<BoundarySphere>& out, int to, int from) {
   constexpr int kCountTag = 41, kSpheresTag = 42;
   std::uint64_t count_out = out.size(), count_in = 0;
   MPI_Sendrecv(&count_out, 1, MPI_UINT64_T, to, kCountTag, &count_in, 1, MPI_UINT64_T, from,
-               kCountTag, comm, MPI_STATUS_IGNORE);
-  const std::uint64_t limit = kMaxMessageBytes / sizeof(BoundarySphere);
-  throw_first_failure(comm, {count_out > limit || count_in > limit
-                                 ? "tiled insertion: the spheres one phase placed in a layer of "
-                                   "tiles are too many for one message"
-                                 : ""});
+               kCountTag, group.comm(), MPI_STATUS_IGNORE);
+  const std::uint64_t limit = INT_MAX / sizeof(BoundarySphere);
+  throw_first_failure(group, {count_out > limit || count_in > limit
+                                  ? "tiled insertion: the spheres one phase placed in a layer of "
+                                    "tiles are too many for one message"
+                                  : ""});
   std::vector<BoundarySphere> in(count_in);
   MPI_Sendrecv(out.data(), static_cast<int>(count_out * sizeof(BoundarySphere)), MPI_BYTE, to,
                kSpheresTag, in.data(), static_cast<int>(count_in * sizeof(BoundarySphere)),
-               MPI_BYTE, from, kSpheresTag, comm, MPI_STATUS_IGNORE);
+               MPI_BYTE, from, kSpheresTag, group.comm(), MPI_STATUS_IGNORE);
   return in;
 }
 
 /// After a phase: the first layer's new spheres go down and the upper neighbour's come in
 /// above, then the last layer's go up and the lower neighbour's come in below.
-void exchange_boundaries(MPI_Comm comm, TiledFill& fill) {
+void exchange_boundaries(const MpiRankGroup& group, TiledFill& fill) {
   const int below = rank_or_null(fill.neighbour(LayerSide::Below));
   const int above = rank_or_null(fill.neighbour(LayerSide::Above));
-  fill.receive(LayerSide::Above, send_receive(comm, fill.boundary(LayerSide::Below), below, above));
-  fill.receive(LayerSide::Below, send_receive(comm, fill.boundary(LayerSide::Above), above, below));
+  fill.receive(LayerSide::Above,
+               send_receive(group, fill.boundary(LayerSide::Below), below, above));
+  fill.receive(LayerSide::Below,
+               send_receive(group, fill.boundary(LayerSide::Above), above, below));
 }
 
 /// The parts that own the layers of tiles across the slab axis (their near-equal shares, as
@@ -75,11 +78,11 @@ class LayerOwners {
 /// rank sends each sphere of its part to the ranks owning a layer that a periodic image of it
 /// reaches, the tiles widened by twice the new source's largest radius `r_max` (a tile avoids
 /// the earlier spheres within one r_max of it; the second r_max covers rounding). Collective.
-std::vector<Real4> earlier_spheres_near_part(MPI_Comm comm, const DomainSettings& domain,
+std::vector<Real4> earlier_spheres_near_part(const MpiRankGroup& group,
+                                             const DomainSettings& domain,
                                              const InsertionTiles& tiles, double r_max,
                                              const std::vector<Real4>& earlier_part) {
-  int ranks = 1;
-  MPI_Comm_size(comm, &ranks);
+  const int ranks = group.size();
   const LayerOwners owners(tiles, ranks);
   const int slab = tiles.slab_axis();
   const double reach = 2 * r_max;
@@ -100,75 +103,57 @@ std::vector<Real4> earlier_spheres_near_part(MPI_Comm comm, const DomainSettings
         }
     });
   }
-  std::size_t sending = 0;
-  for (const std::vector<Real4>& spheres : out) sending += spheres.size() * sizeof(Real4);
-  throw_first_failure(comm, {sending > kMaxMessageBytes
-                                 ? "tiled insertion: a rank has too many earlier spheres near "
-                                   "other ranks' tiles for one message"
-                                 : ""});
-  std::vector<int> send_bytes(ranks), send_offsets(ranks, 0), receive_bytes(ranks),
-      receive_offsets(ranks, 0);
-  std::vector<Real4> send;
-  send.reserve(sending / sizeof(Real4));
+  RankBuffers outgoing(ranks), incoming;
   for (int p = 0; p < ranks; ++p) {
-    send_bytes[p] = static_cast<int>(out[p].size() * sizeof(Real4));
-    if (p > 0) send_offsets[p] = send_offsets[p - 1] + send_bytes[p - 1];
-    send.insert(send.end(), out[p].begin(), out[p].end());
+    outgoing[p].resize(out[p].size() * sizeof(Real4));
+    if (!out[p].empty()) std::memcpy(outgoing[p].data(), out[p].data(), outgoing[p].size());
     out[p] = std::vector<Real4>{};
   }
-  MPI_Alltoall(send_bytes.data(), 1, MPI_INT, receive_bytes.data(), 1, MPI_INT, comm);
-  std::size_t received = 0;
-  for (int p = 0; p < ranks; ++p) {
-    receive_offsets[p] = static_cast<int>(std::min<std::size_t>(received, kMaxMessageBytes));
-    received += static_cast<std::size_t>(receive_bytes[p]);
+  group.exchange(outgoing, incoming);
+  outgoing = RankBuffers{};
+  std::vector<Real4> near;
+  for (const std::vector<char>& bytes : incoming) {
+    const std::size_t at = near.size();
+    near.resize(at + bytes.size() / sizeof(Real4));
+    if (!bytes.empty()) std::memcpy(near.data() + at, bytes.data(), bytes.size());
   }
-  throw_first_failure(comm, {received > kMaxMessageBytes
-                                 ? "tiled insertion: the earlier spheres near a rank's tiles "
-                                   "are too many for one message"
-                                 : ""});
-  std::vector<Real4> near(received / sizeof(Real4));
-  MPI_Alltoallv(send.data(), send_bytes.data(), send_offsets.data(), MPI_BYTE, near.data(),
-                receive_bytes.data(), receive_offsets.data(), MPI_BYTE, comm);
   return near;
 }
 
 }  // namespace
 
-std::size_t append_tiled_part(MPI_Comm comm, const Scene& scene, std::size_t i, ParticleStore& part,
-                              ParticleId first_id) {
+std::size_t append_tiled_part(const MpiRankGroup& group, const Scene& scene, std::size_t i,
+                              ParticleStore& part, ParticleId first_id) {
   const ParticleSource& src = scene.sources[i];
   if (!is_tiled_box(src))
     throw std::logic_error("append_tiled_part: source " + std::to_string(i) +
                            " is not a tiled box");
-  int rank = 0, ranks = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &ranks);
-  const InsertionTiles tiles = agree_on_input(comm, [&] {
+  const InsertionTiles tiles = agree_on_failure(group, [&] {
     check_box_source(scene, i);
     return insertion_tiles(scene, i);
   });
   std::optional<TiledFill> fill;
   {
     const std::vector<Real4> earlier = earlier_spheres_near_part(
-        comm, scene.domain, tiles, max_radius(src.radius), part.position_radius);
-    agree_on_input(comm, [&] {
-      fill.emplace(scene, i, FilePart{rank, ranks}, earlier);
+        group, scene.domain, tiles, max_radius(src.radius), part.position_radius);
+    agree_on_failure(group, [&] {
+      fill.emplace(scene, i, FilePart{group.rank(), group.size()}, earlier);
       return 0;
     });
   }
   for (int phase = 0; phase < kTilePhases; ++phase) {
     fill->fill_phase(phase);
-    exchange_boundaries(comm, *fill);
+    exchange_boundaries(group, *fill);
   }
   const std::size_t first_row = part.size();
-  agree_on_input(comm, [&] {
+  agree_on_failure(group, [&] {
     ParticleId next_id = first_id;
     fill->append_to(part, next_id);
     return 0;
   });
   fill.reset();
   const std::size_t placed = part.size() - first_row;
-  const ParticleId before = ids_before_rank(comm, placed);
+  const ParticleId before = group.sum_before(placed);
   for (std::size_t n = first_row; n < part.size(); ++n) part.id[n] += before;
   return placed;
 }

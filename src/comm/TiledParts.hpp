@@ -1,7 +1,7 @@
 #pragma once
 /// Each rank places its part of a tiled box source (core/TiledInsertion.hpp), passing the
 /// spheres of its first and last layers of tiles to the ranks beside it after every phase.
-#include <mpi.h>
+#include "comm/MpiRankGroup.hpp"
 
 #include <cstddef>
 
@@ -17,7 +17,7 @@ namespace gpudem {
 /// that reach its tiles. The parts of ranks 0, 1, ... concatenated are the particles
 /// insert_tiled_box places on one rank avoiding all the earlier spheres. An input problem any
 /// rank finds is thrown on every rank. Collective.
-std::size_t append_tiled_part(MPI_Comm comm, const Scene& scene, std::size_t i,
+std::size_t append_tiled_part(const MpiRankGroup& group, const Scene& scene, std::size_t i,
                               ParticleStore& part, ParticleId first_id);
 
 }  // namespace gpudem

@@ -4,11 +4,11 @@ add_library(gpudem_comm ${GPUDEM_LIBRARY_TYPE}
   comm/MpiContext.cpp
   comm/GpuAwareMpi.cpp
   comm/MpiDomain.cpp
+  comm/MpiRankGroup.cpp
   comm/OutputDirectory.cpp
   comm/SnapshotQueue.cpp
   comm/SnapshotWriter.cpp
   comm/StartParts.cpp
-  comm/StartupShares.cpp
   comm/TiledParts.cpp
   comm/TimeSeriesWriter.cpp)
 target_include_directories(gpudem_comm PUBLIC ${HDF5_INCLUDE_DIRS})

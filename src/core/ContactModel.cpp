@@ -28,23 +28,23 @@ std::string choices_with(NormalLaw normal) {
 }  // namespace
 
 const std::vector<std::string>& normal_law_names() {
-  static const std::vector<std::string> names{"hooke", "hertz"};
+  static const std::vector<std::string> names = NormalSlots::keywords();
   return names;
 }
 const std::vector<std::string>& damping_law_names() {
-  static const std::vector<std::string> names{"none", "restitution", "viscoelastic"};
+  static const std::vector<std::string> names = DampingSlots::keywords();
   return names;
 }
 const std::vector<std::string>& tangential_law_names() {
-  static const std::vector<std::string> names{"none", "linear_history", "mindlin"};
+  static const std::vector<std::string> names = TangentialSlots::keywords();
   return names;
 }
 const std::vector<std::string>& rolling_law_names() {
-  static const std::vector<std::string> names{"none", "constant_torque", "epsd"};
+  static const std::vector<std::string> names = RollingSlots::keywords();
   return names;
 }
 const std::vector<std::string>& cohesion_law_names() {
-  static const std::vector<std::string> names{"none", "sjkr"};
+  static const std::vector<std::string> names = CohesionSlots::keywords();
   return names;
 }
 
@@ -58,11 +58,11 @@ std::string contact_model_name(const ContactModel& m) {
 
 std::vector<ContactModel> valid_contact_models() {
   std::vector<ContactModel> models;
-  for (int n = 0; n < 2; ++n)
-    for (int d = 0; d < 3; ++d)
-      for (int t = 0; t < 3; ++t)
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 2; ++c) {
+  for (std::size_t n = 0; n < NormalSlots::size; ++n)
+    for (std::size_t d = 0; d < DampingSlots::size; ++d)
+      for (std::size_t t = 0; t < TangentialSlots::size; ++t)
+        for (std::size_t r = 0; r < RollingSlots::size; ++r)
+          for (std::size_t c = 0; c < CohesionSlots::size; ++c) {
             const ContactModel m{static_cast<NormalLaw>(n), static_cast<DampingLaw>(d),
                                  static_cast<TangentialLaw>(t), static_cast<RollingLaw>(r),
                                  static_cast<CohesionLaw>(c)};

@@ -1,12 +1,15 @@
 #pragma once
 /// Which contact law a scene uses: one choice per slot (docs/architecture.md, "Contact law"). The
-/// engine instantiates one template per valid combination; this header is the host-side list of
-/// those combinations and their names, shared by the scene loader and the engine factory.
+/// engine instantiates one force compute per valid combination; this header is the host-side
+/// list of those combinations, shared by the scene loader and the engine factory. Each enum
+/// lists its slot's choices in the order of their SlotList (core/contact/ContactSlots.hpp),
+/// which gives their names and history sizes.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "core/CompiledContactLaws.hpp"
+#include "core/contact/ContactSlots.hpp"
 
 namespace gpudem {
 
@@ -30,7 +33,7 @@ struct ContactModel {
   friend bool operator!=(const ContactModel& a, const ContactModel& b) { return !(a == b); }
 };
 
-/// Scene-file names of each slot's choices, in enum order.
+/// Scene-file names of each slot's choices, in enum order (their SlotList's keywords).
 const std::vector<std::string>& normal_law_names();
 const std::vector<std::string>& damping_law_names();
 const std::vector<std::string>& tangential_law_names();
@@ -80,12 +83,11 @@ constexpr bool is_compiled_contact_model(const ContactModel& m) {
 std::string compiled_contact_models_text();
 
 /// History values per contact that the law keeps (ContactLaw::history_size, docs/architecture.md,
-/// "Contact law"): the tangential spring and sliding flag of linear_history and mindlin (4) plus
-/// the rolling spring of epsd (3); the other slots keep none.
+/// "Contact law"): its tangential and rolling slots' history sizes.
 constexpr std::uint32_t contact_history_width(const ContactModel& m) {
-  const std::uint32_t tangential = m.tangential == TangentialLaw::None ? 0 : 4;
-  const std::uint32_t rolling = m.rolling == RollingLaw::Epsd ? 3 : 0;
-  return tangential + rolling;
+  return static_cast<std::uint32_t>(
+      history_size_of(TangentialSlots{}, static_cast<std::size_t>(m.tangential)) +
+      history_size_of(RollingSlots{}, static_cast<std::size_t>(m.rolling)));
 }
 
 /// valid_contact_models() in a few words, for error messages: "hooke: damping

@@ -24,6 +24,20 @@ struct ContactPairParamsT {
 
 using ContactPairParams = ContactPairParamsT<Real>;
 
+/// One contact that bounds the time step, as the host sees it: the laws' host functions
+/// (contact_duration, stable_step, peak_frequency_squared) take it.
+struct ImpactPair {
+  double radius = 0;     ///< R* [m]
+  double mass = 0;       ///< m* [kg]
+  double young = 0;      ///< E* [Pa]
+  double shear = 0;      ///< G* [Pa]
+  double stiffness = 0;  ///< k_n of the Hooke law [N/m]
+  double speed = 0;      ///< impact speed v [m/s]
+};
+
+/// G = E / (2(1 + ν)) [Pa] of a material of Young's modulus E and Poisson ratio ν.
+inline double shear_modulus(double young, double poisson) { return young / (2 * (1 + poisson)); }
+
 /// `p` with every constant converted to scalar To.
 template <class To>
 ContactPairParamsT<To> params_cast(const ContactPairParams& p) {

@@ -5,13 +5,21 @@ set(GPUDEM_CONTACT_LAWS "all" CACHE STRING
     "Contact laws to compile: 'all', or a list of normal/damping/tangential/rolling/cohesion patterns (each part a choice or *), e.g. 'hertz/restitution/mindlin/*/none'")
 
 # One initializer {normal, damping, tangential, rolling, cohesion} per pattern, each the choice's
-# index in its slot's list (ContactModel.cpp's names, in enum order) or -1 for *.
+# index in its slot's list or -1 for *. The lists repeat the slots' keywords in enum order
+# (core/contact/ContactSlots.hpp): configure time cannot read them from C++, so the generated
+# header carries them (GPUDEM_CONTACT_LAW_CHOICES) and test_contact_law compares them with the
+# slots' own.
 set(slot_names normal damping tangential rolling cohesion)
 set(normal_choices hooke hertz)
 set(damping_choices none restitution viscoelastic)
 set(tangential_choices none linear_history mindlin)
 set(rolling_choices none constant_torque epsd)
 set(cohesion_choices none sjkr)
+set(GPUDEM_CONTACT_LAW_CHOICES "")
+foreach(slot IN LISTS slot_names)
+  string(REPLACE ";" " " choices "${${slot}_choices}")
+  string(APPEND GPUDEM_CONTACT_LAW_CHOICES "${choices}|")
+endforeach()
 set(GPUDEM_CONTACT_LAW_PATTERNS "")
 set(patterns "${GPUDEM_CONTACT_LAWS}")
 if("${patterns}" STREQUAL "")

@@ -15,7 +15,7 @@
 
 #include "comm/Decomposition.hpp"
 #include "comm/MpiDomain.hpp"
-#include "kernels/DomainLink.hpp"
+#include "engine/DomainLink.hpp"
 #include "support/MpiRank.hpp"
 
 namespace gpudem {
@@ -102,7 +102,7 @@ TEST(DomainExchange, BuffersLongerThanTheMessageLimitArriveWhole) {
     for (int q = 0; q < comm_size(); ++q)
       for (std::size_t k = 0; k < 3 * message_bytes(comm_rank(), q, round); ++k)
         outgoing[q].push_back(message_byte(comm_rank(), q, round, k));
-    domain.exchange(outgoing, incoming);
+    domain.group().exchange(outgoing, incoming);
     ASSERT_EQ(incoming.size(), static_cast<std::size_t>(comm_size()));
     for (int q = 0; q < comm_size(); ++q) {
       std::vector<char> expected;

@@ -1,6 +1,6 @@
 // Launch tuning across MPI ranks (run at 1, 2 and 4 ranks): each rank injects its own timings,
 // with a slow first call per candidate that only the median discards; the reduction is the
-// engine's, max_over_ranks over an MpiDomain. Every rank must choose the same block, the one
+// engine's, the group of an MpiDomain. Every rank must choose the same block, the one
 // whose slowest rank is fastest, worked out by hand below for each rank count.
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -11,7 +11,7 @@
 
 #include "comm/Decomposition.hpp"
 #include "comm/MpiDomain.hpp"
-#include "kernels/LaunchTuning.hpp"
+#include "engine/LaunchTuning.hpp"
 #include "support/MpiRank.hpp"
 
 namespace gpudem {
@@ -53,8 +53,7 @@ TEST(LaunchTuningAgreement, EveryRankChoosesTheBlockThatMinimisesTheSlowestRank)
     return calls[block]++ == 0 ? 100 * (10 - t) : t;  // first call: a slow outlier, reversed order
   };
   LaunchTuning table;
-  const unsigned chosen =
-      tune_block_size(table, LaunchSlot::forces, own_times, max_over_ranks(domain), 3);
+  const unsigned chosen = tune_block_size(table, LaunchSlot::forces, own_times, domain.group(), 3);
   EXPECT_EQ(chosen, expected_block(ranks));
   EXPECT_EQ(table.block_size(LaunchSlot::forces), chosen);
 

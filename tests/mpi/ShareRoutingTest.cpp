@@ -1,4 +1,4 @@
-// Start-up shares (kernels/ShareRouting.hpp, core/RowShare.hpp, comm/StartupShares.hpp) on however
+// Start-up shares (engine/ShareRouting.hpp, core/RowShare.hpp, comm/StartupShares.hpp) on however
 // many ranks this runs (1, 2 and 4 through ctest): every rank builds the same particles and
 // history, takes its share, and routes it; what arrives is compared with a brute-force selection of
 // the whole set by owner, field by field.
@@ -17,10 +17,11 @@
 
 #include "comm/Decomposition.hpp"
 #include "comm/MpiDomain.hpp"
-#include "comm/StartupShares.hpp"
+#include "comm/MpiRankGroup.hpp"
 #include "core/InputError.hpp"
+#include "core/ParticleGather.hpp"
 #include "core/RowShare.hpp"
-#include "kernels/ShareRouting.hpp"
+#include "engine/ShareRouting.hpp"
 #include "support/MpiRank.hpp"
 
 namespace gpudem {
@@ -249,7 +250,7 @@ TEST(ShareRouting, FirstProblemIsThrownOnEveryRank) {
 TEST(StartupShares, ErrorOfTheLowestFailingRankIsThrownOnEveryRank) {
   const int last = comm_size() - 1;
   try {
-    agree_on_input(MPI_COMM_WORLD, [&] {
+    agree_on_failure(MpiRankGroup(MPI_COMM_WORLD), [&] {
       if (comm_rank() >= last)
         throw InputError("bed.h5", 0, "", "rank " + std::to_string(comm_rank()));
       return 1;
@@ -258,9 +259,10 @@ TEST(StartupShares, ErrorOfTheLowestFailingRankIsThrownOnEveryRank) {
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "bed.h5: rank " + std::to_string(last));
   }
-  EXPECT_EQ(agree_on_input(MPI_COMM_WORLD, [] { return comm_rank() + 10; }), comm_rank() + 10);
+  EXPECT_EQ(agree_on_failure(MpiRankGroup(MPI_COMM_WORLD), [] { return comm_rank() + 10; }),
+            comm_rank() + 10);
   try {  // any other exception travels as a runtime_error, not as an input error
-    agree_on_input(MPI_COMM_WORLD, [&] {
+    agree_on_failure(MpiRankGroup(MPI_COMM_WORLD), [&] {
       if (comm_rank() == last) throw std::length_error("too long");
       return 1;
     });
@@ -278,7 +280,7 @@ TEST(StartupShares, GatheredParticlesAreEveryRanksShareInRankOrder) {
     std::vector<Real4> list;
     const ParticleStore all = random_particles(n, list);
     const ParticleStore share = share_of(all, comm_rank(), comm_size());
-    const ParticleStore gathered = gather_particles(MPI_COMM_WORLD, share);
+    const ParticleStore gathered = gather_particles(MpiRankGroup(MPI_COMM_WORLD), share);
     EXPECT_EQ(gathered.id, all.id);
     ASSERT_EQ(gathered.size(), all.size());
     for (std::size_t i = 0; i < all.size(); ++i) {
@@ -287,7 +289,7 @@ TEST(StartupShares, GatheredParticlesAreEveryRanksShareInRankOrder) {
       EXPECT_TRUE(same(gathered.torque[i], all.torque[i]));
       EXPECT_EQ(gathered.material[i], all.material[i]);
     }
-    EXPECT_EQ(sum_over_ranks(MPI_COMM_WORLD, share.size()), all.size());
+    EXPECT_EQ(MpiRankGroup(MPI_COMM_WORLD).sum<std::uint64_t>(share.size()), all.size());
   }
 }
 

@@ -12,9 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "comm/MpiRankGroup.hpp"
 #include "comm/StartParts.hpp"
-#include "comm/StartupShares.hpp"
 #include "core/InputError.hpp"
+#include "core/ParticleGather.hpp"
 #include "core/ParticleSources.hpp"
 #include "core/RowShare.hpp"
 #include "support/InputErrorText.hpp"
@@ -120,8 +121,9 @@ ParticleStore parts_checked_against_whole(const Scene& scene, const ParticleStor
   ParticleStore whole;
   create_particles(scene, whole, whole_reader(bed));
   EXPECT_EQ(whole.size(), count);
-  const ParticleStore part = create_start_part(MPI_COMM_WORLD, scene, part_reader(bed));
-  ParticleStore all = by_id(gather_particles(MPI_COMM_WORLD, part));
+  const ParticleStore part =
+      create_start_part(MpiRankGroup(MPI_COMM_WORLD), scene, part_reader(bed));
+  ParticleStore all = by_id(gather_particles(MpiRankGroup(MPI_COMM_WORLD), part));
   EXPECT_EQ(all.size(), whole.size());
   if (all.size() == whole.size()) {
     EXPECT_EQ(rows_differing(all, by_id(whole)), 0u) << "on " << test::comm_size() << " ranks";
@@ -172,9 +174,9 @@ TEST(StartParts, AProblemInOneRanksPartOfTheBedFailsOnEveryRankAsOnOne) {
     create_particles(scene, whole, whole_reader(bed));
   });
   ASSERT_NE(alone.find("material index 5"), std::string::npos) << alone;
-  EXPECT_EQ(
-      test::input_error_text([&] { create_start_part(MPI_COMM_WORLD, scene, part_reader(bed)); }),
-      alone)
+  EXPECT_EQ(test::input_error_text(
+                [&] { create_start_part(MpiRankGroup(MPI_COMM_WORLD), scene, part_reader(bed)); }),
+            alone)
       << "on rank " << test::comm_rank();
 }
 
@@ -192,7 +194,9 @@ TEST(StartParts, ABadCsvRowInOneRanksPartFailsOnEveryRankAsOnOne) {
       create_particles(scene, whole);
     });
     ASSERT_FALSE(alone.empty());
-    EXPECT_EQ(test::input_error_text([&] { create_start_part(MPI_COMM_WORLD, scene, {}); }), alone)
+    EXPECT_EQ(
+        test::input_error_text([&] { create_start_part(MpiRankGroup(MPI_COMM_WORLD), scene, {}); }),
+        alone)
         << "on rank " << test::comm_rank();
   }
 }

@@ -37,7 +37,7 @@ TEST(TiledParts, EachRankPlacesItsRowsOfTheWholeWithGlobalIds) {
   ParticleStore all;
   create_particles(scene, all);
   ParticleStore part;
-  const std::size_t placed = append_tiled_part(MPI_COMM_WORLD, scene, 0, part, 0);
+  const std::size_t placed = append_tiled_part(MpiRankGroup(MPI_COMM_WORLD), scene, 0, part, 0);
   EXPECT_EQ(placed, part.size());
   EXPECT_EQ(sum_over_ranks(part.size()), all.size());
   std::size_t differ = 0;
@@ -63,7 +63,7 @@ TEST(TiledParts, ARegionTooFullFailsOnEveryRankAsOnOne) {
   ASSERT_NE(alone.find("could only place"), std::string::npos) << alone;
   EXPECT_EQ(test::input_error_text([&] {
               ParticleStore part;
-              append_tiled_part(MPI_COMM_WORLD, scene, 0, part, 0);
+              append_tiled_part(MpiRankGroup(MPI_COMM_WORLD), scene, 0, part, 0);
             }),
             alone)
       << "on rank " << test::comm_rank();
@@ -73,7 +73,8 @@ TEST(TiledParts, ASourceThatIsNotATiledBoxIsALogicError) {
   Scene scene = long_bed();
   scene.sources[0].placement = Placement::Sequential;
   ParticleStore part;
-  EXPECT_THROW(append_tiled_part(MPI_COMM_WORLD, scene, 0, part, 0), std::logic_error);
+  EXPECT_THROW(append_tiled_part(MpiRankGroup(MPI_COMM_WORLD), scene, 0, part, 0),
+               std::logic_error);
 }
 
 }  // namespace

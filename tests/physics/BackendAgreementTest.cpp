@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "core/ParticleSources.hpp"
-#include "core/SceneSetup.hpp"
-#include "kernels/CudaMemory.hpp"
+#include "engine/CudaMemory.hpp"
+#include "engine/SceneSetup.hpp"
 #include "support/Format.hpp"
 #include "support/RandomBed.hpp"
 

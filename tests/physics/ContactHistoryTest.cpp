@@ -13,9 +13,9 @@
 
 #include "core/ContactModel.hpp"
 #include "core/ParticleSources.hpp"
-#include "core/SceneSetup.hpp"
-#include "kernels/SizeClassGrid.hpp"
-#include "kernels/contact/ContactLaw.hpp"
+#include "core/contact/ContactLaw.hpp"
+#include "engine/SceneSetup.hpp"
+#include "engine/SizeClassGrid.hpp"
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "core/SceneSetup.hpp"
+#include "engine/SceneSetup.hpp"
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "core/ParticleSources.hpp"
-#include "core/SceneSetup.hpp"
+#include "engine/SceneSetup.hpp"
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/SceneSetup.hpp"
+#include "engine/SceneSetup.hpp"
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/SceneSetup.hpp"
+#include "engine/SceneSetup.hpp"
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"

@@ -15,7 +15,7 @@
 #include <string>
 #include <utility>
 
-#include "core/SceneSetup.hpp"
+#include "engine/SceneSetup.hpp"
 #include "support/Backends.hpp"
 #include "support/RandomBed.hpp"
 

@@ -17,7 +17,7 @@
 #include "comm/Checkpoint.hpp"
 #include "core/ContactModel.hpp"
 #include "core/ParticleSources.hpp"
-#include "core/SceneSetup.hpp"
+#include "engine/SceneSetup.hpp"
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
 #include "support/SceneBuilder.hpp"

@@ -14,7 +14,7 @@
 #include <thread>
 #include <vector>
 
-#include "kernels/DomainLink.hpp"
+#include "engine/DomainLink.hpp"
 
 namespace gpudem::test {
 
@@ -71,48 +71,68 @@ class FakeRankHub {
   std::uint64_t generation_ = 0;
 };
 
-/// The DomainLink of one fake rank.
-class FakeRankLink final : public DomainLink {
+/// The RankGroup of one fake rank: every collective meets the other ranks' in the hub.
+class FakeRankGroup final : public RankGroup {
  public:
-  FakeRankLink(FakeRankHub& hub, int rank) : hub_(hub), rank_(rank) {}
-
-  using DomainLink::sum;
+  FakeRankGroup(FakeRankHub& hub, int rank) : hub_(hub), rank_(rank) {}
 
   int rank() const override { return rank_; }
-  int ranks() const override { return hub_.ranks(); }
-  BinRegion region() const override { throw unfaked("region"); }
-  int owner_of(Vec3) const override { throw unfaked("owner_of"); }
-  void ghost_ranks(Vec3, std::vector<int>&) const override { throw unfaked("ghost_ranks"); }
-  const CellOwnership& cell_ownership() const override { throw unfaked("cell_ownership"); }
-
-  double max(double value) const override {
-    double result = value;
-    for (double v : gathered(value)) result = v > result ? v : result;
-    return result;
+  int size() const override { return hub_.ranks(); }
+  void reduce(Reduction op, double* values, std::size_t n) const override {
+    reduce_values(op, values, n);
   }
-  void sum(std::vector<double>& values) const override {
-    const RankBuffers all = hub_.all_gather(rank_, bytes_of(values));
-    for (double& v : values) v = 0;
-    for (const std::vector<char>& b : all)
-      for (std::size_t k = 0; k < values.size(); ++k) values[k] += value_at<double>(b, k);
-  }
-  std::uint64_t wrapping_sum(std::uint64_t value) const override {
-    std::uint64_t total = 0;
-    for (std::uint64_t v : gathered(value)) total += v;
-    return total;
-  }
-  int first_rank_with(bool flag) const override {
-    const std::vector<char> flags = gathered(static_cast<char>(flag));
-    for (int q = 0; q < ranks(); ++q)
-      if (flags[q]) return q;
-    return ranks();
+  void reduce(Reduction op, std::uint64_t* values, std::size_t n) const override {
+    reduce_values(op, values, n);
   }
   void broadcast(std::vector<char>& bytes, int root) const override {
     bytes = hub_.all_gather(rank_, bytes)[root];
   }
+  void all_gather(const std::vector<char>& mine, RankBuffers& all) const override {
+    all = hub_.all_gather(rank_, mine);
+  }
   void exchange(const RankBuffers& outgoing, RankBuffers& incoming) const override {
     hub_.exchange(rank_, outgoing, incoming);
   }
+
+ private:
+  /// Each rank's values folded in rank order (an unsigned sum wraps).
+  template <class T>
+  void reduce_values(Reduction op, T* values, std::size_t n) const {
+    std::vector<char> mine(n * sizeof(T));
+    if (n > 0) std::memcpy(mine.data(), values, mine.size());
+    const RankBuffers all = hub_.all_gather(rank_, mine);
+    for (std::size_t k = 0; k < n; ++k) {
+      T folded{};
+      for (std::size_t q = 0; q < all.size(); ++q) {
+        T v;
+        std::memcpy(&v, all[q].data() + k * sizeof(T), sizeof(T));
+        if (q == 0)
+          folded = v;
+        else if (op == Reduction::Sum)
+          folded += v;
+        else if (op == Reduction::Max)
+          folded = v > folded ? v : folded;
+        else
+          folded = v < folded ? v : folded;
+      }
+      values[k] = folded;
+    }
+  }
+
+  FakeRankHub& hub_;
+  int rank_;
+};
+
+/// The DomainLink of one fake rank: its collectives are a FakeRankGroup's.
+class FakeRankLink final : public DomainLink {
+ public:
+  FakeRankLink(FakeRankHub& hub, int rank) : group_(hub, rank) {}
+
+  const RankGroup& group() const override { return group_; }
+  BinRegion region() const override { throw unfaked("region"); }
+  int owner_of(Vec3) const override { throw unfaked("owner_of"); }
+  void ghost_ranks(Vec3, std::vector<int>&) const override { throw unfaked("ghost_ranks"); }
+  const CellOwnership& cell_ownership() const override { throw unfaked("cell_ownership"); }
   std::unique_ptr<PendingExchange> start_exchange(const char*, const std::vector<std::size_t>&,
                                                   char*,
                                                   const std::vector<std::size_t>&) const override {
@@ -126,29 +146,8 @@ class FakeRankLink final : public DomainLink {
   static std::logic_error unfaked(const char* what) {
     return std::logic_error(std::string("FakeRankLink::") + what + " is not faked");
   }
-  template <class T>
-  static std::vector<char> bytes_of(const std::vector<T>& values) {
-    std::vector<char> bytes(values.size() * sizeof(T));
-    if (!bytes.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
-    return bytes;
-  }
-  template <class T>
-  static T value_at(const std::vector<char>& bytes, std::size_t k) {
-    T value;
-    std::memcpy(&value, bytes.data() + k * sizeof(T), sizeof(T));
-    return value;
-  }
-  /// `value` of every rank, in rank order.
-  template <class T>
-  std::vector<T> gathered(T value) const {
-    std::vector<T> out;
-    for (const std::vector<char>& b : hub_.all_gather(rank_, bytes_of(std::vector<T>{value})))
-      out.push_back(value_at<T>(b, 0));
-    return out;
-  }
 
-  FakeRankHub& hub_;
-  int rank_;
+  FakeRankGroup group_;
 };
 
 /// Runs body(link) for ranks 0..ranks-1, each on its own thread; rethrows the first failure.

@@ -5,13 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "core/ContactModel.hpp"
-#include "kernels/ContactForces.hpp"
-#include "kernels/ParallelFor.hpp"
+#include "engine/ContactForces.hpp"
+#include "engine/ParallelFor.hpp"
 #include "support/Backends.hpp"
 
 namespace gpudem::test {
@@ -229,6 +230,28 @@ TEST(CompiledContactLaws, TheDefaultBuildCompilesEveryValidLawAndNoOther) {
           }
   EXPECT_EQ(compiled, 60u);
   EXPECT_EQ(compiled_contact_models_text(), "every valid law");
+}
+
+TEST(ContactSlots, KeywordsAndHistorySizesComeFromTheSlotTypes) {
+  EXPECT_EQ(normal_law_names(), (std::vector<std::string>{"hooke", "hertz"}));
+  EXPECT_EQ(tangential_law_names(),
+            (std::vector<std::string>{"none", "linear_history", "mindlin"}));
+  EXPECT_EQ(
+      contact_history_width(ContactModel{NormalLaw::Hertz, DampingLaw::None, TangentialLaw::Mindlin,
+                                         RollingLaw::Epsd, CohesionLaw::None}),
+      7u);
+  EXPECT_EQ(
+      contact_history_width(ContactModel{NormalLaw::Hooke, DampingLaw::None, TangentialLaw::None,
+                                         RollingLaw::ConstantTorque, CohesionLaw::Sjkr}),
+      0u);
+  // The CMake option GPUDEM_CONTACT_LAWS names the same choices in the same order.
+  std::string slots;
+  for (const auto* names : {&normal_law_names(), &damping_law_names(), &tangential_law_names(),
+                            &rolling_law_names(), &cohesion_law_names()}) {
+    for (std::size_t k = 0; k < names->size(); ++k) slots += (k ? " " : "") + (*names)[k];
+    slots += "|";
+  }
+  EXPECT_EQ(slots, GPUDEM_CONTACT_LAW_CHOICES);
 }
 
 }  // namespace

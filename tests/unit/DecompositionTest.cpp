@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "core/InputError.hpp"
-#include "kernels/BinRegion.hpp"
-#include "kernels/PeriodicBox.hpp"
+#include "engine/BinRegion.hpp"
+#include "engine/PeriodicBox.hpp"
 
 namespace gpudem {
 namespace {

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "kernels/GhostExchange.hpp"
+#include "engine/GhostExchange.hpp"
 
 namespace gpudem {
 namespace {

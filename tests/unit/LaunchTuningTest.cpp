@@ -13,10 +13,11 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
-#include "kernels/LaunchTuning.hpp"
-#include "kernels/ParallelFor.hpp"
+#include "engine/LaunchTuning.hpp"
+#include "engine/ParallelFor.hpp"
 
 namespace gpudem {
 namespace {
@@ -24,13 +25,29 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 using Rows = std::vector<std::vector<double>>;  // rows[rank][candidate]
 
-/// max over ranks as a rank of `rows` sees it: its own values folded with every row.
-MaxOverRanks fold_rows(const Rows& rows) {
-  return [rows](std::vector<double>& values) {
-    for (const auto& row : rows)
-      for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::max(values[i], row[i]);
-  };
-}
+/// The ranks of `rows` as one of them sees them: a max folds its own values with every row
+/// (nothing else is asked of it).
+class FoldRows final : public RankGroup {
+ public:
+  explicit FoldRows(Rows rows) : rows_(std::move(rows)) {}
+  int rank() const override { return 0; }
+  int size() const override { return static_cast<int>(rows_.size()); }
+  void reduce(Reduction op, double* values, std::size_t n) const override {
+    if (op != Reduction::Max) throw std::logic_error("FoldRows: only max");
+    for (const auto& row : rows_)
+      for (std::size_t i = 0; i < n; ++i) values[i] = std::max(values[i], row[i]);
+  }
+  void reduce(Reduction, std::uint64_t*, std::size_t) const override { unused(); }
+  void broadcast(std::vector<char>&, int) const override { unused(); }
+  void all_gather(const std::vector<char>&, RankBuffers&) const override { unused(); }
+  void exchange(const RankBuffers&, RankBuffers&) const override { unused(); }
+
+ private:
+  [[noreturn]] static void unused() { throw std::logic_error("FoldRows: not a reduction"); }
+  Rows rows_;
+};
+
+FoldRows fold_rows(const Rows& rows) { return FoldRows(rows); }
 
 /// The block each simulated rank of `rows` chooses.
 std::vector<unsigned> choices(const Rows& rows) {

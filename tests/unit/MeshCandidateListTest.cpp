@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/StlReader.hpp"
-#include "kernels/MeshCandidateList.hpp"
+#include "engine/MeshCandidateList.hpp"
 #include "support/TestPaths.hpp"
 
 namespace gpudem {
@@ -171,8 +171,8 @@ std::size_t expect_same_as_brute_force(const Mesh& mesh, const std::vector<Real4
 }
 
 TEST(MeshCandidateList, SweepToolMatchesBruteForce) {
-  const Mesh sweep = from(
-      load_mesh(test::source_dir() + "/inputs/tillage/sweep.stl", MeshPlacement{}));
+  const Mesh sweep =
+      from(load_mesh(test::source_dir() + "/inputs/tillage/sweep.stl", MeshPlacement{}));
   const auto spheres = random_spheres(20000, {-0.3, -0.2, -0.05}, {0.05, 0.2, 0.65}, 1);
   const std::size_t pairs = expect_same_as_brute_force(sweep, spheres, 0.002, 1u << 22);
   EXPECT_GT(pairs, 500u);  // the test sees contacts, not an empty neighbourhood

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "kernels/ParticleMigration.hpp"
+#include "engine/ParticleMigration.hpp"
 #include "support/FakeRanks.hpp"
 
 namespace gpudem {
@@ -115,31 +115,6 @@ TYPED_TEST(Migration, NothingLeavingSendsNothing) {
     arrived[link.rank()] = exchange_migrants(none, {}, kWalls, link).size();
   });
   EXPECT_EQ(arrived, (std::vector<std::size_t>{0, 0}));
-}
-
-TEST(FakeRanks, CollectivesAgreeOnEveryRank) {
-  constexpr int kRanks = 4;
-  std::vector<double> max(kRanks), sum(kRanks);
-  std::vector<std::uint64_t> wrapped(kRanks);
-  std::vector<int> first(kRanks);
-  std::vector<std::vector<char>> broadcast(kRanks);
-  test::run_on_fake_ranks(kRanks, [&](test::FakeRankLink& link) {
-    const int r = link.rank();
-    max[r] = link.max(r == 2 ? 5.5 : -1.0 * r);
-    sum[r] = link.sum(1.0 + r);
-    wrapped[r] = link.wrapping_sum(~std::uint64_t{0});  // -1 four times, modulo 2^64
-    first[r] = link.first_rank_with(r >= 1);
-    std::vector<char> bytes(r == 3 ? 3 : 1, static_cast<char>('a' + r));
-    link.broadcast(bytes, 3);
-    broadcast[r] = bytes;
-  });
-  for (int r = 0; r < kRanks; ++r) {
-    EXPECT_EQ(max[r], 5.5);
-    EXPECT_EQ(sum[r], 10.0);
-    EXPECT_EQ(wrapped[r], ~std::uint64_t{0} - 3);
-    EXPECT_EQ(first[r], 1);
-    EXPECT_EQ(broadcast[r], (std::vector<char>{'d', 'd', 'd'}));
-  }
 }
 
 }  // namespace

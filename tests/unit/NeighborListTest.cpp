@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "kernels/BinRegion.hpp"
-#include "kernels/CellList.hpp"
-#include "kernels/NeighborList.hpp"
-#include "kernels/Permute.hpp"
+#include "engine/BinRegion.hpp"
+#include "engine/CellList.hpp"
+#include "engine/NeighborList.hpp"
+#include "engine/Permute.hpp"
 
 namespace gpudem {
 namespace {

@@ -8,10 +8,10 @@
 #include <random>
 #include <vector>
 
-#include "kernels/ParallelForCuda.cuh"
+#include "engine/ParallelForCuda.cuh"
 // The CUDA backend first, then the host one, as in the engine's translation units.
-#include "kernels/DeviceArray.hpp"
-#include "kernels/ParallelFor.hpp"
+#include "engine/DeviceArray.hpp"
+#include "engine/ParallelFor.hpp"
 
 namespace gpudem {
 namespace {

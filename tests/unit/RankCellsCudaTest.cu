@@ -11,12 +11,12 @@
 #include <random>
 #include <vector>
 
-#include "kernels/ParallelForCuda.cuh"
+#include "engine/ParallelForCuda.cuh"
 // The CUDA backend first, then the host one, as in the engine's translation units.
 #include "comm/Decomposition.hpp"
-#include "kernels/CsrRows.hpp"
-#include "kernels/DeviceArray.hpp"
-#include "kernels/RankCells.hpp"
+#include "engine/CsrRows.hpp"
+#include "engine/DeviceArray.hpp"
+#include "engine/RankCells.hpp"
 
 namespace gpudem {
 namespace {

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "comm/Decomposition.hpp"
-#include "kernels/CsrRows.hpp"
-#include "kernels/RankCells.hpp"
+#include "engine/CsrRows.hpp"
+#include "engine/RankCells.hpp"
 
 namespace gpudem {
 namespace {

@@ -2,7 +2,7 @@
 // entries, restitution damping ratio) and the time-step limits (Rayleigh, Hooke and Hertz
 // contact durations, the stable limit of an explicit dt), each against closed forms written
 // out here.
-#include "core/SceneSetup.hpp"
+#include "engine/SceneSetup.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

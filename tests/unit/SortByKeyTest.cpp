@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "kernels/ParallelFor.hpp"
+#include "engine/ParallelFor.hpp"
 
 namespace gpudem {
 namespace {

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "kernels/TriangleContact.hpp"
+#include "engine/TriangleContact.hpp"
 
 namespace gpudem {
 namespace {

@@ -1,6 +1,6 @@
 gpudem_add_test(test_contact_law
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/ContactLawTest.cpp
-  LIBS gpudem_kernels
+  LIBS gpudem_engine
   LABELS unit)
 # The build option GPUDEM_CONTACT_LAWS, configured in a scratch tree.
 add_test(NAME contact_laws_option

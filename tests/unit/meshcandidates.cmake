@@ -1,4 +1,4 @@
 gpudem_add_test(test_mesh_candidates
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/MeshCandidateListTest.cpp
-  LIBS gpudem_kernels gpudem_mesh
+  LIBS gpudem_engine gpudem_mesh
   LABELS unit)

@@ -1,2 +1,0 @@
-add_library(gpudem_sim ${GPUDEM_LIBRARY_TYPE} core/SceneSetup.cpp)
-target_link_libraries(gpudem_sim PUBLIC gpudem_scene gpudem_particles gpudem_kernels)

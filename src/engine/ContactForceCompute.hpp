@@ -1,0 +1,92 @@
+#pragma once
+/// The ForceCompute of one contact law (ForceCompute.hpp): the law's pair constants in the
+/// system's memory space, and the contact sweeps (forces, diagnostics' terms, mesh loads) as
+/// launches of the law's functors. The history arrays the particle system stores as flat values
+/// are read as the law's records (ContactState: history_size values, nothing else). Include the
+/// backend's ParallelFor header first.
+#include <vector>
+
+#include "core/ContactParams.hpp"
+#include "engine/ContactForces.hpp"
+#include "engine/DeviceArray.hpp"
+#include "engine/Diagnostics.hpp"
+#include "engine/ForceCompute.hpp"
+#include "engine/HostCopies.hpp"
+#include "engine/LaunchTuning.hpp"
+
+namespace gpudem {
+
+template <class Space, class Law, class P>
+class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Scalar> {
+  using S = typename Law::Scalar;
+  using State = typename Law::State;
+  static_assert(Law::history_size == 0 || sizeof(State) == Law::history_size * sizeof(S),
+                "a history record is the law's history_size values, nothing else");
+
+ public:
+  /// `pair_params`: the constants of each material pair, material_count² entries, row-major.
+  explicit ContactForceCompute(const std::vector<ContactPairParams>& pair_params) {
+    pair_params_.upload(converted(pair_params, params_cast<S>));
+  }
+
+  std::uint32_t history_width() const override { return Law::history_size; }
+  bool needs_spin() const override { return Law::needs_spin; }
+
+  void compute(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,
+               const ForceOutputs<S>& out, const std::uint32_t* subset,
+               std::size_t count) const override {
+    parallel_for(Space{}, count,
+                 ComputeForces<Law, P>{view(in), scene(in), gravity, dt, records(out.history),
+                                       out.force, out.torque, out.overlap_ratio, subset},
+                 LaunchSlot::forces);
+  }
+
+  void contact_terms(const ContactInputs<P, S>& in, std::size_t count,
+                     const ContactTermOutputs& out) const override {
+    parallel_for(Space{}, count,
+                 ContactTerms<Law, P>{view(in), scene(in), out.contacts, out.energy, out.body_force,
+                                      out.mesh_torque, nullptr});
+  }
+
+  void mesh_entry_loads(const ContactInputs<P, S>& in, std::size_t count,
+                        Vec3* entry_load) const override {
+    parallel_for(
+        Space{}, count,
+        ContactTerms<Law, P>{view(in), scene(in), nullptr, nullptr, nullptr, nullptr, entry_load});
+  }
+
+ private:
+  /// The particle arrays the law reads; spins only when it needs them.
+  static ParticleView<P> view(const ContactInputs<P, S>& in) {
+    ParticleView<P> v = in.particles;
+    if constexpr (!Law::needs_spin) v.angular_velocity = nullptr;
+    return v;
+  }
+
+  /// The history values as the law's records, written.
+  static HistoryArrays<Law> records(const HistoryPointers<S>& h) {
+    return {reinterpret_cast<State*>(h.pair), reinterpret_cast<State*>(h.wall),
+            reinterpret_cast<State*>(h.mesh)};
+  }
+
+  /// The history values as the law's records, read.
+  static const State* records(const S* values) { return reinterpret_cast<const State*>(values); }
+
+  ContactScene<Law> scene(const ContactInputs<P, S>& in) const {
+    return ContactScene<Law>{in.neighbor_offsets,
+                             in.neighbor_index,
+                             pair_params_.data(),
+                             in.material_count,
+                             in.walls,
+                             in.wall_count,
+                             in.box,
+                             records(in.history.pair),
+                             records(in.history.wall),
+                             in.mesh,
+                             records(in.history.mesh)};
+  }
+
+  DeviceArray<typename Law::Params, Space> pair_params_;
+};
+
+}  // namespace gpudem

@@ -1,0 +1,90 @@
+#pragma once
+/// Per-particle force, torque and worst overlap: one thread per particle sums all its
+/// contacts from the full neighbour list (no atomics), walls and gravity, and advances the
+/// contact history it owns (its own neighbour-list entries and wall slots). Forces and torques
+/// are summed in the law's scalar.
+#include "engine/ContactVisitor.hpp"
+
+namespace gpudem {
+
+/// Overlap ratio recorded for a particle whose mesh candidates overflowed (health check).
+constexpr Real kMeshOverflowScore = Real(1e200);
+
+/// Torque of a contact force about i's centre, arm·n × F_t, plus the law's rolling torque.
+template <class Law>
+GPUDEM_HD Vec3T<typename Law::Scalar> contact_torque(const ContactSample<Law>& c,
+                                                     const typename Law::Force& f) {
+  using S = typename Law::Scalar;
+  Vec3T<S> torque = f.rolling_torque;
+  if constexpr (Law::has_tangential_force)
+    torque += cross(vec_cast<S>(c.arm * c.point.normal), f.tangential);
+  return torque;
+}
+
+/// Writable history arrays of one particle's contacts.
+template <class Law>
+struct HistoryArrays {
+  typename Law::State* pair;
+  typename Law::State* wall;
+  typename Law::State* mesh;
+  GPUDEM_HD typename Law::State* of(const ContactSample<Law>& c) const {
+    return c.mesh >= 0 ? mesh : (c.wall >= 0 ? wall : pair);
+  }
+};
+
+template <class Law>
+struct ForceSum {
+  HistoryArrays<Law> history;
+  Real dt;
+  Vec3T<typename Law::Scalar> force;
+  Vec3T<typename Law::Scalar> torque;
+  Real worst_overlap_ratio = 0;
+  bool mesh_overflow = false;
+  GPUDEM_HD void operator()(ContactSample<Law>& c) {
+    const typename Law::Force f = evaluate_contact(c, c.state.value, dt);
+    if constexpr (Law::history_size > 0) history.of(c)[c.slot] = c.state;
+    force += f.force;
+    if constexpr (Law::needs_spin) torque += contact_torque(c, f);
+    const Real ratio = c.point.overlap / c.min_radius;
+    if (ratio > worst_overlap_ratio) worst_overlap_ratio = ratio;
+  }
+  /// A contact that opened forgets its history.
+  GPUDEM_HD void separated(std::uint32_t slot) {
+    if constexpr (Law::history_size > 0) history.pair[slot] = typename Law::State{};
+  }
+  GPUDEM_HD void separated_from_wall(std::uint32_t slot) {
+    if constexpr (Law::history_size > 0) history.wall[slot] = typename Law::State{};
+  }
+  GPUDEM_HD void separated_from_mesh(std::uint32_t slot) {
+    if constexpr (Law::history_size > 0) history.mesh[slot] = typename Law::State{};
+  }
+  /// More triangles within contact than MeshContactCandidates holds: flagged as unhealthy.
+  GPUDEM_HD void mesh_overflow_seen() { mesh_overflow = true; }
+};
+
+/// F_i = m_i g + Σ contacts, T_i = Σ (arm × F + rolling torque) (one thread per particle), from
+/// a state held in scalar P; thread k computes particle subset[k], or particle k when subset is
+/// null (one kernel for both launches: each law's force kernel is compiled once per backend).
+template <class Law, class P>
+struct ComputeForces {
+  using S = typename Law::Scalar;
+  ParticleView<P> particles;
+  ContactScene<Law> scene;
+  Vec3 gravity;
+  Real dt;
+  HistoryArrays<Law> history;  ///< scene's history arrays, writable
+  Vec3T<S>* force;
+  Vec3T<S>* torque;
+  Real* overlap_ratio;
+  const std::uint32_t* subset = nullptr;
+  GPUDEM_HD void operator()(std::size_t k) const {
+    const std::size_t i = subset ? subset[k] : k;
+    ForceSum<Law> sum{history, dt, Vec3T<S>{}, Vec3T<S>{}, Real(0)};
+    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, sum);
+    force[i] = sum.force + vec_cast<S>((Real(1) / particles.velocity(i).w) * gravity);
+    if constexpr (Law::needs_spin) torque[i] = sum.torque;
+    overlap_ratio[i] = sum.mesh_overflow ? kMeshOverflowScore : sum.worst_overlap_ratio;
+  }
+};
+
+}  // namespace gpudem

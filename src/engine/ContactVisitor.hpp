@@ -1,0 +1,291 @@
+#pragma once
+/// Walks every contact of one particle — neighbours from the Verlet list, plane walls, then
+/// mesh walls — and hands each touching one to a visitor (`visit(sample)`), and each listed
+/// partner that is not touching to `visit.separated(slot)` (`separated_from_wall`,
+/// `separated_from_mesh`). Forces, energies and counters are all
+/// visitors, so the contact geometry lives in one place. The sweep loads only what the
+/// contact law's capability flags ask for (spins, inertias, history).
+#include <cstdint>
+
+#include "core/Config.hpp"
+#include "core/ContactParams.hpp"
+#include "core/ParticleStore.hpp"
+#include "core/Vec3.hpp"
+#include "core/contact/ContactLaw.hpp"
+#include "engine/MeshWalls.hpp"
+#include "engine/PeriodicBox.hpp"
+#include "engine/PlaneWall.hpp"
+
+namespace gpudem {
+
+/// Read-only particle arrays a contact evaluation needs (pointers into one memory space), held
+/// in the engine's state scalar P and read in Real. angular_velocity may be null for a law
+/// that does not need spin.
+template <class P>
+struct ParticleView {
+  const Vec4T<P>* position_radius;
+  const Vec4T<P>* velocity_inv_mass;
+  const Vec3T<P>* angular_velocity;
+  const MaterialId* material;
+
+  GPUDEM_HD Real4 position(std::size_t i) const { return vec4_cast<Real>(position_radius[i]); }
+  GPUDEM_HD Real4 velocity(std::size_t i) const { return vec4_cast<Real>(velocity_inv_mass[i]); }
+  GPUDEM_HD Vec3 spin(std::size_t i) const { return vec_cast<Real>(angular_velocity[i]); }
+};
+
+/// Everything besides particles that a contact sweep needs; the history arrays hold
+/// Law::history_size values per contact and are null for a law without history.
+template <class Law>
+struct ContactScene {
+  const std::uint32_t* neighbor_offsets;    ///< CSR offsets, n + 1
+  const std::uint32_t* neighbor_index;      ///< full neighbour list
+  const typename Law::Params* pair_params;  ///< material_count² entries
+  std::uint32_t material_count;
+  const PlaneWall* walls;
+  std::uint32_t wall_count;
+  PeriodicBox box;
+  const typename Law::State* pair_history;  ///< per neighbour-list entry
+  const typename Law::State* wall_history;  ///< per (particle, wall): slot i·wall_count + w
+  MeshView mesh;
+  const typename Law::State* mesh_history;  ///< per mesh candidate-list entry
+};
+
+/// Base for visitors that ignore partners out of contact.
+struct IgnoreSeparated {
+  GPUDEM_HD void separated(std::uint32_t) {}
+  GPUDEM_HD void separated_from_wall(std::uint32_t) {}
+  GPUDEM_HD void separated_from_mesh(std::uint32_t) {}
+  GPUDEM_HD void mesh_overflow_seen() {}
+};
+
+/// One touching contact as seen from particle i, its geometry formed in Real from the
+/// particle state.
+template <class Law>
+struct ContactSample {
+  ContactPoint point;
+  Real arm;         ///< lever arm on i: r_i − δ/2, along point.normal [m]
+  Real min_radius;  ///< smaller radius of the pair (r_i for walls) [m]
+  const typename Law::Params* params;
+  std::int32_t wall;          ///< plane wall index, or −1
+  std::int32_t mesh = -1;     ///< mesh index, or −1
+  std::uint32_t slot;         ///< index of this contact's history (pair, wall or mesh array)
+  typename Law::State state;  ///< history stored at the end of the last step
+};
+
+/// The law's force and rolling torque on i for contact c, in the law's scalar; advances
+/// `history` by dt (dt = 0: reads the stored state).
+template <class Law>
+GPUDEM_HD typename Law::Force evaluate_contact(const ContactSample<Law>& c,
+                                               typename Law::Scalar* history, Real dt) {
+  using S = typename Law::Scalar;
+  return Law::evaluate(*c.params, point_cast<S>(c.point), history, static_cast<S>(dt));
+}
+
+/// Elastic energy stored in contact c [J].
+template <class Law>
+GPUDEM_HD Real contact_energy(const ContactSample<Law>& c) {
+  using S = typename Law::Scalar;
+  return Law::energy(*c.params, point_cast<S>(c.point), c.state.value);
+}
+
+/// Moment of inertia about the contact point, I + m r², of a sphere (for I_r).
+GPUDEM_HD inline Real inertia_about_contact(Real radius, Real inv_mass) {
+  return sphere_inertia(radius, inv_mass) + radius * radius / inv_mass;
+}
+
+/// Fills the fields of a pair contact that the law's flags ask for.
+template <class Law>
+GPUDEM_HD void describe_pair(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi, Real4 xj, Real4 vj,
+                             Vec3 wj) {
+  ContactPoint& k = c.point;
+  const Real arm_j = xj.w - Real(0.5) * k.overlap;
+  Vec3 ui = xyz(vi), uj = xyz(vj);
+  if constexpr (Law::needs_spin) {
+    ui += cross(wi, c.arm * k.normal);
+    uj += cross(wj, -arm_j * k.normal);
+    k.relative_spin = wi - wj;
+  }
+  k.velocity = ui - uj;
+  k.overlap_rate = dot(k.velocity, k.normal);
+  k.reduced_mass = Real(1) / (vi.w + vj.w);
+  if constexpr (Law::needs_effective_radius) k.effective_radius = xi.w * xj.w / (xi.w + xj.w);
+  if constexpr (Law::needs_inertia) {
+    const Real inertia_i = sphere_inertia(xi.w, vi.w), inertia_j = sphere_inertia(xj.w, vj.w);
+    k.reduced_inertia = inertia_i * inertia_j / (inertia_i + inertia_j);
+    k.rolling_inertia = Real(1) / (Real(1) / inertia_about_contact(xi.w, vi.w) +
+                                   Real(1) / inertia_about_contact(xj.w, vj.w));
+  }
+  if constexpr (Law::needs_contact_area)
+    k.contact_radius_sq = sphere_contact_radius_sq(xi.w + xj.w - k.overlap, xi.w, xj.w);
+}
+
+/// Fills the fields of a wall contact that the law's flags ask for (wall: infinite mass
+/// and radius; its surface moves with `wall_velocity` at the contact point).
+template <class Law>
+GPUDEM_HD void describe_wall(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi,
+                             Vec3 wall_velocity) {
+  ContactPoint& k = c.point;
+  Vec3 ui = xyz(vi) - wall_velocity;
+  if constexpr (Law::needs_spin) {
+    ui += cross(wi, c.arm * k.normal);
+    k.relative_spin = wi;
+  }
+  k.velocity = ui;
+  k.overlap_rate = dot(k.velocity, k.normal);
+  k.reduced_mass = Real(1) / vi.w;
+  if constexpr (Law::needs_effective_radius) k.effective_radius = xi.w;
+  if constexpr (Law::needs_inertia) {
+    k.reduced_inertia = sphere_inertia(xi.w, vi.w);
+    k.rolling_inertia = inertia_about_contact(xi.w, vi.w);
+  }
+  if constexpr (Law::needs_contact_area)
+    k.contact_radius_sq = wall_contact_radius_sq(xi.w, k.overlap);
+}
+
+/// True when every history value of `state` is zero (a contact that has none yet).
+template <class State>
+GPUDEM_HD bool is_blank(const State& state, int width) {
+  for (int k = 0; k < width; ++k)
+    if (state.value[k] != 0) return false;
+  return true;
+}
+
+/// True when triangles s and t share a vertex.
+GPUDEM_HD inline bool share_vertex(const TriangleIds& s, const TriangleIds& t) {
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      if (s.vertex[a] == t.vertex[b]) return true;
+  return false;
+}
+
+/// History of the contact on list entry e: its own, or, when it has none yet, that of another
+/// entry of the particle on a triangle sharing a vertex that is not in contact now — the
+/// contact slid over from that triangle, and its spring goes with it.
+template <class Law>
+GPUDEM_HD typename Law::State mesh_contact_state(const ContactScene<Law>& s, std::uint32_t begin,
+                                                 std::uint32_t end, std::uint32_t e,
+                                                 const std::uint32_t* in_contact, int kept) {
+  typename Law::State state = s.mesh_history[e];
+  if (!is_blank(state, Law::history_size)) return state;
+  const TriangleIds& here = s.mesh.ids[s.mesh.triangles[e]];
+  for (std::uint32_t f = begin; f < end; ++f) {
+    bool touching = false;
+    for (int k = 0; k < kept; ++k) touching = touching || in_contact[k] == f;
+    if (touching || is_blank(s.mesh_history[f], Law::history_size)) continue;
+    if (share_vertex(here, s.mesh.ids[s.mesh.triangles[f]])) return s.mesh_history[f];
+  }
+  return state;
+}
+
+/// The listed triangles of particle i within contact, reduced to the contacts that count
+/// once where triangles meet (select_mesh_contacts); each one is visited with the history of
+/// the list entry of its triangle (mesh_contact_state), and the entries with no contact are
+/// separated. Each mesh meets the periodic image of i's centre nearest its image centre
+/// (MeshView::image_for). All history is read before any is written.
+template <class Law, class Visitor>
+GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi, MaterialId mi,
+                                   const ContactScene<Law>& s, Visitor& visit) {
+  const MeshView& m = s.mesh;
+  const std::uint32_t begin = m.offsets[i], end = m.offsets[i + 1];
+  MeshContactCandidates set;
+  for (std::uint32_t e = begin; e < end; ++e) {
+    const std::uint32_t triangle = m.triangles[e];
+    const TriangleCorners t = m.corners[triangle];
+    add_mesh_candidate(set, m.image_for(s.box, xyz(xi), m.triangle_mesh[triangle]), xi.w,
+                       m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]], m.ids[triangle]);
+  }
+  if (set.overflow) visit.mesh_overflow_seen();
+  const int kept = select_mesh_contacts(set, xi.w);
+  std::uint32_t entry[MeshContactCandidates::kCapacity];  // list entry of each kept contact
+  for (int k = 0; k < kept; ++k) {
+    entry[k] = end;
+    for (std::uint32_t e = begin; e < end; ++e)
+      if (m.triangles[e] == set.items[k].ids.triangle) entry[k] = e;
+  }
+  typename Law::State state[MeshContactCandidates::kCapacity];
+  if constexpr (Law::history_size > 0)
+    for (int k = 0; k < kept; ++k)
+      state[k] = mesh_contact_state(s, begin, end, entry[k], entry, kept);
+  for (std::uint32_t e = begin; e < end; ++e) {
+    int found = -1;
+    for (int k = 0; k < kept; ++k)
+      if (entry[k] == e) found = k;
+    if (found < 0) {
+      visit.separated_from_mesh(e);
+      continue;
+    }
+    const MeshContactCandidate& hit = set.items[found];
+    const std::uint32_t mesh = m.triangle_mesh[hit.ids.triangle];
+    ContactSample<Law> c;
+    c.point.normal = mesh_contact_normal(hit, m.image_for(s.box, xyz(xi), mesh));
+    c.point.overlap = mesh_contact_overlap(hit, xi.w);
+    c.arm = xi.w - Real(0.5) * c.point.overlap;
+    describe_wall(c, xi, vi, wi, m.kinematics[mesh].at(hit.point));
+    c.min_radius = xi.w;
+    c.params = &s.pair_params[mi * s.material_count + m.material[mesh]];
+    c.wall = -1;
+    c.mesh = static_cast<std::int32_t>(mesh);
+    c.slot = e;
+    if constexpr (Law::history_size > 0) c.state = state[found];
+    visit(c);
+  }
+}
+
+/// Calls visit(sample) for each contact of particle i with positive overlap.
+template <class Law, class P, class Visitor>
+GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
+                                const ContactScene<Law>& s, Visitor& visit) {
+  const Real4 xi = p.position(i);
+  const Real4 vi = p.velocity(i);
+  Vec3 wi{};
+  if constexpr (Law::needs_spin) wi = p.spin(i);
+  const MaterialId mi = p.material[i];
+  for (std::uint32_t k = s.neighbor_offsets[i]; k < s.neighbor_offsets[i + 1]; ++k) {
+    const std::uint32_t j = s.neighbor_index[k];
+    const Real4 xj = p.position(j);
+    const Vec3 d = s.box.minimum_image(xyz(xj) - xyz(xi));
+    const Real dist2 = norm2(d);
+    const Real reach = xi.w + xj.w;
+    if (dist2 >= reach * reach || dist2 == 0) {
+      visit.separated(k);
+      continue;
+    }
+    const Real dist = sqrt(dist2);
+    ContactSample<Law> c;
+    c.point.normal = (Real(1) / dist) * d;
+    c.point.overlap = reach - dist;
+    c.arm = xi.w - Real(0.5) * c.point.overlap;
+    Vec3 wj{};
+    if constexpr (Law::needs_spin) wj = p.spin(j);
+    describe_pair(c, xi, vi, wi, xj, p.velocity(j), wj);
+    c.min_radius = xi.w < xj.w ? xi.w : xj.w;
+    c.params = &s.pair_params[mi * s.material_count + p.material[j]];
+    c.wall = -1;
+    c.slot = k;
+    if constexpr (Law::history_size > 0) c.state = s.pair_history[k];
+    visit(c);
+  }
+  for (std::uint32_t w = 0; w < s.wall_count; ++w) {
+    const PlaneWall& wall = s.walls[w];
+    const Real overlap = wall_overlap(wall, xyz(xi), xi.w);
+    const std::uint32_t slot = i * s.wall_count + w;
+    if (overlap <= 0) {
+      visit.separated_from_wall(slot);
+      continue;
+    }
+    ContactSample<Law> c;
+    c.point.normal = -wall.normal;
+    c.point.overlap = overlap;
+    c.arm = xi.w - Real(0.5) * overlap;
+    describe_wall(c, xi, vi, wi, Vec3{});
+    c.min_radius = xi.w;
+    c.params = &s.pair_params[mi * s.material_count + wall.material];
+    c.wall = static_cast<std::int32_t>(w);
+    c.slot = slot;
+    if constexpr (Law::history_size > 0) c.state = s.wall_history[slot];
+    visit(c);
+  }
+  if (s.mesh.mesh_count > 0) visit_mesh_contacts(i, xi, vi, wi, mi, s, visit);
+}
+
+}  // namespace gpudem

@@ -1,0 +1,486 @@
+#pragma once
+/// The particle system of one execution space and precision policy: this rank's owned particles
+/// followed by ghost copies of other ranks' particles, stepped with the rank's DomainLink (one
+/// rank when the setup names none), everything done to them as particles (integration, sorting,
+/// migration, ghosts, neighbour lists, history storage and carry-over, staging, diagnostics'
+/// reductions, tuning, memory report). The contact law is a ForceCompute it is given
+/// (ForceCompute.hpp): the system is compiled once per backend and policy, not per law.
+/// Include the backend's ParallelFor header first.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+
+#include "core/Stopwatch.hpp"
+#include "engine/ArrayKernels.hpp"
+#include "engine/CellList.hpp"
+#include "engine/ContactForces.hpp"
+#include "engine/DeviceArray.hpp"
+#include "engine/Diagnostics.hpp"
+#include "engine/DomainLink.hpp"
+#include "engine/ForceCompute.hpp"
+#include "engine/GhostExchange.hpp"
+#include "engine/HistoryCarryOver.hpp"
+#include "engine/HostCopies.hpp"
+#include "engine/Integrators.hpp"
+#include "engine/LaunchTuning.hpp"
+#include "engine/MeshWalls.hpp"
+#include "engine/NeighborList.hpp"
+#include "engine/ParticleMigration.hpp"
+#include "engine/ParticleStaging.hpp"
+#include "engine/ParticleStateKernels.hpp"
+#include "engine/Permute.hpp"
+#include "engine/RankCells.hpp"
+#include "engine/ShareRouting.hpp"
+#include "engine/StepEngine.hpp"
+
+namespace gpudem {
+
+/// The particle system of one backend (Space), with the particle state (positions, velocities,
+/// spins) held in scalar P: Real in the double and mixed policies, float in the float policy,
+/// converted to Real wherever it is read and rounded to P where it is written; forces, torques
+/// and contact history in the law's scalar S.
+template <class Space, class P, class S>
+class ParticleSystem final : public StepEngine {
+  using ForceVec = Vec3T<S>;  ///< forces and torques, in the law's scalar
+  using State4 = Vec4T<P>;    ///< position and radius, velocity and 1/m
+  using StateVec = Vec3T<P>;  ///< angular velocity
+
+ public:
+  ParticleSystem(const EngineSetup& setup, std::unique_ptr<ForceCompute<Space, P, S>> law)
+      : setup_(setup),
+        law_(std::move(law)),
+        width_(law_->history_width()),
+        one_rank_(setup.box),
+        domain_(setup.domain ? *setup.domain : one_rank_),
+        carried_pairs_(width_),
+        meshes_(setup.meshes, setup.box, width_),
+        ghosts_(law_->needs_spin()),
+        steps_(setup.start_step) {
+    walls_.upload(setup.walls);
+    if (!meshes_.empty()) meshes_.set_time(steps_ * setup.dt);
+  }
+
+  void set_particles(const ParticleStore& share) override;
+
+  void restore_particles(const ParticleStore& share, const std::vector<Real4>& list_positions,
+                         std::uint64_t removed, std::uint64_t list_build_step) override;
+
+  void get_particles(ParticleStore& p) const override { read_owned_particles(owned_arrays(), p); }
+
+  void get_contact_history(ContactHistory& history) const override;
+
+  void set_contact_history(ContactHistory share) override;
+
+  void get_list_positions(std::vector<Real4>& position_radius) const override {
+    position_radius = download_in_real(position_at_build_);
+  }
+  std::uint64_t list_build_step() const override { return list_build_step_; }
+
+  std::size_t particle_count() const override { return global_count_; }
+  std::size_t owned_count() const override { return owned_; }
+
+  void get_list_lengths(std::vector<std::uint32_t>& lengths) const override;
+
+  StagedParticles& stage_particles() override {
+    staging_.stage(owned_arrays());
+    staging_.expected_tally = {global_count_, expected_id_sum_};
+    return staging_;
+  }
+
+  void step() override {
+    Stopwatch watch;
+    const Real dt = setup_.dt;
+    const bool verlet = setup_.integrator == IntegratorKind::VelocityVerlet;
+    kick(verlet ? Real(0.5) * dt : dt);
+    drift(dt);
+    ++steps_;
+    if (!meshes_.empty()) meshes_.set_time(steps_ * dt);
+    times_.integrate += lap(watch);
+    const bool rebuild_now = needs_rebuild();
+    times_.neighbors += lap(watch);
+    if (rebuild_now) {
+      rebuild();  // charges its own parts
+      lap(watch);
+      compute_forces();
+    } else if (domain_.ranks() > 1) {
+      refresh_ghosts_computing_interior(watch);
+    } else {
+      compute_forces();
+    }
+    times_.forces += lap(watch);
+    if (verlet) kick(Real(0.5) * dt);
+    times_.integrate += lap(watch);
+  }
+
+  void rebuild_neighbors() override {
+    rebuild();
+    compute_forces();
+  }
+
+  bool find_unhealthy(double limit, HealthFailure& failure) const override;
+
+  Diagnostics diagnostics() const override;
+
+  std::vector<MeshSurface> mesh_surfaces() const override;
+
+  /// Times the force, neighbour-list and integration launches at each candidate block size and
+  /// keeps, for each, the one the slowest rank runs fastest (LaunchTuning.hpp); leaves the state
+  /// as it was: the forces are timed on scratch outputs and history, the list is built into a
+  /// scratch list, the kick and drift run with a zero step. Collective; nothing to tune on the
+  /// host.
+  std::string tune_launches() override;
+
+  std::uint64_t removed_count() const override { return removed_; }
+  std::uint64_t rebuild_count() const override { return rebuilds_; }
+  StepTimes step_times() const override { return times_; }
+
+  std::vector<MemoryUse> memory_use() const override;
+
+  std::string backend_name() const override { return Space::name; }
+
+ private:
+  /// The arrays a snapshot or get_particles reads; the owned particles are their first rows.
+  OwnedParticleArrays<Space, P, S> owned_arrays() const {
+    return {position_radius_,  velocity_inv_mass_,
+            angular_velocity_, force_,
+            torque_,           id_,
+            material_,         owned_};
+  }
+
+  ParticleArrays<P> arrays() {
+    return ParticleArrays<P>{position_radius_.data(), velocity_inv_mass_.data(),
+                             angular_velocity_.data(), id_.data(), material_.data()};
+  }
+
+  /// scatter_history for this rank's `share` of the records (freed on return): on several
+  /// ranks each record is sent to the rank that owns its owner particle first, and a problem on
+  /// any rank (another width, arrays of different lengths, an unknown particle, a pair not in
+  /// the list) is thrown on every rank.
+  HistoryValues scatter_share(ContactHistory share, const ContactSlots& slots) const;
+
+  /// The particle count over all ranks and the checksum of their ids, from this rank's share
+  /// of the ids. Collective.
+  void count_particles(const std::vector<ParticleId>& share_ids);
+
+  /// Checks that no particle was lost or duplicated between ranks against the expected tally;
+  /// throws std::runtime_error saying what differs. Collective.
+  void check_particles_conserved() const;
+
+  /// restore_particles for this rank's particles `p` and their list positions.
+  void restore_owned(const ParticleStore& p, const std::vector<Real4>& list_positions);
+
+  /// Uploads the particle arrays of `p` as the owned particles and sizes the owned particles'
+  /// work arrays; torques zero (a law without spin never writes them, and a grown device
+  /// array's new rows hold whatever its memory held), wall histories zero.
+  void upload_particles(const ParticleStore& p);
+
+  /// The neighbour list of a restored state, built at the saved positions of the last build
+  /// (position_at_build_) as the saved engine built it, with ghosts at their saved positions
+  /// too; the particles then take their saved current state again, ghosts included.
+  void build_list_at_saved_positions(DeviceArray<ForceVec, Space>& force,
+                                     DeviceArray<ForceVec, Space>& torque);
+
+  /// Σ over owned particles of column `column` of a per-(particle, column) load array.
+  Vec3 column_sum(const DeviceArray<Vec3, Space>& load, std::uint32_t columns,
+                  std::uint32_t column) const {
+    Vec3 sum;
+    for (int k = 0; k < 3; ++k)
+      axis(sum, k) = reduce_sum(Space{}, owned_, LoadComponent{load.data(), columns, column, k});
+    return sum;
+  }
+
+  Real largest_radius() const {
+    return reduce_max(Space{}, owned_, Real(0), Radius<P>{position_radius_.data()});
+  }
+
+  void zero_history() {
+    parallel_for(Space{}, pair_history_.size(), Fill<S>{pair_history_.data(), S{}});
+    parallel_for(Space{}, wall_history_.size(), Fill<S>{wall_history_.data(), S{}});
+  }
+
+  /// Host copies of the ids (owned, then ghosts) and the owned particles' neighbour list,
+  /// for contact-history conversions.
+  ContactSlots contact_slots() const;
+
+  /// Every particle array, spins included.
+  ParticleView<P> state_view() const {
+    return ParticleView<P>{position_radius_.data(), velocity_inv_mass_.data(),
+                           angular_velocity_.data(), material_.data()};
+  }
+
+  /// The history arrays of the particles' contacts, to read.
+  HistoryPointers<const S> history_pointers() const {
+    return {pair_history_.data(), wall_history_.data(), meshes_.history()};
+  }
+
+  /// The history arrays of the particles' contacts, to advance.
+  HistoryPointers<S> history_pointers() {
+    return {pair_history_.data(), wall_history_.data(), meshes_.history()};
+  }
+
+  /// What the contact law reads: the state, the lists, the walls and meshes, the history.
+  ContactInputs<P, S> contact_inputs() const {
+    return ContactInputs<P, S>{state_view(),
+                               neighbors_.offsets(),
+                               neighbors_.neighbors(),
+                               setup_.material_count,
+                               walls_.data(),
+                               wall_count(),
+                               setup_.box,
+                               meshes_.view(),
+                               history_pointers()};
+  }
+
+  void kick(Real h) {
+    if (law_->needs_spin())
+      kick_with<true>(h);
+    else
+      kick_with<false>(h);
+  }
+
+  template <bool kRotate>
+  void kick_with(Real h) {
+    parallel_for(Space{}, owned_,
+                 Kick<kRotate, S, P>{velocity_inv_mass_.data(), angular_velocity_.data(),
+                                     force_.data(), torque_.data(), position_radius_.data(), h},
+                 LaunchSlot::integrate);
+  }
+
+  void drift(Real dt) {
+    parallel_for(Space{}, owned_, Drift<P>{position_radius_.data(), velocity_inv_mass_.data(), dt},
+                 LaunchSlot::integrate);
+  }
+
+  /// Outputs and history of a force evaluation whose results are thrown away (launch tuning).
+  struct ForceScratch {
+    ForceScratch(std::size_t owned, std::size_t pairs, std::size_t wall_slots, std::size_t mesh)
+        : force(owned),
+          torque(owned),
+          overlap_ratio(owned),
+          pair(pairs),
+          wall(wall_slots),
+          mesh(mesh) {}
+    /// The bytes the constructor allocates.
+    static std::size_t bytes(std::size_t owned, std::size_t pairs, std::size_t wall_slots,
+                             std::size_t mesh) {
+      return owned * (2 * sizeof(ForceVec) + sizeof(Real)) +
+             (pairs + wall_slots + mesh) * sizeof(S);
+    }
+    DeviceArray<ForceVec, Space> force, torque;
+    DeviceArray<Real, Space> overlap_ratio;
+    DeviceArray<S, Space> pair, wall, mesh;  ///< history values
+  };
+
+  /// Bytes by which the device memory that launch tuning allocates (a ForceScratch and a second
+  /// neighbour list, with an eighth more for the list's sort scratch and growth) exceeds the
+  /// free device memory; 0 when it fits.
+  double tuning_memory_shortfall() const;
+
+  std::uint32_t wall_count() const { return static_cast<std::uint32_t>(setup_.walls.size()); }
+
+  /// The forces of every owned particle.
+  void compute_forces() { compute_forces(nullptr, owned_); }
+
+  /// The forces of the owned particles list[0, count) (all of 0..count when list is null).
+  void compute_forces(const std::uint32_t* list, std::size_t count) {
+    law_->compute(contact_inputs(), setup_.gravity, setup_.dt,
+                  {force_.data(), torque_.data(), overlap_ratio_.data(), history_pointers()}, list,
+                  count);
+  }
+
+  /// The forces of the current state written to `scratch`, the engine's state untouched.
+  void compute_forces_into(ForceScratch& scratch) {
+    law_->compute(contact_inputs(), setup_.gravity, setup_.dt,
+                  {scratch.force.data(),
+                   scratch.torque.data(),
+                   scratch.overlap_ratio.data(),
+                   {scratch.pair.data(), scratch.wall.data(), scratch.mesh.data()}},
+                  nullptr, owned_);
+  }
+
+  /// Refreshes the ghosts' per-step fields while the forces of the owned particles whose rows
+  /// read no ghost are computed, then computes the others' forces. Each particle's force is
+  /// the same sum as in compute_forces(); only the particles' order differs.
+  void refresh_ghosts_computing_interior(Stopwatch& watch);
+
+  bool find_unhealthy_here(double limit, HealthFailure& failure) const;
+
+  /// The diagnostics of this rank's particles; `contact_share` is its (fractional) share of
+  /// the contact count, a pair counting half on each side.
+  Diagnostics local_diagnostics(double& contact_share) const;
+
+  /// The force the particles of all ranks exert on each triangle of all meshes, as x, y, z
+  /// per global triangle index [N]: the loads of this rank's mesh contacts (ContactTerms)
+  /// added up per triangle on the host, then summed over the ranks. Collective.
+  std::vector<double> triangle_loads() const;
+
+  /// Sums (and for the overlap, maximises) a rank's diagnostics over all ranks.
+  void sum_over_ranks(Diagnostics& d, double contact_share) const;
+
+  /// Seconds since the watch's last lap. With EngineSetup::exact_phase_times it first waits
+  /// for the device, so that a part's time holds its own kernels and not only their launches.
+  double lap(Stopwatch& watch) const {
+    if constexpr (std::is_same_v<Space, CudaSpace>)
+      if (setup_.exact_phase_times) cuda::synchronize_device();
+    return watch.lap();
+  }
+
+  /// The lists stay valid while no particle on any rank and no mesh vertex moved more than
+  /// skin/2.
+  bool needs_rebuild() const;
+
+  /// Wraps periodic images, removes particles that left the box, migrates particles to the
+  /// ranks that own their positions, sorts by cell, exchanges ghosts, rebuilds the neighbour
+  /// list and carries the contact history over to it.
+  void rebuild();
+
+  /// Keeps each owned particle's list row as (partner id, history) records for the remap, only
+  /// those that are not fresh, then frees the pair history (the remap writes a new one); keeps
+  /// the mesh candidates as (triangle, history) records.
+  void keep_previous_rows();
+
+  /// The key of each entry of the current neighbour list: its partner's global id.
+  PartnerIdKey partner_ids() const { return PartnerIdKey{neighbors_.neighbors(), id_.data()}; }
+
+  /// Removes the owned particles outside the box (removed_ counts them over all ranks) and
+  /// sends those that another rank owns there with their state and history. One stable sort by
+  /// RelocationKey moves both to the end, the leaving ones grouped by destination and the
+  /// removed ones last (the others keep their order); only they are read back, and the
+  /// particles that arrive are appended.
+  void relocate_particles();
+
+  /// How many of the keys are at least `least`.
+  std::size_t count_keys_from(const DeviceArray<std::uint64_t, Space>& key,
+                              std::uint64_t least) const;
+
+  /// Drops the last `count` owned particles, which left the box; removed_ and the expected
+  /// particle count and id checksum follow the removals on all ranks. Collective.
+  void drop_last(std::size_t count);
+
+  /// Host copies of the owned particles [first, owned_) with their kept history rows.
+  MigratingParticles<S, P> owned_from(std::size_t first, std::uint32_t walls) const;
+
+  /// Appends `arrived` to the owned particles, their history rows after the kept ones
+  /// (previous_index_ pointing there); torques zero (a law without spin never writes them).
+  void append_owned(const MigratingParticles<S, P>& arrived, std::uint32_t walls);
+
+  void sort_owned_by_cell();
+
+  /// Plans the ghosts and puts them after the owned particles (on several ranks); returns
+  /// their number.
+  std::size_t receive_ghosts();
+
+  /// Builds the owned particles' neighbour rows over owned particles and `ghosts` ghosts,
+  /// each row ordered by partner id so that no sum depends on particle order or rank count.
+  void build_list(std::size_t ghosts) { build_list_into(neighbors_, ghosts); }
+
+  /// build_list into `list`. The sorted positions and slots of a build over ghosts are freed
+  /// afterwards.
+  void build_list_into(NeighborList<Space>& list, std::size_t ghosts);
+
+  /// On several ranks, splits the new list's rows by whether they read a ghost.
+  void split_ghost_rows();
+
+  /// The owned particles' mesh candidates, with the kept rows' history when `carry`.
+  void rebuild_mesh_candidates(bool carry);
+
+  /// The new list's pair history: the kept records of each particle's previous row (all fresh
+  /// on the first build); the kept rows are then freed.
+  void remap_pair_history();
+
+  /// Applies the permutation `order` (slot k takes particle order[k]) to every per-particle
+  /// array of the owned particles whose value must survive a rebuild (forces are recomputed
+  /// right after).
+  void reorder(const std::uint32_t* order, std::size_t n);
+
+  template <class T>
+  void permute_array(const std::uint32_t* order, std::size_t n, DeviceArray<T, Space>& a) {
+    DeviceArray<T, Space> out(n);
+    permute(Space{}, order, a.data(), out.data(), n);
+    a.swap(out);
+  }
+
+  /// The owned particles' positions in Real for the neighbour search, in their storage order:
+  /// the state itself when P is Real, else a converted copy in `scratch`.
+  const Real4* positions_in_real(DeviceArray<Real4, Space>& scratch) const {
+    if constexpr (std::is_same_v<P, Real>) {
+      return position_radius_.data();
+    } else {
+      scratch.resize(owned_);
+      parallel_for(Space{}, owned_, CopyInReal<P>{position_radius_.data(), scratch.data()});
+      return scratch.data();
+    }
+  }
+
+  static void iota(DeviceArray<std::uint32_t, Space>& a, std::size_t n) {
+    a.resize(n);
+    parallel_for(Space{}, n, Iota{a.data()});
+  }
+
+  /// Sizes the arrays that hold ghosts after the owned particles.
+  void resize_shared(std::size_t n) {
+    position_radius_.resize(n);
+    velocity_inv_mass_.resize(n);
+    angular_velocity_.resize(n);
+    id_.resize(n);
+    material_.resize(n);
+  }
+
+  void resize_owned(std::size_t n);
+
+  std::size_t scratch_bytes() const { return previous_index_.bytes(); }
+
+  /// Bytes of the kept rows (offsets, partner ids, records) that a rebuild now would allocate
+  /// while it still holds the list and pair history (keep_previous_rows): counted between
+  /// rebuilds too, when they are freed, so that the report shows the peak a run holds. (Those
+  /// held, should a rebuild have stopped between keeping them and the remap.)
+  std::size_t carry_over_bytes() const;
+
+  EngineSetup setup_;
+  std::unique_ptr<ForceCompute<Space, P, S>> law_;  ///< the contact law
+  std::uint32_t width_;                             ///< history values per contact (the law's)
+  OneRankDomain one_rank_;
+  DomainLink& domain_;  ///< setup.domain, or one_rank_ when there is none
+  DeviceArray<PlaneWall, Space> walls_;
+  // Per particle: the owned_ owned particles, then (the first five) the ghosts.
+  DeviceArray<State4, Space> position_radius_;
+  DeviceArray<State4, Space> velocity_inv_mass_;
+  DeviceArray<StateVec, Space> angular_velocity_;
+  DeviceArray<ParticleId, Space> id_;
+  DeviceArray<MaterialId, Space> material_;
+  DeviceArray<ForceVec, Space> force_;
+  DeviceArray<ForceVec, Space> torque_;
+  DeviceArray<Real, Space> overlap_ratio_;
+  DeviceArray<State4, Space> position_at_build_;
+  DeviceArray<S, Space> pair_history_;  ///< width_ per neighbour-list entry (empty: no history)
+  DeviceArray<S, Space> wall_history_;  ///< width_ per (particle, wall) (empty: no history)
+  // Rebuild scratch.
+  DeviceArray<std::uint32_t, Space> previous_index_;      ///< row of each particle's previous list
+  HistoryCarryOver<Space, ParticleId, S> carried_pairs_;  ///< previous rows' history
+  CellList<Space> cells_;
+  NeighborList<Space> neighbors_;
+  MeshWalls<Space, S> meshes_;
+  ParticleStaging<Space, P, S> staging_;  ///< snapshot copies (host memory)
+  GhostExchange<Space, P> ghosts_;
+  GhostRowSplit<Space> ghost_rows_;  ///< owned particles by whether their rows read ghosts
+  RankCells<Space> rank_cells_;      ///< the decomposition's cell map (several ranks)
+  std::size_t owned_ = 0;
+  std::uint64_t global_count_ = 0;     ///< particles on all ranks
+  std::uint64_t expected_id_sum_ = 0;  ///< id_checksum of the particles on all ranks
+  std::uint64_t steps_ = 0;            ///< the run's step count (the meshes' clock)
+  std::uint64_t list_build_step_ = 0;  ///< steps_ at the last neighbour-list build
+  bool has_list_ = false;
+  std::uint64_t removed_ = 0;  ///< on all ranks
+  std::uint64_t rebuilds_ = 0;
+  StepTimes times_;
+};
+
+}  // namespace gpudem
+
+#include "engine/ParticleSystemRebuild.hpp"
+#include "engine/ParticleSystemReport.hpp"
+#include "engine/ParticleSystemRestore.hpp"

@@ -1,0 +1,254 @@
+#pragma once
+/// The time-step engine: owns the particle state in one memory space and advances it.
+/// Host code talks to it through these interfaces only; the implementation is ParticleSystem
+/// with a force compute per law (docs/architecture.md, "Particle system and force computes"),
+/// made by make_host_engine (StepEngineHost.cpp) and make_cuda_engine (StepEngineCuda.cu). This
+/// header includes no CUDA headers.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/ContactHistory.hpp"
+#include "core/ContactModel.hpp"
+#include "core/ContactParams.hpp"
+#include "core/ParticleStore.hpp"
+#include "core/ParticleTally.hpp"
+#include "core/Scene.hpp"
+#include "engine/DomainLink.hpp"
+#include "engine/MeshWallSetup.hpp"
+#include "engine/PeriodicBox.hpp"
+#include "engine/PlaneWall.hpp"
+
+namespace gpudem {
+
+/// Everything the engine needs, in plain data resolved from the scene on the host.
+struct EngineSetup {
+  PeriodicBox box;
+  Vec3 gravity;
+  Real dt = 0;
+  IntegratorKind integrator = IntegratorKind::VelocityVerlet;
+  Precision precision = Precision::Double;  ///< selects the law's scalar (EngineFactory.hpp)
+  Real skin = 0;                            ///< Verlet skin [m]
+  ContactModel contact_model;               ///< must be one of valid_contact_models()
+  std::uint32_t material_count = 0;
+  std::vector<ContactPairParams> pair_params;  ///< material_count² entries, row-major
+  std::vector<PlaneWall> walls;
+  std::vector<MeshWallSetup> meshes;  ///< triangle-mesh walls (tools)
+  std::uint64_t start_step = 0;       ///< step the run starts at (a restart's): the meshes' clock
+  /// This rank's part of the decomposed domain; null: a run on one rank. Must outlive the
+  /// engine.
+  DomainLink* domain = nullptr;
+  /// Wait for the device at the end of each timed part of a step (StepTimes), so that each
+  /// part holds its own kernels' time; a device synchronisation per part on CUDA.
+  bool exact_phase_times = false;
+};
+
+/// Global quantities reduced over all particles; walls' forces are the forces the
+/// particles exert on each wall [N].
+struct Diagnostics {
+  std::uint64_t particle_count = 0;
+  std::uint64_t contact_count = 0;   ///< particle–particle plus particle–wall contacts
+  double kinetic_translational = 0;  ///< Σ ½ m v² [J]
+  double kinetic_rotational = 0;     ///< Σ ½ I ω² [J]
+  double potential_gravity = 0;      ///< Σ −m g·x [J]
+  double potential_elastic = 0;      ///< Σ contact spring energy [J]
+  double max_overlap_ratio = 0;      ///< max over contacts of δ / min(r_i, r_j)
+  std::vector<Vec3> wall_force;
+  std::vector<Vec3> mesh_force;   ///< force the particles exert on each mesh [N]
+  std::vector<Vec3> mesh_torque;  ///< their torque on each mesh about its centre [N m]
+};
+
+/// One mesh wall at the current time: its surface and the force the particles exert on each
+/// of its triangles [N], summed over all ranks.
+struct MeshSurface {
+  std::vector<Vec3> vertices;                           ///< at the current pose [m]
+  std::vector<std::array<std::uint32_t, 3>> triangles;  ///< vertex ids of this mesh
+  std::vector<Vec3> triangle_force;                     ///< per triangle [N]
+};
+
+/// Pressure on each triangle (a, b, c) of `mesh`: p = −(F · n̂) / A [Pa], with F its
+/// triangle_force, n̂ the unit normal by the right-hand rule of the corner order (outward on a
+/// closed STL) and A the area, so particles pressing on the side n̂ faces give p > 0;
+/// n = (b − a) × (c − a) = 2A n̂ gives p = −2 F · n / |n|².
+inline std::vector<double> triangle_pressures(const MeshSurface& mesh) {
+  std::vector<double> pressure;
+  pressure.reserve(mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const Vec3& a = mesh.vertices[mesh.triangles[t][0]];
+    const Vec3 n =
+        cross(mesh.vertices[mesh.triangles[t][1]] - a, mesh.vertices[mesh.triangles[t][2]] - a);
+    pressure.push_back(-2 * dot(mesh.triangle_force[t], n) / norm2(n));
+  }
+  return pressure;
+}
+
+/// Wall time this rank's engine spent in each part of its steps since it was made [s] (host
+/// clock: on the CUDA backend a part ends when its last launch has returned, unless
+/// EngineSetup::exact_phase_times makes it wait for its kernels), and the ghost bytes its
+/// per-step refreshes sent. Waits for other ranks count in the part that waits.
+struct StepTimes {
+  double integrate = 0;  ///< kicks and drift (velocities, spins, positions), mesh poses
+  double forces = 0;     ///< particle, wall and mesh contact forces
+  /// The rebuild test and its reduction over ranks, cell sorting, neighbour lists, mesh
+  /// candidates, history carry-over
+  double neighbors = 0;
+  double ghosts = 0;             ///< ghost plans on rebuilds and ghost refreshes on other steps
+  double migration = 0;          ///< periodic wrapping, removal, migration between ranks
+  std::uint64_t refreshes = 0;   ///< steps that refreshed the ghosts
+  std::uint64_t halo_bytes = 0;  ///< bytes those refreshes sent
+};
+
+/// Bytes one array, or group of arrays, of an engine holds in its memory space.
+struct MemoryUse {
+  const char* name;  ///< what the bytes hold
+  std::size_t bytes;
+};
+
+/// A particle the health check rejected: non-finite state or an overlap beyond the limit.
+struct HealthFailure {
+  ParticleId id = 0;
+  Vec3 position;
+  double overlap_ratio = 0;
+  bool non_finite = false;
+  bool mesh_overflow = false;  ///< more mesh triangles in contact than one particle can hold
+};
+
+/// The owned particles of one step, copied aside so that a snapshot of that step can be written
+/// while the engine steps on (SnapshotSource::stage_particles).
+class StagedParticles {
+ public:
+  virtual ~StagedParticles() = default;
+  /// Waits until the copies are complete and gives the particles as get_particles gave them at
+  /// the staging step. Callable from any thread; once per staging.
+  virtual void collect(ParticleStore& particles) = 0;
+
+  /// The particle count and id checksum over all ranks at the staging step, against which the
+  /// collected particles of all ranks are checked (ParticleTally.hpp).
+  ParticleTally expected_tally;
+};
+
+/// What a snapshot is taken from (SnapshotQueue.hpp): a step engine, or a stand-in in tests.
+class SnapshotSource {
+ public:
+  virtual ~SnapshotSource() = default;
+  /// Queues copies of the owned particles as get_particles gives them, ordered after the work
+  /// already queued, into a buffer of the source's that later steps leave alone, and returns it.
+  /// The buffer is reused: stage again only after the last staging's collect() has returned.
+  virtual StagedParticles& stage_particles() = 0;
+  /// Each mesh with the load on each of its triangles (StepEngine::mesh_surfaces). Collective.
+  virtual std::vector<MeshSurface> mesh_surfaces() const = 0;
+};
+
+/// The particles in and out of an engine: its state set, restored and read back, its contact
+/// history, and the copies a snapshot is written from.
+class EngineIo : public SnapshotSource {
+ public:
+  /// Replaces the engine's particles and evaluates the initial forces. Each rank passes a share
+  /// of the particles (any subset, all of them on one rank; the ranks' shares hold every particle
+  /// once); every particle goes to the rank that owns its position. Collective,
+  /// like every call below that changes or reduces the state: all ranks make it at the same
+  /// point.
+  virtual void set_particles(const ParticleStore& share) = 0;
+  /// Copies this rank's owned particles back to the host, in the engine's order, with the
+  /// forces and torques of the last evaluation.
+  virtual void get_particles(ParticleStore& particles) const = 0;
+
+  /// The history records (Law::history_size values each) of every contact of an owned particle
+  /// whose record is not all zero, keyed by global ids.
+  virtual void get_contact_history(ContactHistory& history) const = 0;
+  /// Gives every contact listed in `history` its record and every other contact a zero
+  /// record; call after set_particles or restore_particles. Each rank passes a share of the
+  /// records, as for set_particles; every record goes to the rank that owns its owner
+  /// particle. Throws std::invalid_argument (on every rank, with the first rank's message) for
+  /// a history of another width, an entry naming an unknown particle, a pair that is not in
+  /// the neighbour list, or a wall index beyond the walls. Forces are not re-evaluated. Takes
+  /// `share` by value: a caller that moves it in lets the records be freed as they are sent.
+  virtual void set_contact_history(ContactHistory share) = 0;
+
+  /// Positions and radii at the last neighbour-list build, in the order of get_particles.
+  virtual void get_list_positions(std::vector<Real4>& position_radius) const = 0;
+  /// The step of the last neighbour-list build (the meshes' pose it was built with).
+  virtual std::uint64_t list_build_step() const = 0;
+  /// Replaces the particles to continue a saved run bit-for-bit, on any number of ranks:
+  /// `share` and `list_positions` a share (as for set_particles) of what get_particles and
+  /// get_list_positions gave on all ranks of the saved run; each particle goes to the rank
+  /// that owns its list position. Unlike
+  /// set_particles it keeps the forces and torques of `share` (evaluated from half-step
+  /// velocities that the saved state no longer holds) and builds the neighbour list at the
+  /// positions of the saved engine's last build, so that the list and the next rebuild follow
+  /// the saved run (every sum runs in partner-id order, whatever the particle order), with the
+  /// meshes at their pose of step `list_build_step`. Springs are zero until
+  /// set_contact_history; removed_count() continues from `removed`.
+  virtual void restore_particles(const ParticleStore& share,
+                                 const std::vector<Real4>& list_positions, std::uint64_t removed,
+                                 std::uint64_t list_build_step) = 0;
+  /// Particles on all ranks.
+  virtual std::size_t particle_count() const = 0;
+  /// Particles this rank owns.
+  virtual std::size_t owned_count() const = 0;
+  /// Neighbour-list entries of each owned particle, in the order of get_particles.
+  virtual void get_list_lengths(std::vector<std::uint32_t>& lengths) const = 0;
+
+  /// SnapshotSource::stage_particles. The copies are host memory (pinned on the CUDA backend),
+  /// not counted in memory_use().
+  StagedParticles& stage_particles() override = 0;
+
+  /// Each mesh (in the order of EngineSetup::meshes) with the load on each of its triangles;
+  /// the triangle forces of a mesh add up to its Diagnostics::mesh_force. Collective.
+  std::vector<MeshSurface> mesh_surfaces() const override = 0;
+};
+
+/// What an engine reports of its state and its work: health, global diagnostics, counts,
+/// times and memory.
+class EngineDiagnostics {
+ public:
+  virtual ~EngineDiagnostics() = default;
+  /// Checks every particle for non-finite state and for an overlap above `max_overlap_ratio`
+  /// of the smaller radius; returns the first offender's details (false when healthy).
+  virtual bool find_unhealthy(double max_overlap_ratio, HealthFailure& failure) const = 0;
+
+  virtual Diagnostics diagnostics() const = 0;
+  /// Particles removed so far for leaving the non-periodic domain.
+  virtual std::uint64_t removed_count() const = 0;
+  virtual std::uint64_t rebuild_count() const = 0;
+  virtual StepTimes step_times() const = 0;
+  /// Bytes held in the engine's memory space on this rank, by array (or group of arrays).
+  virtual std::vector<MemoryUse> memory_use() const = 0;
+  /// Σ memory_use() [bytes].
+  std::size_t memory_bytes() const {
+    std::size_t total = 0;
+    for (const MemoryUse& use : memory_use()) total += use.bytes;
+    return total;
+  }
+  virtual std::string backend_name() const = 0;
+};
+
+/// The one-off choice of an engine's launch parameters.
+class EngineTuning {
+ public:
+  virtual ~EngineTuning() = default;
+  /// Chooses the block size of the tunable launches once per run, the same on every rank, and
+  /// returns the --verbose line that reports it (LaunchTuning.hpp). Collective.
+  virtual std::string tune_launches() = 0;
+};
+
+/// A time-step engine: advances its particles (below), and is read and written (EngineIo),
+/// reported on (EngineDiagnostics) and tuned (EngineTuning). Callers take the narrowest of them
+/// that serves.
+class StepEngine : public EngineIo, public EngineDiagnostics, public EngineTuning {
+ public:
+  /// Advances one time step dt.
+  virtual void step() = 0;
+
+  /// Rebuilds the neighbour list now (re-sorting particles by cell and carrying contact
+  /// history over) and re-evaluates the forces, without advancing time.
+  virtual void rebuild_neighbors() = 0;
+};
+
+std::unique_ptr<StepEngine> make_host_engine(const EngineSetup& setup);
+/// Throws std::runtime_error when the CUDA backend is not compiled in or no device exists.
+std::unique_ptr<StepEngine> make_cuda_engine(const EngineSetup& setup);
+
+}  // namespace gpudem

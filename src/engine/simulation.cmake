@@ -1,0 +1,2 @@
+add_library(gpudem_sim ${GPUDEM_LIBRARY_TYPE} engine/SceneSetup.cpp)
+target_link_libraries(gpudem_sim PUBLIC gpudem_scene gpudem_particles gpudem_engine)
