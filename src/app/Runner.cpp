@@ -30,6 +30,7 @@
 #include "core/SceneLoader.hpp"
 #include "core/Stopwatch.hpp"
 #include "engine/CudaMemory.hpp"
+#include "engine/MeshReach.hpp"
 #include "engine/SceneSetup.hpp"
 
 namespace gpudem {
@@ -80,6 +81,31 @@ std::string counted(std::size_t count, const std::string& noun) {
   return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
 }
 
+/// Each mesh's triangles and where it is: its box at t = 0 and the box it sweeps until the end.
+void print_mesh_summary(const Scene& scene, const EngineSetup& setup) {
+  const auto box = [](Vec3 lo, Vec3 hi) {
+    char text[160];
+    std::snprintf(text, sizeof text, "x [%.4g, %.4g], y [%.4g, %.4g], z [%.4g, %.4g] m", lo.x, hi.x,
+                  lo.y, hi.y, lo.z, hi.z);
+    return std::string(text);
+  };
+  for (std::size_t m = 0; m < setup.meshes.size(); ++m) {
+    const TriangleMesh& mesh = setup.meshes[m].mesh;
+    const MeshSettings& settings = scene.meshes[m];
+    std::printf("mesh %s: %zu triangles, %zu vertices", settings.name.c_str(),
+                mesh.triangles.size(), mesh.vertices.size());
+    if (mesh.skipped_degenerate > 0)
+      std::printf(" (%zu zero-area triangles skipped)", mesh.skipped_degenerate);
+    const MeshReach r =
+        mesh_reach(setup.meshes[m], settings.keyframes, settings.centre, scene.simulation.end_time);
+    std::printf("; at t = 0 within %s", box(r.start_lo, r.start_hi).c_str());
+    if (!settings.keyframes.empty())
+      std::printf("; until t = %.4g s within %s", scene.simulation.end_time,
+                  box(r.swept_lo, r.swept_hi).c_str());
+    std::printf("\n");
+  }
+}
+
 /// The start-up summary; engine_bytes < 0 when no engine was made (--check).
 /// `deciding`: the particles that set the time step (setup_deciding_particles over all ranks);
 /// `count`: the particles on all ranks.
@@ -97,14 +123,7 @@ void print_summary(const Scene& scene, const ParticleStore& deciding, std::uint6
       setup.dt, scene.simulation.dt_auto ? "auto" : "explicit", limits.contact_duration,
       limits.rayleigh, limits.stable, static_cast<unsigned long long>(steps),
       scene.simulation.end_time, setup.skin);
-  for (std::size_t m = 0; m < setup.meshes.size(); ++m) {
-    const TriangleMesh& mesh = setup.meshes[m].mesh;
-    std::printf("mesh %s: %zu triangles, %zu vertices", scene.meshes[m].name.c_str(),
-                mesh.triangles.size(), mesh.vertices.size());
-    if (mesh.skipped_degenerate > 0)
-      std::printf(" (%zu zero-area triangles skipped)", mesh.skipped_degenerate);
-    std::printf("\n");
-  }
+  print_mesh_summary(scene, setup);
   if (engine) {
     const std::string device =
         engine->backend_name() == "cuda" ? " (" + cuda::device_description() + ")" : "";
@@ -258,6 +277,9 @@ void print_engine_notes(const RunOptions& options, const MpiContext& mpi, const 
 
 int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
   Scene scene = load_scene(command_line.scene_file, command_line.overrides);
+  if (mpi.is_root())
+    for (const std::string& warning : scene.warnings)
+      std::fprintf(stderr, "warning: %s\n", warning.c_str());
   if (!command_line.output_dir.empty()) scene.output.dir = command_line.output_dir;
   RunOptions options = command_line;
   if (options.resume && !resume_from_output(scene, mpi, options)) return kExitOk;

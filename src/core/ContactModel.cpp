@@ -1,5 +1,6 @@
 #include "core/ContactModel.hpp"
 
+#include <algorithm>
 #include <set>
 
 namespace gpudem {
@@ -81,6 +82,52 @@ std::string compiled_contact_models_text() {
   if (compiled == valid_contact_models().size()) return "every valid law";
   return std::string("GPUDEM_CONTACT_LAWS=") + GPUDEM_CONTACT_LAWS_OPTION + ": " +
          (compiled == 0 ? "none" : text);
+}
+
+namespace {
+
+/// The space-separated words of `text`.
+std::vector<std::string> words(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = std::min(text.find(' ', at), text.size());
+    if (end > at) out.push_back(text.substr(at, end - at));
+    at = end + 1;
+  }
+  return out;
+}
+
+/// The keys of one slot's other choices that its choice `chosen` does not read.
+void add_ignored_keys(const char* slot, const std::vector<std::string>& names,
+                      const std::vector<std::string>& keys, std::size_t chosen,
+                      std::vector<IgnoredLawKey>& out) {
+  const std::vector<std::string> read = words(keys[chosen]);
+  for (std::size_t c = 0; c < keys.size(); ++c)
+    for (const std::string& key : words(keys[c])) {
+      if (std::find(read.begin(), read.end(), key) != read.end()) continue;
+      auto known = std::find_if(out.begin(), out.end(),
+                                [&](const IgnoredLawKey& k) { return k.key == key; });
+      if (known == out.end())
+        out.push_back({key, slot, names[chosen], names[c]});
+      else
+        known->readers += "|" + names[c];
+    }
+}
+
+}  // namespace
+
+std::vector<IgnoredLawKey> ignored_law_keys(const ContactModel& m) {
+  std::vector<IgnoredLawKey> out;
+  add_ignored_keys("damping", damping_law_names(), DampingSlots::material_keys(),
+                   static_cast<std::size_t>(m.damping), out);
+  add_ignored_keys("tangential", tangential_law_names(), TangentialSlots::material_keys(),
+                   static_cast<std::size_t>(m.tangential), out);
+  add_ignored_keys("rolling", rolling_law_names(), RollingSlots::material_keys(),
+                   static_cast<std::size_t>(m.rolling), out);
+  add_ignored_keys("cohesion", cohesion_law_names(), CohesionSlots::material_keys(),
+                   static_cast<std::size_t>(m.cohesion), out);
+  return out;
 }
 
 std::string valid_contact_models_text() {

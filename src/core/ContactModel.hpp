@@ -90,6 +90,18 @@ constexpr std::uint32_t contact_history_width(const ContactModel& m) {
       history_size_of(RollingSlots{}, static_cast<std::size_t>(m.rolling)));
 }
 
+/// A [[material]] or [[pair]] key that a contact law does not read, though another choice of
+/// one of its slots would: a value given for it is ignored.
+struct IgnoredLawKey {
+  std::string key;
+  std::string slot;     ///< "cohesion"
+  std::string chosen;   ///< the law's choice for the slot, "none"
+  std::string readers;  ///< the choices that read it, "sjkr" or "linear_history|mindlin"
+};
+
+/// The keys `model` ignores (each slot's choices' material_keys that its own choice lacks).
+std::vector<IgnoredLawKey> ignored_law_keys(const ContactModel& model);
+
 /// valid_contact_models() in a few words, for error messages: "hooke: damping
 /// none|restitution, tangential none|linear_history; hertz: ...; rolling none|...|epsd and
 /// cohesion none|sjkr with either".

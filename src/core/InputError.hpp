@@ -20,7 +20,8 @@ class InputError : public std::runtime_error {
   int line() const { return line_; }
   const std::string& key() const { return key_; }
 
- private:
+  /// "file:line: key 'key': what", each part left out when empty (line when 0): how errors and
+  /// warnings about the input name their place.
   static std::string compose(const std::string& file, int line, const std::string& key,
                              const std::string& what) {
     std::string s;
@@ -30,6 +31,8 @@ class InputError : public std::runtime_error {
     if (!key.empty()) s += "key '" + key + "': ";
     return s + what;
   }
+
+ private:
   std::string file_;
   int line_;
   std::string key_;

@@ -169,8 +169,10 @@ struct PreparationSettings {
 /// One [[mesh]] entry: a triangle-mesh wall (a tool) from an STL file, placed and moved.
 struct MeshSettings {
   std::string name;
-  std::string file;  ///< STL path, resolved relative to the scene file
-  int line = 0;      ///< line of `file` in the scene, for mesh errors
+  std::string file;     ///< STL path, resolved relative to the scene file
+  int line = 0;         ///< line of `file` in the scene, for mesh errors
+  int offset_line = 0;  ///< line of `offset` (of the table when absent), for placement errors
+  int scale_line = 0;   ///< line of `scale` (of the table when absent)
   MaterialId material = 0;
   MeshPlacement placement;
   Vec3 centre;  ///< rotation centre at t = 0 [m] (default: the placement offset)
@@ -179,6 +181,9 @@ struct MeshSettings {
 
 struct Scene {
   std::string file;  ///< path of the scene file as given
+  /// What the loader found suspicious but not wrong (a key the contact law ignores), each
+  /// naming its file, line and key; the run goes on.
+  std::vector<std::string> warnings;
   SimulationSettings simulation;
   DomainSettings domain;
   std::vector<Material> materials;

@@ -49,19 +49,34 @@ void read_motion(const TableReader& mesh, MeshSettings& m) {
   for (std::size_t k = 0; k < times.size(); ++k) m.keyframes.push_back({times[k], v[k], w[k]});
 }
 
+constexpr double kPi = 3.14159265358979323846;
+
+/// The placement's rotation angle [rad]: `rotation_angle` in radians or `rotation_degrees` in
+/// degrees, not both.
+double rotation_angle(const TableReader& table) {
+  if (table.has("rotation_angle") && table.has("rotation_degrees"))
+    table.fail("rotation_degrees",
+               "give the angle once: rotation_angle in radians or rotation_degrees in degrees");
+  if (table.has("rotation_degrees"))
+    return table.number("rotation_degrees", any_value("deg"), 0.0) * (kPi / 180);
+  return table.number("rotation_angle", any_value("rad"), 0.0);
+}
+
 MeshSettings read_mesh(const TableReader& table, std::size_t index, const Scene& scene) {
-  table.allow_only(
-      {"name", "file", "material", "scale", "offset", "rotation_axis", "rotation_angle", "motion"});
+  table.allow_only({"name", "file", "material", "scale", "offset", "rotation_axis",
+                    "rotation_angle", "rotation_degrees", "motion"});
   MeshSettings m;
   m.name = table.string("name", "mesh" + std::to_string(index));
   m.file = path_beside_scene(table, "file", scene);
   m.line = table.line("file");
+  m.offset_line = table.line("offset");
+  m.scale_line = table.line("scale");
   m.material = table.has("material") ? material_index(table, "material", scene.materials) : 0;
   m.placement.scale = table.number("scale", positive(""), 1.0);
   m.placement.offset = table.vec3("offset", "m", Vec3{});
   m.placement.rotation_axis = table.vec3("rotation_axis", "", Vec3{0, 0, 1});
   if (!(norm(m.placement.rotation_axis) > 0)) table.fail_found("rotation_axis", "a non-zero axis");
-  m.placement.rotation_angle = table.number("rotation_angle", any_value("rad"), 0.0);
+  m.placement.rotation_angle = rotation_angle(table);
   read_motion(table, m);
   return m;
 }
@@ -106,4 +121,19 @@ std::vector<WallSettings> read_walls(const TableReader& root,
   }
   return walls;
 }
+
+std::vector<std::string> mesh_angle_warnings(const TableReader& root, const std::string& file) {
+  std::vector<std::string> warnings;
+  for (const TableReader& table : root.array_of_tables("mesh")) {
+    if (!table.has("rotation_angle")) continue;
+    const double angle = table.number("rotation_angle", any_value("rad"), 0.0);
+    if (std::abs(angle) <= 2 * kPi) continue;
+    warnings.push_back(InputError::compose(
+        file, table.line("rotation_angle"), table.path("rotation_angle"),
+        "an angle of " + four_digits(angle) +
+            " rad is more than a full turn; for degrees write rotation_degrees instead"));
+  }
+  return warnings;
+}
+
 }  // namespace gpudem::scene_reading

@@ -1,5 +1,6 @@
 #pragma once
 /// The [[wall]] and [[mesh]] tables of a scene (SceneBodies.cpp).
+#include <string>
 #include <vector>
 
 #include "core/Scene.hpp"
@@ -10,6 +11,10 @@ namespace gpudem::scene_reading {
 /// Every [[mesh]] table of `root`: its STL file (beside the scene), placement, material and
 /// motion.
 std::vector<MeshSettings> read_meshes(const TableReader& root, const Scene& scene);
+
+/// A warning for each [[mesh]] whose rotation_angle exceeds a full turn (2π rad): degrees given
+/// in radians' place, most likely; the angle stays as given.
+std::vector<std::string> mesh_angle_warnings(const TableReader& root, const std::string& file);
 
 /// Every [[wall]] table of `root`; names must differ (they label the force columns).
 std::vector<WallSettings> read_walls(const TableReader& root,

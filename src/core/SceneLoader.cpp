@@ -24,6 +24,7 @@
 namespace gpudem {
 
 using scene_reading::material_named;
+using scene_reading::mesh_angle_warnings;
 using scene_reading::named_choice;
 using scene_reading::read_meshes;
 using scene_reading::read_sources;
@@ -249,6 +250,23 @@ std::string pair_name(const PairOverride& p, const std::vector<Material>& materi
   return "'" + materials[p.a].name + "'-'" + materials[p.b].name + "'";
 }
 
+/// A warning for each [[material]] and [[pair]] key that the contact law does not read.
+std::vector<std::string> ignored_key_warnings(const TableReader& root, const std::string& file,
+                                              const ContactModel& model) {
+  std::vector<std::string> warnings;
+  const std::vector<IgnoredLawKey> ignored = ignored_law_keys(model);
+  for (const char* kind : {"material", "pair"})
+    for (const TableReader& table : root.array_of_tables(kind))
+      for (const IgnoredLawKey& k : ignored) {
+        if (!table.has(k.key)) continue;
+        warnings.push_back(InputError::compose(file, table.line(k.key), table.path(k.key),
+                                               "ignored: contact." + k.slot + " = \"" + k.chosen +
+                                                   "\" does not read it (" + k.slot + " = \"" +
+                                                   k.readers + "\" would)"));
+      }
+  return warnings;
+}
+
 std::vector<PairOverride> read_pairs(const TableReader& root,
                                      const std::vector<Material>& materials, MixingRule mixing) {
   std::vector<PairOverride> pairs;
@@ -404,9 +422,12 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   scene.materials = read_materials(root);
   scene.contact = read_contact(root);
   scene.contact.pairs = read_pairs(root, scene.materials, scene.contact.mixing);
+  scene.warnings = ignored_key_warnings(root, path, scene.contact.model);
   scene.neighbor = read_neighbor(root);
   scene.walls = read_walls(root, scene.materials);
   scene.meshes = read_meshes(root, scene);
+  for (std::string& warning : mesh_angle_warnings(root, path))
+    scene.warnings.push_back(std::move(warning));
   scene.sources = read_sources(root, scene);
   scene.output = read_output(root);
   scene.checkpoint = read_checkpoint(root);

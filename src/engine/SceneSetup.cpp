@@ -10,6 +10,7 @@
 #include "core/InputError.hpp"
 #include "core/StlReader.hpp"
 #include "core/contact/ContactSlots.hpp"
+#include "engine/MeshReach.hpp"
 
 namespace gpudem {
 
@@ -333,6 +334,7 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   s.skin =
       scene.neighbor.skin > 0 ? scene.neighbor.skin : (std::isfinite(r_min) ? 0.5 * r_min : 0.0);
   require_meshes_fit_periodic_axes(scene, s.meshes, largest_radius(particles), s.skin);
+  require_meshes_meet_the_domain(scene, s.meshes, std::isfinite(r_min) ? 2 * r_min : 0.0);
   const TimeStepLimits limits = time_step_limits(scene, particles);
   require_stable_dt(scene, limits);
   if (scene.simulation.dt_auto) {

@@ -38,7 +38,8 @@ TimeStepLimits time_step_limits(const Scene& scene, const ParticleStore& particl
 /// explicit dt exceeds the stable limit and simulation.allow_unstable_dt is false, and naming
 /// mesh[i].file when a mesh spans 2 h_k >= L_k - 2 (r_max + 2 skin) along a periodic axis k
 /// (h_k: half its extent, or for a mesh that ever rotates the largest distance from its
-/// bounding-box centre to a vertex).
+/// bounding-box centre to a vertex), and as require_meshes_meet_the_domain (MeshReach.hpp)
+/// when a mesh never meets the domain or is smaller than the smallest particle.
 EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles);
 
 /// The particles of `particles` that decide time_step_limits and make_engine_setup: of each

@@ -1,2 +1,2 @@
-add_library(gpudem_sim ${GPUDEM_LIBRARY_TYPE} engine/SceneSetup.cpp)
+add_library(gpudem_sim ${GPUDEM_LIBRARY_TYPE} engine/SceneSetup.cpp engine/MeshReach.cpp)
 target_link_libraries(gpudem_sim PUBLIC gpudem_scene gpudem_particles gpudem_engine)

@@ -1,6 +1,7 @@
 // Mesh walls through the binary: a [[mesh]] plate pushes grains and its force and torque
-// columns appear in the time series; bad meshes and bad motion, and a mesh too wide for a
-// periodic axis, stop the run before any output with the scene file, line and key.
+// columns appear in the time series; the summary says where each mesh is; bad meshes and bad
+// motion, a mesh that never meets the domain or is smaller than a grain, and a mesh too wide for
+// a periodic axis, stop the run before any output with the scene file, line and key.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -181,6 +182,90 @@ TEST_F(MeshScene, MeshNameMustNameAFileBesideTheParticles) {
     scene.replace(scene.find("name = \"plate\""), 14, std::string("name = \"") + name + "\"");
     expect_refused(run(plate_stl(), scene), "key 'mesh[0].name'", "names the mesh's output file");
   }
+}
+
+/// kScene with `line` added after the mesh's offset (line 29).
+std::string with_placement(const std::string& line) {
+  std::string scene = kScene;
+  const std::string offset = "offset = [0.005, 0.0, 0.0]\n";
+  return scene.insert(scene.find(offset) + offset.size(), line + "\n");
+}
+
+/// The start-up summary says where each mesh is at t = 0 and what it sweeps until the end.
+TEST_F(MeshScene, SummaryGivesTheMeshsStartAndSweptBoxes) {
+  const test::RunResult r = run(plate_stl(), kScene, " --check");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  // 0.2 m/s from t = 0.01 s to the end at 0.05 s: 8 mm along +x.
+  EXPECT_NE(r.output.find("mesh plate: 2 triangles, 4 vertices; at t = 0 within x [0.005, 0.005], "
+                          "y [0, 0.1], z [0, 0.1] m; until t = 0.05 s within x [0.005, 0.013], "
+                          "y [0, 0.1], z [0, 0.1] m"),
+            std::string::npos)
+      << r.output;
+}
+
+/// A tool placed 5 m beyond the bin's x range (the mistake of a unit or a sign) never meets a
+/// particle: refused before any output, naming its offset (line 28).
+TEST_F(MeshScene, MeshThatNeverMeetsTheDomainIsRefused) {
+  std::string scene = kScene;
+  scene.replace(scene.find("offset = [0.005, 0.0, 0.0]"), 26, "offset = [5.0, 0.0, 0.0]");
+  expect_refused(run(plate_stl(), scene), "scene.toml:28: key 'mesh[0].offset'",
+                 "mesh 'plate' never meets the domain: at t = 0 it spans x [5, 5] m and until the "
+                 "end of the run [5, 5.008] m, outside the domain's [-0.05, 0.2] m");
+}
+
+/// A tool that starts outside and moves in is accepted: 10 m/s for 0.04 s carries it 0.4 m.
+TEST_F(MeshScene, MeshThatEntersTheDomainLaterIsAccepted) {
+  std::string scene = kScene;
+  scene.replace(scene.find("offset = [0.005, 0.0, 0.0]"), 26, "offset = [-0.3, 0.0, 0.0]");
+  scene.replace(scene.find("[[0.2, 0.0, 0.0], [0.2, 0.0, 0.0]]"), 34,
+                "[[10.0, 0.0, 0.0], [10.0, 0.0, 0.0]]");
+  const test::RunResult r = run(plate_stl(), scene, " --check");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("until t = 0.05 s within x [-0.3, 0.1]"), std::string::npos) << r.output;
+}
+
+/// A scale that shrinks the 0.1 m plate to 1 mm, below the 6 mm grains, is refused naming it.
+TEST_F(MeshScene, MeshSmallerThanAParticleIsRefused) {
+  expect_refused(run(plate_stl(), with_placement("scale = 0.01")),
+                 "scene.toml:29: key 'mesh[0].scale'",
+                 "mesh 'plate' spans only 0.001 m at scale 0.01, less than the smallest "
+                 "particle's diameter (0.006 m)");
+}
+
+/// The summary line of mesh `name` in `output`.
+std::string mesh_line(const std::string& output, const std::string& name) {
+  const std::size_t at = output.find("mesh " + name + ":");
+  return at == std::string::npos ? "" : output.substr(at, output.find('\n', at) - at);
+}
+
+/// A quarter turn about z given in degrees places the plate as the same turn in radians: it then
+/// spans x [-0.095, 0.005] (the plate's y extent turned onto −x).
+TEST_F(MeshScene, RotationInDegreesEqualsRotationInRadians) {
+  const test::RunResult degrees =
+      run(plate_stl(), with_placement("rotation_degrees = 90"), " --check");
+  EXPECT_EQ(degrees.exit_code, 0) << degrees.output;
+  EXPECT_NE(mesh_line(degrees.output, "plate").find("at t = 0 within x [-0.095, 0.005], y ["),
+            std::string::npos)
+      << degrees.output;
+  const test::RunResult radians =
+      run(plate_stl(), with_placement("rotation_angle = 1.5707963267948966"), " --check");
+  EXPECT_EQ(mesh_line(radians.output, "plate"), mesh_line(degrees.output, "plate"));
+  EXPECT_EQ(radians.output.find("warning"), std::string::npos) << radians.output;
+}
+
+/// An angle of 10 "rad" is degrees meant most likely: warned of (the run goes on as written);
+/// giving the angle twice is refused.
+TEST_F(MeshScene, AngleBeyondAFullTurnIsWarnedOfAndTwoAnglesAreRefused) {
+  const test::RunResult r = run(plate_stl(), with_placement("rotation_angle = 10"), " --check");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: " + (dir_ / "scene.toml").string() +
+                          ":29: key 'mesh[0].rotation_angle': an angle of 10 rad is more than a "
+                          "full turn; for degrees write rotation_degrees instead"),
+            std::string::npos)
+      << r.output;
+  fs::remove_all(dir_ / "out");
+  expect_refused(run(plate_stl(), with_placement("rotation_angle = 1.0\nrotation_degrees = 57.3")),
+                 "key 'mesh[0].rotation_degrees'", "give the angle once");
 }
 
 /// kScene with the domain periodic along y, of length L (from y = 0).

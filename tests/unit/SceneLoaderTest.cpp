@@ -308,6 +308,33 @@ TEST_F(SceneLoaderTest, MinimalSceneTakesDefaults) {
   EXPECT_DOUBLE_EQ(s.checkpoint.every, 0);
 }
 
+/// A material or [[pair]] key that the contact law does not read is kept but warned of, naming
+/// its place, the slot's choice and the choices that would read it; a read key is not.
+TEST_F(SceneLoaderTest, KeysTheContactLawIgnoresAreWarnedOf) {
+  const std::string file = (dir_ / "scene.toml").string();
+  EXPECT_TRUE(load_text(kBaseScene).warnings.empty());
+  const Scene s = load_text(base_with(kMaterialSlot, "cohesion_energy_density = 5e4"));
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0], file + ":" + std::to_string(kMaterialSlot) +
+                               ": key 'material[0].cohesion_energy_density': ignored: "
+                               "contact.cohesion = \"none\" does not read it (cohesion = \"sjkr\" "
+                               "would)");
+  EXPECT_DOUBLE_EQ(s.materials[0].cohesion_energy_density, 5e4);
+  const std::string sjkr = replace_line(base_with(kMaterialSlot, "cohesion_energy_density = 5e4"),
+                                        kContactSlot, "cohesion = \"sjkr\"");
+  EXPECT_TRUE(load_text(sjkr).warnings.empty());
+  // Friction without a tangential law: both spring laws would read it.
+  const std::string frictionless = replace_line(base_with(kMaterialSlot, "friction = 0.4"),
+                                                kContactSlot, "tangential = \"none\"");
+  const Scene f = load_text(frictionless);
+  ASSERT_EQ(f.warnings.size(), 1u);
+  EXPECT_NE(f.warnings[0].find("key 'material[0].friction': ignored: contact.tangential = "
+                               "\"none\" does not read it (tangential = "
+                               "\"linear_history|mindlin\" would)"),
+            std::string::npos)
+      << f.warnings[0];
+}
+
 TEST_F(SceneLoaderTest, SceneWithoutParticlesIsAllowed) {
   const std::string no_insert =
       std::string(kBaseScene).substr(0, std::string(kBaseScene).find("[[insert]]"));

@@ -7,6 +7,7 @@ namespace gpudem {
 
 struct NoCohesion {
   static constexpr const char* keyword = "none";
+  static constexpr const char* material_keys = "";
   static constexpr bool needs_contact_area = false;
   template <class S>
   GPUDEM_HD static S force(const ContactPairParamsT<S>&, const ContactPointT<S>&) {
@@ -19,6 +20,7 @@ struct NoCohesion {
 /// enter the Coulomb limit. Acts only while the particles overlap.
 struct SjkrCohesion {
   static constexpr const char* keyword = "sjkr";
+  static constexpr const char* material_keys = "cohesion_energy_density";
   static constexpr bool needs_contact_area = true;
   template <class S>
   GPUDEM_HD static S force(const ContactPairParamsT<S>& p, const ContactPointT<S>& c) {

@@ -1,9 +1,10 @@
 #pragma once
 /// The choices of each contact-law slot (docs/architecture.md, "Contact law"), listed once, in the
-/// order of their enum in core/ContactModel.hpp. Each choice carries its scene-file keyword and
-/// its history size, so the keyword → type mapping and the history widths are read from here:
-/// ContactModel.cpp takes the slots' names, contact_history_width their history sizes and
-/// ContactLawOf (ContactLaw.hpp) their types.
+/// order of their enum in core/ContactModel.hpp. Each choice carries its scene-file keyword, the
+/// [[material]] and [[pair]] keys it reads (`material_keys`, space-separated) and its history
+/// size, so the keyword → type mapping, the keys a law ignores and the history widths are read
+/// from here: ContactModel.cpp takes the slots' names and keys, contact_history_width their
+/// history sizes and ContactLawOf (ContactLaw.hpp) their types.
 #include <cstddef>
 #include <string>
 #include <tuple>
@@ -26,6 +27,8 @@ struct SlotList {
   using At = std::tuple_element_t<index, std::tuple<Slots...>>;
   /// Scene-file keywords, in enum order.
   static std::vector<std::string> keywords() { return {Slots::keyword...}; }
+  /// The material keys of each choice ("a b", space-separated), in enum order.
+  static std::vector<std::string> material_keys() { return {Slots::material_keys...}; }
 };
 
 using NormalSlots = SlotList<HookeNormal, HertzNormal>;

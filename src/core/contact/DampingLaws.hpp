@@ -10,6 +10,7 @@ namespace gpudem {
 /// No dissipation in the contact.
 struct NoDamping {
   static constexpr const char* keyword = "none";
+  static constexpr const char* material_keys = "";
   static constexpr bool clamps_attraction = false;
   template <class Normal, class S>
   GPUDEM_HD static S normal_force(const ContactPairParamsT<S>&, const ContactPointT<S>&,
@@ -32,6 +33,7 @@ struct NoDamping {
 /// coefficient of restitution is e (Tsuji et al. 1992); 0 for e = 1.
 struct RestitutionDamping {
   static constexpr const char* keyword = "restitution";
+  static constexpr const char* material_keys = "restitution";
   static double damping_ratio(double e) {
     const double log_e = std::log(e);
     return std::abs(log_e) /
@@ -57,6 +59,7 @@ struct RestitutionDamping {
 /// 1 − e ∝ v^{1/5}.
 struct ViscoelasticDamping {
   static constexpr const char* keyword = "viscoelastic";
+  static constexpr const char* material_keys = "viscoelastic_time";
   static constexpr bool clamps_attraction = true;
   template <class Normal, class S>
   GPUDEM_HD static S normal_force(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,

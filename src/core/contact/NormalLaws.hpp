@@ -24,6 +24,7 @@ struct NormalResponse {
 /// effective mass 2/7 m*, has the same ω).
 struct HookeNormal {
   static constexpr const char* keyword = "hooke";
+  static constexpr const char* material_keys = "";
   static constexpr bool needs_effective_radius = false;
   static constexpr Real damping_scale = 2;
   template <class S>
@@ -54,6 +55,7 @@ struct HookeNormal {
 /// peak_frequency_squared.
 struct HertzNormal {
   static constexpr const char* keyword = "hertz";
+  static constexpr const char* material_keys = "";
   static constexpr bool needs_effective_radius = true;
   static constexpr Real damping_scale = Real(1.8257418583505538);  // 2√(5/6)
   template <class S>

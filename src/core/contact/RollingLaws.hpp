@@ -9,6 +9,7 @@ namespace gpudem {
 
 struct NoRolling {
   static constexpr const char* keyword = "none";
+  static constexpr const char* material_keys = "";
   static constexpr int history_size = 0;
   static constexpr bool needs_spin = false;
   static constexpr bool needs_effective_radius = false;
@@ -31,6 +32,7 @@ struct NoRolling {
 /// sphere rolling on a plane then stops after d = v₀² / (2·(5/7)·μ_r·g).
 struct ConstantTorqueRolling {
   static constexpr const char* keyword = "constant_torque";
+  static constexpr const char* material_keys = "rolling_friction";
   static constexpr int history_size = 0;
   static constexpr bool needs_spin = true;
   static constexpr bool needs_effective_radius = true;
@@ -62,6 +64,7 @@ struct ConstantTorqueRolling {
 /// ω_roll is ω_rel without its component along the normal (twisting is not resisted).
 struct EpsdRolling {
   static constexpr const char* keyword = "epsd";
+  static constexpr const char* material_keys = "rolling_friction rolling_damping";
   static constexpr int history_size = 3;
   static constexpr bool needs_spin = true;
   static constexpr bool needs_effective_radius = true;

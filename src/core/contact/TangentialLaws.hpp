@@ -20,6 +20,7 @@ namespace gpudem {
 
 struct NoTangential {
   static constexpr const char* keyword = "none";
+  static constexpr const char* material_keys = "";
   static double peak_frequency_squared(const ImpactPair&, double) { return 0; }
   static constexpr int history_size = 0;
   static constexpr bool needs_spin = false;
@@ -92,6 +93,7 @@ GPUDEM_HD S coulomb_spring_energy(S stiffness, const S* history) {
 /// contact point of a free sphere also moving by rotation (effective mass 2/7 m*).
 struct LinearHistoryTangential {
   static constexpr const char* keyword = "linear_history";
+  static constexpr const char* material_keys = "friction friction_dynamic";
   static constexpr double stiffness_ratio = 2.0 / 7.0;  ///< k_t / k_n
   static double peak_frequency_squared(const ImpactPair& p, double) { return p.stiffness / p.mass; }
   static constexpr int history_size = 4;
@@ -116,6 +118,7 @@ struct LinearHistoryTangential {
 /// rotation (effective mass 2/7 m*).
 struct MindlinTangential {
   static constexpr const char* keyword = "mindlin";
+  static constexpr const char* material_keys = "friction friction_dynamic";
   static double effective_shear_modulus(double young_a, double poisson_a, double young_b,
                                         double poisson_b) {
     return 1 / ((2 - poisson_a) / shear_modulus(young_a, poisson_a) +
