@@ -53,13 +53,7 @@ void keep_rows(std::vector<T>& rows, const std::vector<char>& keep, std::size_t 
 
 void keep_particles(Checkpoint& c, const std::vector<char>& keep) {
   ParticleStore& p = c.particles;
-  keep_rows(p.position_radius, keep);
-  keep_rows(p.velocity_inv_mass, keep);
-  keep_rows(p.angular_velocity, keep);
-  keep_rows(p.force, keep);
-  keep_rows(p.torque, keep);
-  keep_rows(p.id, keep);
-  keep_rows(p.material, keep);
+  for_each_particle_field([&](auto field) { keep_rows(field.of(p), keep); });
   keep_rows(c.list_position_radius, keep);
 }
 

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -198,13 +199,15 @@ void check_same_length(const Reader& reader, const LengthGroup& group) {
 void read_particles(const Reader& r, FilePart part, Checkpoint& c) {
   ParticleStore& p = c.particles;
   LengthGroup lengths;
-  p.id = r.rows<ParticleId, ParticleId>("id", H5T_STD_U64LE, part, &lengths);
-  p.position_radius = r.rows<Real4, Real>("position_radius", H5T_IEEE_F64LE, part, &lengths);
-  p.velocity_inv_mass = r.rows<Real4, Real>("velocity_inv_mass", H5T_IEEE_F64LE, part, &lengths);
-  p.angular_velocity = r.rows<Vec3, Real>("angular_velocity", H5T_IEEE_F64LE, part, &lengths);
-  p.force = r.rows<Vec3, Real>("force", H5T_IEEE_F64LE, part, &lengths);
-  p.torque = r.rows<Vec3, Real>("torque", H5T_IEEE_F64LE, part, &lengths);
-  p.material = r.rows<MaterialId, MaterialId>("material", H5T_STD_U32LE, part, &lengths);
+  const auto read_field = [&](auto field) {
+    using Value = FieldValue<decltype(field), Real, Real>;
+    using Scalar = typename ValueComponents<Value>::Scalar;
+    field.of(p) = r.rows<Value, Scalar>(field.name, stored_type<Scalar>(), part, &lengths);
+  };
+  read_field(particle_field::Id{});  // first: the other datasets' lengths are measured by it
+  for_each_particle_field<field_use::checkpoint>([&](auto field) {
+    if constexpr (!std::is_same_v<decltype(field), particle_field::Id>) read_field(field);
+  });
   c.list_position_radius =
       r.rows<Real4, Real>("list_position_radius", H5T_IEEE_F64LE, part, &lengths);
   check_same_length(r, lengths);

@@ -39,10 +39,10 @@ FieldSource index_rows(const char* name, const std::uint32_t* data) {
 void check_lengths(const Checkpoint& c) {
   const ParticleStore& p = c.particles;
   const std::size_t n = p.size();
-  if (p.position_radius.size() != n || p.velocity_inv_mass.size() != n ||
-      p.angular_velocity.size() != n || p.force.size() != n || p.torque.size() != n ||
-      p.material.size() != n || c.list_position_radius.size() != n)
-    throw std::logic_error("checkpoint: particle arrays differ in length");
+  bool same = c.list_position_radius.size() == n;
+  for_each_particle_field<field_use::checkpoint>(
+      [&](auto field) { same = same && field.of(p).size() == n; });
+  if (!same) throw std::logic_error("checkpoint: particle arrays differ in length");
   if (!c.history.lengths_agree())
     throw std::logic_error("checkpoint: contact history arrays differ in length");
 }
@@ -61,14 +61,14 @@ void check_same_width(MPI_Comm comm, std::uint32_t width) {
 void write_particles(MPI_Comm comm, const ParallelFile& file, const Checkpoint& c) {
   const ParticleStore& p = c.particles;
   const Slice slice = global_slice(comm, p.size());
-  for (const FieldSource& field :
-       {real_rows("position_radius", p.position_radius.data(), 4),
-        real_rows("velocity_inv_mass", p.velocity_inv_mass.data(), 4),
-        real_rows("angular_velocity", p.angular_velocity.data(), 3),
-        real_rows("force", p.force.data(), 3), real_rows("torque", p.torque.data(), 3),
-        id_rows("id", p.id.data()), index_rows("material", p.material.data()),
-        real_rows("list_position_radius", c.list_position_radius.data(), 4)})
-    file.write_dataset(field, slice);
+  for_each_particle_field<field_use::checkpoint>([&](auto field) {
+    using Parts = ValueComponents<FieldValue<decltype(field), Real, Real>>;
+    using Scalar = typename Parts::Scalar;
+    file.write_dataset({field.name, field.of(p).data(), native_type<Scalar>(),
+                        stored_type<Scalar>(), Parts::count, Parts::count, 0},
+                       slice);
+  });
+  file.write_dataset(real_rows("list_position_radius", c.list_position_radius.data(), 4), slice);
 }
 
 /// The history records, and their values (h.width per record) when the law keeps any.

@@ -69,6 +69,21 @@ hid_t native_type() {
   }
 }
 
+/// The little-endian file type in which values of type T are stored.
+template <class T>
+hid_t stored_type() {
+  if constexpr (std::is_same_v<T, double>) {
+    return H5T_IEEE_F64LE;
+  } else if constexpr (std::is_same_v<T, float>) {
+    return H5T_IEEE_F32LE;
+  } else if constexpr (std::is_same_v<T, std::uint32_t>) {
+    return H5T_STD_U32LE;
+  } else {
+    static_assert(std::is_same_v<T, std::uint64_t>, "no HDF5 type for this value type");
+    return H5T_STD_U64LE;
+  }
+}
+
 /// This rank's part of a global array: rows [offset, offset + count) of `total`.
 struct Slice {
   hsize_t offset = 0;

@@ -2,7 +2,9 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -10,6 +12,7 @@
 #include <set>
 #include <stdexcept>
 #include <system_error>
+#include <type_traits>
 #include <utility>
 
 #include "comm/Hdf5Io.hpp"
@@ -21,31 +24,53 @@ namespace {
 static_assert(sizeof(Real4) == 4 * sizeof(Real) && sizeof(Vec3) == 3 * sizeof(Real),
               "snapshot memory selections assume Real4 and Vec3 hold their values unpadded");
 
-/// The datasets of a snapshot of `p` laid out as `layout`: "position", then the fields of
-/// kSnapshotFields in its set. Real values are stored as float64, or float32 in single
-/// precision (HDF5 rounds them as it writes).
-std::vector<FieldSource> field_sources(const ParticleStore& p, const SnapshotLayout& layout) {
-  const hid_t real = native_type<Real>();
-  const hid_t stored = layout.single_precision ? H5T_IEEE_F32LE : H5T_IEEE_F64LE;
-  const FieldSource optional[] = {
-      {kSnapshotFields[0], p.position_radius.data(), real, stored, 1, 4, 3},
-      {kSnapshotFields[1], p.velocity_inv_mass.data(), real, stored, 3, 4, 0},
-      {kSnapshotFields[2], p.angular_velocity.data(), real, stored, 3, 3, 0},
-      {kSnapshotFields[3], p.force.data(), real, stored, 3, 3, 0},
-      {kSnapshotFields[4], p.material.data(), native_type<MaterialId>(), H5T_STD_U32LE, 1, 1, 0},
-      {kSnapshotFields[5], p.id.data(), native_type<ParticleId>(), H5T_STD_U64LE, 1, 1, 0}};
-  static_assert(std::size(optional) == kSnapshotFields.size());
-  std::vector<FieldSource> sources{{"position", p.position_radius.data(), real, stored, 3, 4, 0}};
+/// The index of dataset `name` in kSnapshotFields; kSnapshotFields.size() for "position".
+std::size_t snapshot_field_index(const char* name) {
   for (std::size_t k = 0; k < kSnapshotFields.size(); ++k)
-    if ((layout.fields >> k) & 1u) sources.push_back(optional[k]);
+    if (std::strcmp(kSnapshotFields[k], name) == 0) return k;
+  if (std::strcmp(name, "position") == 0) return kSnapshotFields.size();
+  throw std::logic_error(std::string("snapshot column '") + name + "' is not a snapshot field");
+}
+
+/// The datasets of a snapshot of `p` laid out as `layout`: "position", then the fields of
+/// kSnapshotFields in its set, each taken from its field's columns in the particle field
+/// table. Real values are stored as float64, or float32 in single precision (HDF5 rounds them
+/// as it writes).
+std::vector<FieldSource> field_sources(const ParticleStore& p, const SnapshotLayout& layout) {
+  std::vector<FieldSource> by_index(kSnapshotFields.size() + 1);
+  std::vector<bool> found(by_index.size(), false);
+  for_each_particle_field([&](auto field) {
+    using Parts = ValueComponents<FieldValue<decltype(field), Real, Real>>;
+    using Scalar = typename Parts::Scalar;
+    const hid_t stored = !std::is_floating_point_v<Scalar> ? stored_type<Scalar>()
+                         : layout.single_precision      ? H5T_IEEE_F32LE
+                                                        : H5T_IEEE_F64LE;
+    for (const SnapshotColumn& c : field.snapshot) {
+      const std::size_t k = snapshot_field_index(c.name);
+      by_index[k] = {c.name,
+                     field.of(p).data(),
+                     native_type<Scalar>(),
+                     stored,
+                     static_cast<hsize_t>(c.count),
+                     Parts::count,
+                     static_cast<hsize_t>(c.first)};
+      found[k] = true;
+    }
+  });
+  if (std::find(found.begin(), found.end(), false) != found.end())
+    throw std::logic_error("a snapshot field has no column in the particle field table");
+  std::vector<FieldSource> sources{by_index.back()};
+  for (std::size_t k = 0; k < kSnapshotFields.size(); ++k)
+    if ((layout.fields >> k) & 1u) sources.push_back(by_index[k]);
   return sources;
 }
 
 void check_store_lengths(const ParticleStore& p) {
-  const std::size_t n = p.size();
-  if (p.position_radius.size() < n || p.velocity_inv_mass.size() < n ||
-      p.angular_velocity.size() < n || p.force.size() < n || p.material.size() < n)
-    throw std::logic_error("particle store arrays are shorter than its id array");
+  bool long_enough = true;
+  for_each_particle_field([&](auto field) {
+    if (!field.snapshot.empty()) long_enough = long_enough && field.of(p).size() >= p.size();
+  });
+  if (!long_enough) throw std::logic_error("particle store arrays are shorter than its id array");
 }
 
 /// The Polyvertex connectivity: one vertex cell per particle, holding its global row index,

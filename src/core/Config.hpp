@@ -4,8 +4,12 @@
 
 #if defined(__CUDACC__)
 #define GPUDEM_HD __host__ __device__
+/// Before a GPUDEM_HD template that calls a callable it is given: the call is checked where the
+/// template is instantiated, so host-only callables may be passed from host code.
+#define GPUDEM_HD_CALLS_ANY _Pragma("nv_exec_check_disable")
 #else
 #define GPUDEM_HD
+#define GPUDEM_HD_CALLS_ANY
 #endif
 
 namespace gpudem {

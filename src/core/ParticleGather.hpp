@@ -10,13 +10,7 @@ namespace gpudem {
 /// rank), concatenated in rank order, on every rank. Collective.
 inline ParticleStore gather_particles(const RankGroup& ranks, const ParticleStore& share) {
   ParticleStore all;
-  all.position_radius = ranks.gather(share.position_radius);
-  all.velocity_inv_mass = ranks.gather(share.velocity_inv_mass);
-  all.angular_velocity = ranks.gather(share.angular_velocity);
-  all.force = ranks.gather(share.force);
-  all.torque = ranks.gather(share.torque);
-  all.id = ranks.gather(share.id);
-  all.material = ranks.gather(share.material);
+  for_each_particle_field([&](auto field) { field.of(all) = ranks.gather(field.of(share)); });
   return all;
 }
 

@@ -46,13 +46,7 @@ std::vector<T> rows_of(const std::vector<T>& all, RowRange range, std::size_t wi
 inline ParticleStore share_of(const ParticleStore& all, int rank, int ranks) {
   const RowRange r = share_of_rows(all.size(), rank, ranks);
   ParticleStore p;
-  p.position_radius = rows_of(all.position_radius, r);
-  p.velocity_inv_mass = rows_of(all.velocity_inv_mass, r);
-  p.angular_velocity = rows_of(all.angular_velocity, r);
-  p.force = rows_of(all.force, r);
-  p.torque = rows_of(all.torque, r);
-  p.id = rows_of(all.id, r);
-  p.material = rows_of(all.material, r);
+  for_each_particle_field([&](auto field) { field.of(p) = rows_of(field.of(all), r); });
   return p;
 }
 

@@ -2,7 +2,7 @@
 /// Turns the run-time contact model of a scene into the compile-time law of a force compute:
 /// one instantiation of ContactForceCompute per valid combination of slots, selected once at
 /// start-up. Each backend instantiates it per normal law and precision policy in its own
-/// translation unit (generated from ForceComputeInstance.in by kernels.cmake), so the
+/// translation unit (generated from ForceComputeInstance.in by engine/engine.cmake), so the
 /// combinations compile in parallel.
 #include <memory>
 #include <stdexcept>

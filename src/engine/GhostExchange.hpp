@@ -2,11 +2,12 @@
 /// Ghost particles (docs/architecture.md, "One time step", plan then execute): on a rebuild step
 /// `plan` decides which owned particles each other rank needs (those within the ghost width of its
 /// cells, asked of the DomainLink for the particles the device finds near another rank's cells),
-/// sends their full records once and keeps the plan; every other step `update` (or `begin_update`,
-/// work, `finish_update`) sends only the fields a contact evaluation reads (position and radius,
-/// velocity and inverse mass, and the spin when the law uses it), packed in the engine's memory
-/// space, one non-blocking message per rank. Ghosts occupy the slots after the owned particles, in
-/// the order of the ranks that sent them.
+/// sends their full records (the `ghost` fields of the particle field table,
+/// core/ParticleFields.hpp) once and keeps the plan; every other step `update` (or `begin_update`,
+/// work, `finish_update`) sends only the fields a contact evaluation reads (the `refresh` fields,
+/// position and radius, velocity and inverse mass, and the spin when the law uses it), packed in
+/// the engine's memory space, one non-blocking message per rank. Ghosts occupy the slots after the
+/// owned particles, in the order of the ranks that sent them.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "core/Config.hpp"
+#include "core/ParticleFields.hpp"
 #include "core/Vec3.hpp"
 #include "engine/ArrayKernels.hpp"
 #include "engine/DeviceArray.hpp"
@@ -26,95 +28,82 @@
 
 namespace gpudem {
 
-/// Pointers to the engine's per-particle arrays (owned particles, then ghosts), in Space memory,
-/// with the state in scalar P.
-template <class P>
-struct ParticleArrays {
-  Vec4T<P>* position_radius;
-  Vec4T<P>* velocity_inv_mass;
-  Vec3T<P>* angular_velocity;
-  ParticleId* id;
-  MaterialId* material;
-};
-
-/// Everything a ghost holds, as sent on a rebuild step.
-template <class P>
-struct GhostRecord {
-  Vec4T<P> position_radius;
-  Vec4T<P> velocity_inv_mass;
-  Vec3T<P> angular_velocity;
-  ParticleId id;
-  MaterialId material;
-};
-
 namespace ghost_kernels {
 
-template <class P>
+/// Everything a ghost holds, as sent on a rebuild step: the WireRow of the ghost fields.
+template <class P, class S>
+using GhostRow = WireRow<field_use::ghost, P, S>;
+
+template <class P, class S>
 struct PackRecords {
-  ParticleArrays<P> from;
+  ParticlePointers<P, S> from;
   const std::uint32_t* index;
-  GhostRecord<P>* out;
+  char* out;
   GPUDEM_HD void operator()(std::size_t k) const {
-    const std::uint32_t i = index[k];
-    out[k] = GhostRecord<P>{from.position_radius[i], from.velocity_inv_mass[i],
-                            from.angular_velocity[i], from.id[i], from.material[i]};
+    GhostRow<P, S>::write(from, index[k], out + k * GhostRow<P, S>::bytes);
   }
 };
 
-template <class P>
+template <class P, class S>
 struct UnpackRecords {
-  const GhostRecord<P>* in;
-  ParticleArrays<P> to;
+  const char* in;
+  ParticlePointers<P, S> to;
   std::size_t first;  ///< slot of the first ghost
   GPUDEM_HD void operator()(std::size_t k) const {
-    const GhostRecord<P>& r = in[k];
-    to.position_radius[first + k] = r.position_radius;
-    to.velocity_inv_mass[first + k] = r.velocity_inv_mass;
-    to.angular_velocity[first + k] = r.angular_velocity;
-    to.id[first + k] = r.id;
-    to.material[first + k] = r.material;
+    GhostRow<P, S>::read(in + k * GhostRow<P, S>::bytes, to, first + k);
   }
 };
 
-/// Per-step fields of one ghost: 8 values of the state scalar P, or 11 with the spin.
-template <bool kSpin, class P>
+/// Per-step fields of one ghost: those of the table refreshed on every step, with the spin
+/// when kSpin, as `width` values of the state scalar P (their WireRow, component by component).
+template <bool kSpin, class P, class S>
 struct StepFields {
-  static constexpr int width = kSpin ? 11 : 8;
-  GPUDEM_HD static void write(const ParticleArrays<P>& a, std::uint32_t i, P* out) {
-    const Vec4T<P> x = a.position_radius[i], v = a.velocity_inv_mass[i];
-    const P values[8] = {x.x, x.y, x.z, x.w, v.x, v.y, v.z, v.w};
-    for (int c = 0; c < 8; ++c) out[c] = values[c];
-    if constexpr (kSpin) {
-      const Vec3T<P> w = a.angular_velocity[i];
-      out[8] = w.x;
-      out[9] = w.y;
-      out[10] = w.z;
-    }
+  static constexpr unsigned use = field_use::refresh | (kSpin ? field_use::spin_refresh : 0u);
+  static constexpr std::size_t bytes = WireRow<use, P, S>::bytes;
+  static_assert(bytes % sizeof(P) == 0, "refreshed fields hold values of the state scalar");
+  static constexpr int width = static_cast<int>(bytes / sizeof(P));
+
+  GPUDEM_HD static void write(const ParticlePointers<P, S>& a, std::uint32_t i, P* out) {
+    int c = 0;
+    for_each_particle_field<use>([&](auto field) {
+      using V = FieldValue<decltype(field), P, S>;
+      using Parts = ValueComponents<V>;
+      static_assert(std::is_same_v<typename Parts::Scalar, P>, "a refreshed field is not in P");
+      const V value = a.template get<decltype(field)>()[i];
+      for (int k = 0; k < Parts::count; ++k) out[c++] = Parts::get(value, k);
+    });
   }
-  GPUDEM_HD static void read(const P* in, const ParticleArrays<P>& a, std::size_t slot) {
-    a.position_radius[slot] = Vec4T<P>{in[0], in[1], in[2], in[3]};
-    a.velocity_inv_mass[slot] = Vec4T<P>{in[4], in[5], in[6], in[7]};
-    if constexpr (kSpin) a.angular_velocity[slot] = Vec3T<P>{in[8], in[9], in[10]};
+  GPUDEM_HD static void read(const P* in, const ParticlePointers<P, S>& a, std::size_t slot) {
+    int c = 0;
+    for_each_particle_field<use>([&](auto field) {
+      using V = FieldValue<decltype(field), P, S>;
+      using Parts = ValueComponents<V>;
+      V value;
+      for (int k = 0; k < Parts::count; ++k) Parts::set(value, k, in[c++]);
+      a.template get<decltype(field)>()[slot] = value;
+    });
   }
 };
 
-template <bool kSpin, class P>
+template <bool kSpin, class P, class S>
 struct PackFields {
-  ParticleArrays<P> from;
+  ParticlePointers<P, S> from;
   const std::uint32_t* index;
   P* out;
   GPUDEM_HD void operator()(std::size_t k) const {
-    StepFields<kSpin, P>::write(from, index[k], out + k * StepFields<kSpin, P>::width);
+    using Fields = StepFields<kSpin, P, S>;
+    Fields::write(from, index[k], out + k * Fields::width);
   }
 };
 
-template <bool kSpin, class P>
+template <bool kSpin, class P, class S>
 struct UnpackFields {
   const P* in;
-  ParticleArrays<P> to;
+  ParticlePointers<P, S> to;
   std::size_t first;
   GPUDEM_HD void operator()(std::size_t k) const {
-    StepFields<kSpin, P>::read(in + k * StepFields<kSpin, P>::width, to, first + k);
+    using Fields = StepFields<kSpin, P, S>;
+    Fields::read(in + k * Fields::width, to, first + k);
   }
 };
 
@@ -199,10 +188,10 @@ struct HaloStaging<CudaSpace, P> {
 
 /// The ghosts of an engine whose state is in scalar P; the per-step refresh carries the spin
 /// when the contact law reads it.
-template <class Space, class P>
+template <class Space, class P, class S>
 class GhostExchange {
-  using Arrays = ParticleArrays<P>;
-  using Record = GhostRecord<P>;
+  using Arrays = ParticlePointers<P, S>;
+  using Record = ghost_kernels::GhostRow<P, S>;
 
  public:
   explicit GhostExchange(bool spin) : spin_(spin) {}
@@ -215,7 +204,8 @@ class GhostExchange {
                    std::size_t owned) {
     std::vector<std::uint32_t> candidate;
     std::vector<Vec4T<P>> position;
-    cells.near_other_rank(particles.position_radius, owned, candidate, position);
+    cells.near_other_rank(particles.template get<particle_field::PositionRadius>(), owned,
+                          candidate, position);
     std::vector<std::vector<std::uint32_t>> to_rank(domain.ranks());
     std::vector<int> ranks;
     for (std::size_t k = 0; k < candidate.size(); ++k) {
@@ -229,28 +219,28 @@ class GhostExchange {
       index.insert(index.end(), to_rank[q].begin(), to_rank[q].end());
     }
     send_index_.upload(index);
-    DeviceArray<Record, Space> packed(index.size());
+    DeviceArray<char, Space> packed(index.size() * Record::bytes);
     parallel_for(Space{}, index.size(),
-                 ghost_kernels::PackRecords<P>{particles, send_index_.data(), packed.data()});
+                 ghost_kernels::PackRecords<P, S>{particles, send_index_.data(), packed.data()});
     RankBuffers incoming;
     RankBuffers outgoing;
-    split(packed, sizeof(Record), outgoing);
+    split(packed, Record::bytes, outgoing);
     domain.group().exchange(outgoing, incoming);
     const std::size_t row_bytes = width() * sizeof(P);
     send_bytes_.assign(domain.ranks(), 0);
     receive_bytes_.assign(domain.ranks(), 0);
     for (int q = 0; q < domain.ranks(); ++q) {
       send_bytes_[q] = send_count_[q] * row_bytes;
-      receive_bytes_[q] = incoming[q].size() / sizeof(Record) * row_bytes;
+      receive_bytes_[q] = incoming[q].size() / Record::bytes * row_bytes;
     }
     join(incoming, received_);
-    return received_.size();
+    return ghosts();
   }
 
   /// Writes the records received by `plan` into slots [owned, owned + ghosts()).
   void fill(const Arrays& particles, std::size_t owned) const {
-    parallel_for(Space{}, received_.size(),
-                 ghost_kernels::UnpackRecords<P>{received_.data(), particles, owned});
+    parallel_for(Space{}, ghosts(),
+                 ghost_kernels::UnpackRecords<P, S>{received_.data(), particles, owned});
   }
 
   /// Sends the planned particles' per-step fields and writes those received into the ghost
@@ -297,7 +287,7 @@ class GhostExchange {
       unpack_fields<false>(particles, owned);
   }
 
-  std::size_t ghosts() const { return received_.size(); }
+  std::size_t ghosts() const { return received_.size() / Record::bytes; }
   /// Bytes one refresh sends (the halo volume of this rank per step).
   std::size_t refresh_bytes() const { return send_index_.size() * width() * sizeof(P); }
   std::size_t memory_bytes() const {
@@ -320,21 +310,21 @@ class GhostExchange {
 
   /// Values per particle in a refresh (ghost_kernels::StepFields).
   int width() const {
-    return spin_ ? ghost_kernels::StepFields<true, P>::width
-                 : ghost_kernels::StepFields<false, P>::width;
+    return spin_ ? ghost_kernels::StepFields<true, P, S>::width
+                 : ghost_kernels::StepFields<false, P, S>::width;
   }
 
   template <bool kSpin>
   void pack_fields(const Arrays& particles) {
-    parallel_for(
-        Space{}, send_index_.size(),
-        ghost_kernels::PackFields<kSpin, P>{particles, send_index_.data(), packed_fields_.data()});
+    parallel_for(Space{}, send_index_.size(),
+                 ghost_kernels::PackFields<kSpin, P, S>{particles, send_index_.data(),
+                                                        packed_fields_.data()});
   }
 
   template <bool kSpin>
   void unpack_fields(const Arrays& particles, std::size_t owned) {
     parallel_for(Space{}, ghosts(),
-                 ghost_kernels::UnpackFields<kSpin, P>{fields_.data(), particles, owned});
+                 ghost_kernels::UnpackFields<kSpin, P, S>{fields_.data(), particles, owned});
   }
 
   static const char* bytes_of(const P* values) { return reinterpret_cast<const char*>(values); }
@@ -371,7 +361,7 @@ class GhostExchange {
   bool spin_;                                     ///< the refresh carries the spin
   DeviceArray<std::uint32_t, Space> send_index_;  ///< owned particles to send, rank by rank
   std::vector<std::size_t> send_count_;           ///< per rank
-  DeviceArray<Record, Space> received_;           ///< records of the last plan, rank by rank
+  DeviceArray<char, Space> received_;             ///< records of the last plan, rank by rank
   // Per-step buffers, kept so that a step allocates nothing once they have grown.
   std::vector<std::size_t> send_bytes_;     ///< per rank, per refresh
   std::vector<std::size_t> receive_bytes_;  ///< per rank, per refresh

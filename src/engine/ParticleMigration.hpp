@@ -11,24 +11,25 @@
 #include <vector>
 
 #include "core/Config.hpp"
+#include "core/ParticleFields.hpp"
 #include "core/Vec3.hpp"
 #include "engine/DomainLink.hpp"
+#include "engine/ParticleColumns.hpp"
 
 namespace gpudem {
 
-/// Particles that travel between ranks, as host copies (state in scalar P), with their pair history
-/// as rows keyed by partner id: particle i's records are row_partner / row_history [row_offsets[i],
-/// row_offsets[i + 1]), and its mesh history as rows keyed by triangle index in mesh_offsets the
-/// same way. Each history record is `history_width` values of scalar S.
+/// Particles that travel between ranks, as host copies of their persistent fields (the
+/// engine's scalars: state P, loads S), with their pair history as rows keyed by partner id:
+/// particle i's records are row_partner / row_history [row_offsets[i], row_offsets[i + 1]), and
+/// its mesh history as rows keyed by triangle index in mesh_offsets the same way. Each history
+/// record is `history_width` values of scalar S.
 template <class S, class P>
 struct MigratingParticles {
+  using Row = WireRow<field_use::persistent, P, S>;
+
   std::uint32_t history_width = 0;
-  std::vector<Vec4T<P>> position_radius;
-  std::vector<Vec4T<P>> velocity_inv_mass;
-  std::vector<Vec3T<P>> angular_velocity;
-  std::vector<ParticleId> id;
-  std::vector<MaterialId> material;
-  std::vector<S> wall_history;  ///< wall_count records per particle
+  ParticleVectors<P, S> fields;  ///< the persistent fields (the others empty)
+  std::vector<S> wall_history;   ///< wall_count records per particle
   std::vector<std::uint32_t> row_offsets{0};
   std::vector<ParticleId> row_partner;
   std::vector<S> row_history;
@@ -36,7 +37,30 @@ struct MigratingParticles {
   std::vector<std::uint32_t> mesh_triangle;
   std::vector<S> mesh_history;
 
-  std::size_t size() const { return id.size(); }
+  template <class F>
+  auto& field() {
+    return fields.template get<F>();
+  }
+  template <class F>
+  const auto& field() const {
+    return fields.template get<F>();
+  }
+  std::size_t size() const { return field<particle_field::Id>().size(); }
+
+  /// Appends particle i's fields (Row::bytes) to `out`.
+  void pack_fields(std::size_t i, std::vector<char>& out) const {
+    const std::size_t at = out.size();
+    out.resize(at + Row::bytes);
+    Row::write(pointers_of(fields), i, out.data() + at);
+  }
+
+  /// Appends a particle with the fields packed at `in`.
+  void unpack_fields(const char* in) {
+    const std::size_t i = size();
+    for_each_particle_field<field_use::persistent>(
+        [&](auto f) { fields.template get<decltype(f)>().emplace_back(); });
+    Row::read(in, pointers_of(fields), i);
+  }
 };
 
 namespace migration_detail {
@@ -69,17 +93,13 @@ void take_record(const std::vector<char>& in, std::size_t& at, std::uint32_t wid
   for (std::uint32_t v = 0; v < width; ++v) records.push_back(take<S>(in, at));
 }
 
-/// Particle i of `p` as bytes: its state, its wall records, then its row count and rows, then
-/// its mesh row count and mesh rows.
+/// Particle i of `p` as bytes: its fields (WireRow), its wall records, then its row count and rows,
+/// then its mesh row count and mesh rows.
 template <class S, class P>
 void pack(const MigratingParticles<S, P>& p, std::size_t i, std::uint32_t walls,
           std::vector<char>& out) {
   const std::uint32_t width = p.history_width;
-  put(out, p.position_radius[i]);
-  put(out, p.velocity_inv_mass[i]);
-  put(out, p.angular_velocity[i]);
-  put(out, p.id[i]);
-  put(out, p.material[i]);
+  p.pack_fields(i, out);
   for (std::uint32_t w = 0; w < walls; ++w) put_record(out, p.wall_history, i * walls + w, width);
   put(out, p.row_offsets[i + 1] - p.row_offsets[i]);
   for (std::uint32_t e = p.row_offsets[i]; e < p.row_offsets[i + 1]; ++e) {
@@ -99,11 +119,8 @@ void unpack(const std::vector<char>& in, std::uint32_t walls, MigratingParticles
   const std::uint32_t width = p.history_width;
   std::size_t at = 0;
   while (at < in.size()) {
-    p.position_radius.push_back(take<Vec4T<P>>(in, at));
-    p.velocity_inv_mass.push_back(take<Vec4T<P>>(in, at));
-    p.angular_velocity.push_back(take<Vec3T<P>>(in, at));
-    p.id.push_back(take<ParticleId>(in, at));
-    p.material.push_back(take<MaterialId>(in, at));
+    p.unpack_fields(in.data() + at);
+    at += MigratingParticles<S, P>::Row::bytes;
     for (std::uint32_t w = 0; w < walls; ++w) take_record(in, at, width, p.wall_history);
     const auto rows = take<std::uint32_t>(in, at);
     for (std::uint32_t e = 0; e < rows; ++e) {

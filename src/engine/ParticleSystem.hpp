@@ -29,6 +29,7 @@
 #include "engine/LaunchTuning.hpp"
 #include "engine/MeshWalls.hpp"
 #include "engine/NeighborList.hpp"
+#include "engine/ParticleColumns.hpp"
 #include "engine/ParticleMigration.hpp"
 #include "engine/ParticleStaging.hpp"
 #include "engine/ParticleStateKernels.hpp"
@@ -144,17 +145,9 @@ class ParticleSystem final : public StepEngine {
 
  private:
   /// The arrays a snapshot or get_particles reads; the owned particles are their first rows.
-  OwnedParticleArrays<Space, P, S> owned_arrays() const {
-    return {position_radius_,  velocity_inv_mass_,
-            angular_velocity_, force_,
-            torque_,           id_,
-            material_,         owned_};
-  }
+  OwnedParticleArrays<Space, P, S> owned_arrays() const { return {columns_, owned_}; }
 
-  ParticleArrays<P> arrays() {
-    return ParticleArrays<P>{position_radius_.data(), velocity_inv_mass_.data(),
-                             angular_velocity_.data(), id_.data(), material_.data()};
-  }
+  ParticlePointers<P, S> arrays() { return columns_.pointers(); }
 
   /// scatter_history for this rank's `share` of the records (freed on return): on several
   /// ranks each record is sent to the rank that owns its owner particle first, and a problem on
@@ -398,7 +391,7 @@ class ParticleSystem final : public StepEngine {
   void reorder(const std::uint32_t* order, std::size_t n);
 
   template <class T>
-  void permute_array(const std::uint32_t* order, std::size_t n, DeviceArray<T, Space>& a) {
+  static void permute_array(const std::uint32_t* order, std::size_t n, DeviceArray<T, Space>& a) {
     DeviceArray<T, Space> out(n);
     permute(Space{}, order, a.data(), out.data(), n);
     a.swap(out);
@@ -422,17 +415,16 @@ class ParticleSystem final : public StepEngine {
   }
 
   /// Sizes the arrays that hold ghosts after the owned particles.
-  void resize_shared(std::size_t n) {
-    position_radius_.resize(n);
-    velocity_inv_mass_.resize(n);
-    angular_velocity_.resize(n);
-    id_.resize(n);
-    material_.resize(n);
-  }
+  void resize_shared(std::size_t n) { columns_.resize_ghost_held(n); }
 
   void resize_owned(std::size_t n);
 
   std::size_t scratch_bytes() const { return previous_index_.bytes(); }
+
+  template <class F>
+  DeviceArray<FieldValue<F, P, S>, Space>& field() {
+    return columns_.template get<F>();
+  }
 
   /// Bytes of the kept rows (offsets, partner ids, records) that a rebuild now would allocate
   /// while it still holds the list and pair history (keep_previous_rows): counted between
@@ -446,14 +438,17 @@ class ParticleSystem final : public StepEngine {
   OneRankDomain one_rank_;
   DomainLink& domain_;  ///< setup.domain, or one_rank_ when there is none
   DeviceArray<PlaneWall, Space> walls_;
-  // Per particle: the owned_ owned particles, then (the first five) the ghosts.
-  DeviceArray<State4, Space> position_radius_;
-  DeviceArray<State4, Space> velocity_inv_mass_;
-  DeviceArray<StateVec, Space> angular_velocity_;
-  DeviceArray<ParticleId, Space> id_;
-  DeviceArray<MaterialId, Space> material_;
-  DeviceArray<ForceVec, Space> force_;
-  DeviceArray<ForceVec, Space> torque_;
+  /// Per particle, every field of the table: the owned_ owned particles, then, in the fields
+  /// ghosts hold, the ghosts. The members below name the columns the engine's kernels read.
+  ParticleColumns<Space, P, S> columns_;
+  DeviceArray<State4, Space>& position_radius_ = field<particle_field::PositionRadius>();
+  DeviceArray<State4, Space>& velocity_inv_mass_ = field<particle_field::VelocityInvMass>();
+  DeviceArray<StateVec, Space>& angular_velocity_ = field<particle_field::AngularVelocity>();
+  DeviceArray<ParticleId, Space>& id_ = field<particle_field::Id>();
+  DeviceArray<MaterialId, Space>& material_ = field<particle_field::Material>();
+  DeviceArray<ForceVec, Space>& force_ = field<particle_field::Force>();
+  DeviceArray<ForceVec, Space>& torque_ = field<particle_field::Torque>();
+  // Per owned particle, besides the table's fields.
   DeviceArray<Real, Space> overlap_ratio_;
   DeviceArray<State4, Space> position_at_build_;
   DeviceArray<S, Space> pair_history_;  ///< width_ per neighbour-list entry (empty: no history)
@@ -465,7 +460,7 @@ class ParticleSystem final : public StepEngine {
   NeighborList<Space> neighbors_;
   MeshWalls<Space, S> meshes_;
   ParticleStaging<Space, P, S> staging_;  ///< snapshot copies (host memory)
-  GhostExchange<Space, P> ghosts_;
+  GhostExchange<Space, P, S> ghosts_;
   GhostRowSplit<Space> ghost_rows_;  ///< owned particles by whether their rows read ghosts
   RankCells<Space> rank_cells_;      ///< the decomposition's cell map (several ranks)
   std::size_t owned_ = 0;

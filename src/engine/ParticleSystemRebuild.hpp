@@ -113,11 +113,7 @@ MigratingParticles<S, P> ParticleSystem<Space, P, S>::owned_from(std::size_t fir
   const std::size_t count = owned_ - first;
   MigratingParticles<S, P> p;
   p.history_width = width_;
-  p.position_radius = download_values<Space>(position_radius_.data() + first, count);
-  p.velocity_inv_mass = download_values<Space>(velocity_inv_mass_.data() + first, count);
-  p.angular_velocity = download_values<Space>(angular_velocity_.data() + first, count);
-  p.id = download_values<Space>(id_.data() + first, count);
-  p.material = download_values<Space>(material_.data() + first, count);
+  p.fields = columns_.template download_rows<field_use::persistent>(first, count);
   p.row_offsets.assign(count + 1, 0);
   p.mesh_offsets.assign(count + 1, 0);
   if (width_ > 0) {
@@ -137,11 +133,7 @@ void ParticleSystem<Space, P, S>::append_owned(const MigratingParticles<S, P>& a
                                                std::uint32_t walls) {
   const std::size_t first = owned_;
   resize_owned(first + arrived.size());
-  upload_values<Space>(arrived.position_radius, position_radius_.data() + first);
-  upload_values<Space>(arrived.velocity_inv_mass, velocity_inv_mass_.data() + first);
-  upload_values<Space>(arrived.angular_velocity, angular_velocity_.data() + first);
-  upload_values<Space>(arrived.id, id_.data() + first);
-  upload_values<Space>(arrived.material, material_.data() + first);
+  columns_.template upload_rows<field_use::persistent>(arrived.fields, first);
   parallel_for(Space{}, owned_, Fill<ForceVec>{torque_.data(), ForceVec{}});
   // The arrivals' rows go after the kept ones (none without history: the index is then only
   // carried along by the sorts).
@@ -222,11 +214,7 @@ void ParticleSystem<Space, P, S>::remap_pair_history() {
 
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::reorder(const std::uint32_t* order, std::size_t n) {
-  permute_array(order, n, position_radius_);
-  permute_array(order, n, velocity_inv_mass_);
-  permute_array(order, n, angular_velocity_);
-  permute_array(order, n, id_);
-  permute_array(order, n, material_);
+  columns_.permute_persistent(order, n);
   permute_array(order, n, previous_index_);
   if (width_ > 0) {
     const std::uint32_t values = wall_count() * width_;
@@ -240,8 +228,7 @@ template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::resize_owned(std::size_t n) {
   owned_ = n;
   resize_shared(n);
-  force_.resize(n);
-  torque_.resize(n);
+  columns_.resize_owned_only(n);
   overlap_ratio_.resize(n);
   previous_index_.resize(n);
   if (width_ > 0) wall_history_.resize(n * wall_count() * width_);

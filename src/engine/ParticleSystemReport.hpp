@@ -80,22 +80,19 @@ std::string ParticleSystem<Space, P, S>::tune_launches() {
 
 template <class Space, class P, class S>
 std::vector<MemoryUse> ParticleSystem<Space, P, S>::memory_use() const {
-  return {{"position, radius", position_radius_.bytes()},
-          {"velocity, inverse mass", velocity_inv_mass_.bytes()},
-          {"angular velocity", angular_velocity_.bytes()},
-          {"id, material", id_.bytes() + material_.bytes()},
-          {"force, torque", force_.bytes() + torque_.bytes()},
-          {"overlap ratio", overlap_ratio_.bytes()},
-          {"position at list build", position_at_build_.bytes()},
-          {"neighbour list", neighbors_.memory_bytes()},
-          {"pair history", pair_history_.bytes()},
-          {"wall history", wall_history_.bytes()},
-          {"cell list", cells_.memory_bytes()},
-          {"history carry-over", carry_over_bytes()},
-          {"rebuild scratch", scratch_bytes()},
-          {"ghost buffers",
-           ghosts_.memory_bytes() + ghost_rows_.memory_bytes() + rank_cells_.memory_bytes()},
-          {"meshes", meshes_.memory_bytes()}};
+  std::vector<MemoryUse> use = columns_.memory_use();
+  use.insert(use.end(), {{"overlap ratio", overlap_ratio_.bytes()},
+                         {"position at list build", position_at_build_.bytes()},
+                         {"neighbour list", neighbors_.memory_bytes()},
+                         {"pair history", pair_history_.bytes()},
+                         {"wall history", wall_history_.bytes()},
+                         {"cell list", cells_.memory_bytes()},
+                         {"history carry-over", carry_over_bytes()},
+                         {"rebuild scratch", scratch_bytes()},
+                         {"ghost buffers", ghosts_.memory_bytes() + ghost_rows_.memory_bytes() +
+                                               rank_cells_.memory_bytes()},
+                         {"meshes", meshes_.memory_bytes()}});
+  return use;
 }
 
 template <class Space, class P, class S>

@@ -113,14 +113,9 @@ void ParticleSystem<Space, P, S>::restore_owned(const ParticleStore& p,
 
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::upload_particles(const ParticleStore& p) {
-  upload_rounded(p.position_radius, position_radius_);
-  upload_rounded(p.velocity_inv_mass, velocity_inv_mass_);
-  upload_rounded(p.angular_velocity, angular_velocity_);
-  id_.upload(p.id);
-  material_.upload(p.material);
+  columns_.template upload_store<field_use::persistent>(p);
   owned_ = p.size();
-  force_.resize(owned_);
-  torque_.resize(owned_);
+  columns_.resize_owned_only(owned_);
   parallel_for(Space{}, owned_, Fill<ForceVec>{torque_.data(), ForceVec{}});
   overlap_ratio_.resize(owned_);
   if (width_ > 0) {

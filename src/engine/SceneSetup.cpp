@@ -363,16 +363,8 @@ ParticleStore setup_deciding_particles(const Scene& scene, const ParticleStore& 
   std::sort(chosen.begin(), chosen.end());
   chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
   ParticleStore out;
-  for (const std::size_t i : chosen) {
-    if (i == n) continue;  // an absent material, or no particles
-    out.position_radius.push_back(particles.position_radius[i]);
-    out.velocity_inv_mass.push_back(particles.velocity_inv_mass[i]);
-    out.angular_velocity.push_back(particles.angular_velocity[i]);
-    out.id.push_back(particles.id[i]);
-    out.material.push_back(particles.material[i]);
-  }
-  out.force.resize(out.size());
-  out.torque.resize(out.size());
+  for (const std::size_t i : chosen)
+    if (i != n) out.append_row(particles, i);  // n: an absent material, or no particles
   return out;
 }
 

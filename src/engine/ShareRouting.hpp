@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/ContactHistory.hpp"
+#include "core/ParticleFields.hpp"
 #include "core/ParticleStore.hpp"
 #include "engine/DomainLink.hpp"
 #include "engine/ParticleMigration.hpp"
@@ -33,55 +34,37 @@ namespace share_detail {
 using migration_detail::put;
 using migration_detail::take;
 
-/// Particle i of `share` as bytes (forces and torques zero where `share` has none), then its
-/// list position when `list` is not empty.
-inline void pack_particle(const ParticleStore& share, const std::vector<Real4>& list, std::size_t i,
-                          std::vector<char>& out) {
-  const bool has_forces = share.force.size() == share.size() && share.torque.size() == share.size();
-  put(out, share.position_radius[i]);
-  put(out, share.velocity_inv_mass[i]);
-  put(out, share.angular_velocity[i]);
-  put(out, has_forces ? share.force[i] : Vec3{});
-  put(out, has_forces ? share.torque[i] : Vec3{});
-  put(out, share.id[i]);
-  put(out, share.material[i]);
+/// A routed particle's row: its checkpointed fields (forces and torques zero where the share
+/// has none).
+using RoutedRow = WireRow<field_use::checkpoint, Real, Real>;
+
+/// Bytes of one routed particle: its row, then its list position when routed by them.
+inline std::size_t particle_bytes(bool with_list) {
+  return RoutedRow::bytes + (with_list ? sizeof(Real4) : 0);
+}
+
+/// Particle i of `share` (whose row pointers are `rows`) as bytes, then its list position
+/// when `list` is not empty.
+inline void pack_particle(const ParticlePointers<Real, Real>& rows, const std::vector<Real4>& list,
+                          std::size_t i, std::vector<char>& out) {
+  const std::size_t at = out.size();
+  out.resize(at + RoutedRow::bytes);
+  RoutedRow::write(rows, i, out.data() + at);
   if (!list.empty()) put(out, list[i]);
 }
 
-/// Bytes of one particle as pack_particle writes it.
-inline std::size_t particle_bytes(bool with_list) {
-  return 2 * sizeof(Real4) + 3 * sizeof(Vec3) + sizeof(ParticleId) + sizeof(MaterialId) +
-         (with_list ? sizeof(Real4) : 0);
-}
-
-/// Makes room in `out` for `count` more particles.
-inline void reserve_particles(std::size_t count, bool with_list, RoutedParticles& out) {
-  ParticleStore& p = out.particles;
-  const std::size_t n = p.size() + count;
-  p.position_radius.reserve(n);
-  p.velocity_inv_mass.reserve(n);
-  p.angular_velocity.reserve(n);
-  p.force.reserve(n);
-  p.torque.reserve(n);
-  p.id.reserve(n);
-  p.material.reserve(n);
-  if (with_list) out.list_position_radius.reserve(n);
-}
-
-/// Appends the particles packed in `in` to `out`.
-inline void unpack_particles(const std::vector<char>& in, bool with_list, RoutedParticles& out) {
-  ParticleStore& p = out.particles;
-  std::size_t at = 0;
-  while (at < in.size()) {
-    p.position_radius.push_back(take<Real4>(in, at));
-    p.velocity_inv_mass.push_back(take<Real4>(in, at));
-    p.angular_velocity.push_back(take<Vec3>(in, at));
-    p.force.push_back(take<Vec3>(in, at));
-    p.torque.push_back(take<Vec3>(in, at));
-    p.id.push_back(take<ParticleId>(in, at));
-    p.material.push_back(take<MaterialId>(in, at));
-    if (with_list) out.list_position_radius.push_back(take<Real4>(in, at));
+/// Reads the particles packed in `in` into rows [first, ...) of `out`, which has room for
+/// them; returns the row after the last.
+inline std::size_t unpack_particles(const std::vector<char>& in, bool with_list, std::size_t first,
+                                    RoutedParticles& out) {
+  const ParticlePointers<Real, Real> rows = row_pointers(out.particles);
+  std::size_t at = 0, k = first;
+  for (; at < in.size(); ++k) {
+    RoutedRow::read(in.data() + at, rows, k);
+    at += RoutedRow::bytes;
+    if (with_list) out.list_position_radius[k] = take<Real4>(in, at);
   }
+  return k;
 }
 
 /// The three kinds of history record, as packed.
@@ -212,17 +195,20 @@ inline RoutedParticles route_to_owners(const ParticleStore& share,
   for (std::size_t i = 0; i < share.size(); ++i) ++count[owner[i] = domain.owner_of(xyz(where[i]))];
   RankBuffers outgoing(domain.ranks()), incoming;
   share_detail::reserve_buffers(outgoing, count, bytes_each);
+  const ParticlePointers<Real, Real> rows = row_pointers(share);
   for (std::size_t i = 0; i < share.size(); ++i)
-    share_detail::pack_particle(share, list_positions, i, outgoing[owner[i]]);
+    share_detail::pack_particle(rows, list_positions, i, outgoing[owner[i]]);
   std::vector<int>().swap(owner);
   domain.group().exchange(outgoing, incoming);
   RankBuffers().swap(outgoing);
   RoutedParticles routed;
   std::size_t arriving = 0;
   for (const std::vector<char>& bytes : incoming) arriving += bytes.size() / bytes_each;
-  share_detail::reserve_particles(arriving, with_list, routed);
+  resize_rows(routed.particles, arriving);
+  if (with_list) routed.list_position_radius.resize(arriving);
+  std::size_t next = 0;
   for (std::vector<char>& bytes : incoming) {
-    share_detail::unpack_particles(bytes, with_list, routed);
+    next = share_detail::unpack_particles(bytes, with_list, next, routed);
     std::vector<char>().swap(bytes);
   }
   return routed;

@@ -81,9 +81,15 @@ struct Arrays {
     position_radius.resize(n), velocity_inv_mass.resize(n), angular_velocity.resize(n);
     id.resize(n), material.resize(n);
   }
-  ParticleArrays<P> pointers() {
-    return {position_radius.data(), velocity_inv_mass.data(), angular_velocity.data(), id.data(),
-            material.data()};
+  /// Pointers to the arrays (none to forces and torques, which ghosts do not hold).
+  ParticlePointers<P, P> pointers() {
+    ParticlePointers<P, P> p{};
+    p.template get<particle_field::PositionRadius>() = position_radius.data();
+    p.template get<particle_field::VelocityInvMass>() = velocity_inv_mass.data();
+    p.template get<particle_field::AngularVelocity>() = angular_velocity.data();
+    p.template get<particle_field::Id>() = id.data();
+    p.template get<particle_field::Material>() = material.data();
+    return p;
   }
 };
 
@@ -109,7 +115,7 @@ TYPED_TEST(GhostExchangeOnFakeRanks, PlanSendsWhatGeometryAsksAndARefreshCarries
     for (int k = 0; k < kPerRank; ++k) a.add(particle<P>(r, k));
     RankCells<HostSpace> cells;
     cells.update(domain.cell_ownership(), r);
-    GhostExchange<HostSpace, P> ghosts(TypeParam::spin);
+    GhostExchange<HostSpace, P, P> ghosts(TypeParam::spin);
     const std::size_t count = ghosts.plan(domain, cells, a.pointers(), kPerRank);
     a.resize(kPerRank + count);
     ghosts.fill(a.pointers(), kPerRank);

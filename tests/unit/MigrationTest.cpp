@@ -29,11 +29,14 @@ constexpr std::uint32_t kWalls = 2;
 template <class S, class P>
 void add_particle(MigratingParticles<S, P>& p, int from, int k) {
   const double base = 1000.0 * from + 10.0 * k;
-  p.position_radius.push_back(Vec4T<P>{P(base + 0.1), P(base + 0.2), P(base + 0.3), P(0.01)});
-  p.velocity_inv_mass.push_back(Vec4T<P>{P(-base), P(base * 0.5), P(1.25), P(2.0)});
-  p.angular_velocity.push_back(Vec3T<P>{P(base + 0.7), P(0.125), P(-3.5)});
-  p.id.push_back(static_cast<ParticleId>(100 * from + k));
-  p.material.push_back(static_cast<MaterialId>((from + k) % 3));
+  p.template field<particle_field::PositionRadius>().push_back(
+      Vec4T<P>{P(base + 0.1), P(base + 0.2), P(base + 0.3), P(0.01)});
+  p.template field<particle_field::VelocityInvMass>().push_back(
+      Vec4T<P>{P(-base), P(base * 0.5), P(1.25), P(2.0)});
+  p.template field<particle_field::AngularVelocity>().push_back(
+      Vec3T<P>{P(base + 0.7), P(0.125), P(-3.5)});
+  p.template field<particle_field::Id>().push_back(static_cast<ParticleId>(100 * from + k));
+  p.template field<particle_field::Material>().push_back(static_cast<MaterialId>((from + k) % 3));
   const std::uint32_t w = p.history_width;
   for (std::uint32_t v = 0; v < kWalls * w; ++v) p.wall_history.push_back(S(base + 0.01 * v));
   for (int e = 0; e < k % 3; ++e) {
@@ -60,13 +63,19 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 
 template <class S, class P>
 bool same_bits(const MigratingParticles<S, P>& a, const MigratingParticles<S, P>& b) {
-  return same_bits(a.position_radius, b.position_radius) &&
-         same_bits(a.velocity_inv_mass, b.velocity_inv_mass) &&
-         same_bits(a.angular_velocity, b.angular_velocity) && a.id == b.id &&
-         a.material == b.material && same_bits(a.wall_history, b.wall_history) &&
-         a.row_offsets == b.row_offsets && a.row_partner == b.row_partner &&
-         same_bits(a.row_history, b.row_history) && a.mesh_offsets == b.mesh_offsets &&
-         a.mesh_triangle == b.mesh_triangle && same_bits(a.mesh_history, b.mesh_history);
+  return same_bits(a.template field<particle_field::PositionRadius>(),
+                   b.template field<particle_field::PositionRadius>()) &&
+         same_bits(a.template field<particle_field::VelocityInvMass>(),
+                   b.template field<particle_field::VelocityInvMass>()) &&
+         same_bits(a.template field<particle_field::AngularVelocity>(),
+                   b.template field<particle_field::AngularVelocity>()) &&
+         a.template field<particle_field::Id>() == b.template field<particle_field::Id>() &&
+         a.template field<particle_field::Material>() ==
+             b.template field<particle_field::Material>() &&
+         same_bits(a.wall_history, b.wall_history) && a.row_offsets == b.row_offsets &&
+         a.row_partner == b.row_partner && same_bits(a.row_history, b.row_history) &&
+         a.mesh_offsets == b.mesh_offsets && a.mesh_triangle == b.mesh_triangle &&
+         same_bits(a.mesh_history, b.mesh_history);
 }
 
 template <class T>

@@ -17,3 +17,10 @@ gpudem_add_test(test_ghost_exchange
   LIBS gpudem_decomposition
   LABELS unit
   TIMEOUT 60)
+# The particle field table (core/ParticleFields.hpp): wire rows, the host store and the
+# engine's per-field arrays on the host backend.
+gpudem_add_test(test_particle_fields
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/ParticleFieldsTest.cpp
+  LIBS gpudem_engine
+  LABELS unit
+  TIMEOUT 60)
