@@ -31,6 +31,7 @@
 #include "core/Stopwatch.hpp"
 #include "engine/CudaMemory.hpp"
 #include "engine/MeshReach.hpp"
+#include "engine/MeshStartOverlap.hpp"
 #include "engine/SceneSetup.hpp"
 
 namespace gpudem {
@@ -273,13 +274,25 @@ void print_engine_notes(const RunOptions& options, const MpiContext& mpi, const 
   std::printf("%s\n", tuning.c_str());
 }
 
+/// Rank 0 prints each warning to stderr.
+void print_warnings(const std::vector<std::string>& warnings, const MpiContext& mpi) {
+  if (mpi.is_root())
+    for (const std::string& warning : warnings)
+      std::fprintf(stderr, "warning: %s\n", warning.c_str());
+}
+
+/// Refuses a new run whose meshes start inside the particles and warns (rank 0) of those that
+/// start touching them. Collective.
+void warn_of_mesh_start_overlaps(const Scene& scene, const EngineSetup& setup,
+                                 const ParticleStore& share, const MpiContext& mpi) {
+  print_warnings(check_mesh_start_overlaps(scene, setup.meshes, share, mpi.group()), mpi);
+}
+
 }  // namespace
 
 int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
   Scene scene = load_scene(command_line.scene_file, command_line.overrides);
-  if (mpi.is_root())
-    for (const std::string& warning : scene.warnings)
-      std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  print_warnings(scene.warnings, mpi);
   if (!command_line.output_dir.empty()) scene.output.dir = command_line.output_dir;
   RunOptions options = command_line;
   if (options.resume && !resume_from_output(scene, mpi, options)) return kExitOk;
@@ -292,7 +305,10 @@ int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
       gather_particles(mpi.group(), setup_deciding_particles(scene, share.particles()));
   const std::uint64_t particle_count = mpi.group().sum<std::uint64_t>(share.particles().size());
   EngineSetup setup = make_engine_setup(scene, deciding);
-  if (checkpoint) adopt_checkpoint_step(setup, scene, *checkpoint, options.restart_file);
+  if (checkpoint)
+    adopt_checkpoint_step(setup, scene, *checkpoint, options.restart_file);
+  else
+    warn_of_mesh_start_overlaps(scene, setup, share.particles(), mpi);
   const std::unique_ptr<MpiDomain> domain =
       make_domain(scene, mpi, share.particles(), particle_count, setup,
                   use_gpu_aware_mpi(options.gpu_aware_mpi));

@@ -1,7 +1,8 @@
 // Mesh walls through the binary: a [[mesh]] plate pushes grains and its force and torque
 // columns appear in the time series; the summary says where each mesh is; bad meshes and bad
-// motion, a mesh that never meets the domain or is smaller than a grain, and a mesh too wide for
-// a periodic axis, stop the run before any output with the scene file, line and key.
+// motion, a mesh that never meets the domain, starts inside the grains or is smaller than a
+// grain, and a mesh too wide for a periodic axis, stop the run before any output with the scene
+// file, line and key.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -211,6 +212,16 @@ TEST_F(MeshScene, MeshThatNeverMeetsTheDomainIsRefused) {
   expect_refused(run(plate_stl(), scene), "scene.toml:28: key 'mesh[0].offset'",
                  "mesh 'plate' never meets the domain: at t = 0 it spans x [5, 5] m and until the "
                  "end of the run [5, 5.008] m, outside the domain's [-0.05, 0.2] m");
+}
+
+/// A tool placed in the middle of the grains at t = 0 (a sign or an offset mistaken) is
+/// refused before any output, with the count and the deepest overlap, naming its offset.
+TEST_F(MeshScene, MeshPlacedInsideTheGrainsIsRefused) {
+  std::string scene = kScene;
+  scene.replace(scene.find("offset = [0.005, 0.0, 0.0]"), 26, "offset = [0.03, 0.0, 0.0]");
+  const test::RunResult r = run(plate_stl(), scene);
+  expect_refused(r, "scene.toml:28: key 'mesh[0].offset'", "mesh 'plate' overlaps ");
+  EXPECT_NE(r.output.find("% of its radius) at ("), std::string::npos) << r.output;
 }
 
 /// A tool that starts outside and moves in is accepted: 10 m/s for 0.04 s carries it 0.4 m.

@@ -4,3 +4,9 @@ gpudem_add_test(test_scene_setup
   LABELS unit
   TIMEOUT 120)
 add_dependencies(test_scene_setup gpudem-mpi)
+# Particles a mesh overlaps where a new run starts, on one and on fake ranks.
+gpudem_add_test(test_mesh_start_overlap
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/MeshStartOverlapTest.cpp
+  LIBS gpudem_sim
+  LABELS unit
+  TIMEOUT 60)
