@@ -22,7 +22,7 @@ cat <<MSG
 
 Output is in $OUT:
   $OUT/draft.png              the draft force on the sweep over time, with its steady mean
-  $OUT/till/particles.xmf     open it in ParaView (File > Open, pick the "Xdmf3 Reader"), then
+  $OUT/till/particles.xmf     open it in ParaView (File > Open, pick "Xdmf3 Reader S"), then
                               apply a "Point Gaussian" representation scaled by 'radius' (or a
                               Glyph filter: Sphere, scale array 'radius', factor 2) to see the
                               spheres; open $OUT/till/sweep.xmf beside it for the tool, its
