@@ -17,11 +17,12 @@ run() { mpirun -np "$NP" --bind-to none build/gpudem-mpi "$@"; }
 run inputs/tillage/quickstart_bed.toml --output-dir "$OUT/bed" --quiet
 run inputs/tillage/quickstart_till.toml --output-dir "$OUT/till" --set "insert.0.bed=\"$BED\""
 /usr/bin/python3 scripts/plot_draft.py "$OUT/till/timeseries.csv" "$OUT/draft.png" \
-  --tool sweep --axis x --steady 0.45 0.84
+  --tool sweep --scene inputs/tillage/quickstart_till.toml --steady 0.45 0.84
 cat <<MSG
 
 Output is in $OUT:
-  $OUT/draft.png              the draft force on the sweep over time, with its steady mean
+  $OUT/draft.png              the draft, vertical and lateral force on the sweep over time,
+                              each with its steady mean
   $OUT/till/particles.xmf     open it in ParaView (File > Open, pick "Xdmf3 Reader S"), then
                               apply a "Point Gaussian" representation scaled by 'radius' (or a
                               Glyph filter: Sphere, scale array 'radius', factor 2) to see the

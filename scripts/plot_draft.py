@@ -1,23 +1,102 @@
 #!/usr/bin/python3
-"""Plots the draft force of a tillage run: the force the soil exerts on a tool against its
-travel, over time, with its mean over the steady window.
+"""Plots the forces on a tillage tool over time: draft (against its travel), vertical and lateral,
+each with its mean over the steady window.
 
-Usage: scripts/plot_draft.py TIMESERIES_CSV OUT_PNG [--tool NAME] [--axis x|y|z]
+Usage: scripts/plot_draft.py TIMESERIES_CSV OUT_PNG [--tool NAME] [--scene TOML | --axis=AXIS]
        [--steady START END] [--append-csv FILE --label TEXT]
 
-The draft is minus the tool's force component along its travel axis (default: the mesh column
-prefix NAME = "sweep", axis x, and a travel along +x). The steady window defaults to the second
-half of the run. Prints the mean and standard deviation of the draft over the window and,
-with --append-csv, appends them to FILE as the row "TEXT,mean,std" (as printed).
+The travel direction d is the tool's: with --scene, the direction of the first non-zero velocity
+of the [[mesh]] named NAME in that scene's [mesh.motion]; else --axis=AXIS (x, -x, y, -y, z or
+-z; default x). With F the tool's force (columns NAME_fx, NAME_fy, NAME_fz, default NAME = "sweep")
+and u the upward unit vector (against the scene's gravity; +z without a scene): draft = −F·d,
+vertical = F·u, lateral = F·(u × d) (to the left of the travel). The steady window defaults to
+the second half of the run. Prints the mean and standard deviation of each over the window and,
+with --append-csv, appends the draft's to FILE as the row "TEXT,mean,std" (as printed).
 """
 import argparse
 import csv
+import math
 import sys
+import tomllib
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+AXES = {"x": (1, 0, 0), "y": (0, 1, 0), "z": (0, 0, 1)}
+
+
+def unit(v):
+    n = math.sqrt(sum(c * c for c in v))
+    return tuple(c / n for c in v)
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def scene_directions(path, tool):
+    """Travel direction of mesh `tool` and the upward direction, from scene file `path`."""
+    with open(path, "rb") as f:
+        scene = tomllib.load(f)
+    gravity = scene.get("simulation", {}).get("gravity", [0, 0, -9.81])
+    for index, mesh in enumerate(scene.get("mesh", [])):
+        if mesh.get("name", f"mesh{index}") != tool:
+            continue
+        for v in mesh.get("motion", {}).get("velocities", []):
+            if any(c != 0 for c in v):
+                return unit(v), unit([-c for c in gravity])
+        sys.exit(f"plot_draft.py: mesh '{tool}' of {path} does not move; give --axis")
+    sys.exit(f"plot_draft.py: {path} has no [[mesh]] named '{tool}'")
+
+
+def axis_direction(text):
+    sign = -1 if text.startswith("-") else 1
+    return tuple(sign * c for c in AXES[text.lstrip("-")])
+
+
+def mean_std(values):
+    mean = sum(values) / len(values)
+    return mean, (sum((v - mean) ** 2 for v in values) / len(values)) ** 0.5
+
+
+def components(rows, tool, travel, up):
+    """Time and the draft, vertical and lateral force of each row."""
+    lateral = cross(up, travel)
+    time, out = [], {"draft": [], "vertical": [], "lateral": []}
+    for r in rows:
+        force = tuple(float(r[f"{tool}_f{c}"]) for c in "xyz")
+        time.append(float(r["time"]))
+        out["draft"].append(-dot(force, travel))
+        out["vertical"].append(dot(force, up))
+        out["lateral"].append(dot(force, lateral))
+    return time, out
+
+
+def plot(time, forces, window, tool, png):
+    start, end = window
+    fig, axes = plt.subplots(3, 1, figsize=(7, 8), sharex=True)
+    stats = {}
+    for ax, (name, values) in zip(axes, forces.items()):
+        steady = [v for t, v in zip(time, values) if start <= t <= end]
+        stats[name] = (*mean_std(steady), len(steady))
+        mean, std, _ = stats[name]
+        ax.plot(time, values, lw=0.8, label=f"{name} force")
+        ax.hlines(mean, start, end, colors="C3", lw=2,
+                  label=f"mean {start:.2f}–{end:.2f} s: {mean:.1f} ± {std:.1f} N")
+        ax.set_ylabel(f"{name} [N]")
+        ax.grid(alpha=0.3)
+        ax.legend(loc="lower right")
+    axes[0].set_title(f"{tool}: draft (against the travel), vertical (up), lateral (left)")
+    axes[-1].set_xlabel("time [s]")
+    fig.tight_layout()
+    fig.savefig(png, dpi=120)
+    return stats
 
 
 def main():
@@ -25,7 +104,9 @@ def main():
     parser.add_argument("csv")
     parser.add_argument("png")
     parser.add_argument("--tool", default="sweep")
-    parser.add_argument("--axis", default="x", choices=["x", "y", "z"])
+    direction = parser.add_mutually_exclusive_group()
+    direction.add_argument("--scene", metavar="TOML")
+    direction.add_argument("--axis", default="x", choices=["x", "-x", "y", "-y", "z", "-z"])
     parser.add_argument("--steady", nargs=2, type=float, metavar=("START", "END"))
     parser.add_argument("--append-csv", metavar="FILE")
     parser.add_argument("--label", metavar="TEXT", help="first fields of the appended row")
@@ -34,31 +115,26 @@ def main():
         parser.error("--append-csv needs --label")
     with open(args.csv, newline="") as f:
         rows = list(csv.DictReader(f))
-    column = f"{args.tool}_f{args.axis}"
-    if not rows or column not in rows[0]:
-        sys.exit(f"plot_draft.py: {args.csv} has no column '{column}'")
-    time = [float(r["time"]) for r in rows]
-    draft = [-float(r[column]) for r in rows]
-    start, end = args.steady if args.steady else (time[-1] / 2, time[-1])
-    window = [d for t, d in zip(time, draft) if start <= t <= end]
-    if not window:
-        sys.exit(f"plot_draft.py: no rows in the steady window {start}..{end} s")
-    mean = sum(window) / len(window)
-    std = (sum((d - mean) ** 2 for d in window) / len(window)) ** 0.5
-    fig, ax = plt.subplots(figsize=(7, 4))
-    ax.plot(time, draft, lw=0.8, label="draft force")
-    ax.hlines(mean, start, end, colors="C3", lw=2,
-              label=f"mean {start:.2f}–{end:.2f} s: {mean:.1f} ± {std:.1f} N")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("draft force [N]")
-    ax.set_title(f"{args.tool}: draft force (−F{args.axis})")
-    ax.grid(alpha=0.3)
-    ax.legend(loc="lower right")
-    fig.tight_layout()
-    fig.savefig(args.png, dpi=120)
-    print(f"draft force over {start:.3g}–{end:.3g} s: {mean:.4g} ± {std:.3g} N "
-          f"({len(window)} rows); plot: {args.png}")
+    missing = [c for c in (f"{args.tool}_f{a}" for a in "xyz") if not rows or c not in rows[0]]
+    if missing:
+        sys.exit(f"plot_draft.py: {args.csv} has no column '{missing[0]}'")
+    if args.scene:
+        travel, up = scene_directions(args.scene, args.tool)
+    else:
+        travel, up = axis_direction(args.axis), (0.0, 0.0, 1.0)
+    if abs(dot(travel, up)) > 1e-9:
+        sys.exit("plot_draft.py: the travel is not horizontal; draft and vertical would mix")
+    time, forces = components(rows, args.tool, travel, up)
+    window = tuple(args.steady) if args.steady else (time[-1] / 2, time[-1])
+    if not any(window[0] <= t <= window[1] for t in time):
+        sys.exit(f"plot_draft.py: no rows in the steady window {window[0]}..{window[1]} s")
+    stats = plot(time, forces, window, args.tool, args.png)
+    for name, (mean, std, count) in stats.items():
+        print(f"{name} force over {window[0]:.3g}–{window[1]:.3g} s: {mean:.4g} ± {std:.3g} N "
+              f"({count} rows)")
+    print(f"plot: {args.png}")
     if args.append_csv:
+        mean, std, _ = stats["draft"]
         with open(args.append_csv, "a") as table:
             table.write(f"{args.label},{mean:.4g},{std:.3g}\n")
 
