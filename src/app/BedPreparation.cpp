@@ -225,9 +225,10 @@ void save_bed(const Scene& scene, const MpiContext& mpi, Checkpoint state) {
   if (mpi.is_root()) print_bed_summary(scene, result, state.time, path);
 }
 
-BedReader BedLoader::reader(FilePart part) {
-  return [this, part](const std::string& path) {
+BedReader BedLoader::reader(const Scene& scene, FilePart part) {
+  return [this, &scene, part](const std::string& path) {
     Checkpoint bed = read_checkpoint(path, part);
+    map_materials_by_name(bed, path, scene);
     path_ = path;
     history_ = std::move(bed.history);
     return std::move(bed.particles);

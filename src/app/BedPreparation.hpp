@@ -57,8 +57,9 @@ void save_bed(const Scene& scene, const MpiContext& mpi, Checkpoint state);
 class BedLoader {
  public:
   /// Reads the rows of `part` of a bed file (of the particles and of each kind of history
-  /// record, as read_checkpoint); its errors are InputErrors naming the file.
-  BedReader reader(FilePart part);
+  /// record, as read_checkpoint), its particles' materials renumbered to those of the same
+  /// names in `scene` (map_materials_by_name); its errors are InputErrors naming the file.
+  BedReader reader(const Scene& scene, FilePart part);
   /// Gives `engine` this rank's part of the bed's contact history when the scene's contact law
   /// keeps as many values per contact (otherwise says on rank 0 that the bed starts without
   /// history) and re-evaluates the forces with it, then frees it. Wall records are kept by wall

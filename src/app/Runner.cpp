@@ -195,11 +195,11 @@ StartShare load_start_share(const Scene& scene, const RunOptions& options, const
     const std::string& path = options.restart_file;
     start.checkpoint = agree_on_failure(mpi.group(), [&] {
       Checkpoint part = read_checkpoint(path, FilePart{rank, ranks});
-      check_checkpoint_fits_scene(part, path, scene);
+      fit_checkpoint_to_scene(part, path, scene);
       return part;
     });
   } else {
-    start.created = create_start_part(mpi.group(), scene, bed.reader(FilePart{rank, ranks}));
+    start.created = create_start_part(mpi.group(), scene, bed.reader(scene, FilePart{rank, ranks}));
   }
   return start;
 }

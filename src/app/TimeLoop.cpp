@@ -156,6 +156,7 @@ Checkpoint TimeLoop::capture(std::uint64_t step) const {
   c.dt = dt_;
   c.dt_fraction = scene_.simulation.dt_auto ? scene_.simulation.dt_fraction : 0.0;
   c.skin = skin_;
+  for (const Material& m : scene_.materials) c.material_names.push_back(m.name);
   return c;
 }
 

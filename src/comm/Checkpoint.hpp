@@ -22,7 +22,9 @@
 /// for field k), snapshot_precision (S u8: bytes per real value of its particle datasets, 8
 /// or 4). The last three are always written but optional when read: without them (a
 /// checkpoint written before they existed) no snapshot has the rank field, and each holds
-/// every field in double precision.
+/// every field in double precision. material_names (K fixed-length strings, written by rank 0:
+/// the writing scene's materials by index; optional when read: without it, a file written
+/// before it existed, materials are taken by index).
 /// Attributes: format_version, history_width (u32), time, dt, dt_fraction, skin (f64), step,
 /// removed, list_build_step (u64; the step of the last neighbour-list build, optional when
 /// read: the step when missing).
@@ -48,7 +50,10 @@ struct Checkpoint {
   std::vector<Real4> list_position_radius;  ///< positions at the last neighbour-list build
   ContactHistory history;
   std::vector<XdmfSnapshot> snapshots;  ///< snapshots written so far (SnapshotWriter::table)
-  double time = 0;                      ///< [s]
+  /// The names of the writing scene's materials, by index (none in files written before the
+  /// names were recorded): a scene that lists its materials otherwise reads them by name.
+  std::vector<std::string> material_names;
+  double time = 0;  ///< [s]
   std::uint64_t step = 0;
   std::uint64_t list_build_step = 0;  ///< step of the last neighbour-list build
   std::uint64_t removed = 0;          ///< particles removed so far for leaving the domain
@@ -79,10 +84,16 @@ void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& c
 /// snapshot_precision other than 4 and 8. Particle values are checked in the part read.
 Checkpoint read_checkpoint(const std::string& path, FilePart part = {});
 
-/// Throws InputError naming `path` when `checkpoint` refers to a material or a wall that
-/// `scene` does not define, or holds another number of history values per contact than the
-/// scene's contact law keeps (contact_history_width): it was written with another law.
-void check_checkpoint_fits_scene(const Checkpoint& checkpoint, const std::string& path,
-                                 const Scene& scene);
+/// Renumbers the particles' materials of `checkpoint` (read from `path`) to the materials of
+/// the same names in `scene` when the file records names (material_names); throws InputError
+/// naming `path` and the scene's file when the scene lacks one of the particles' materials, or
+/// a particle's index has no recorded name.
+void map_materials_by_name(Checkpoint& checkpoint, const std::string& path, const Scene& scene);
+
+/// map_materials_by_name, then throws InputError naming `path` when `checkpoint` refers to a
+/// material or a wall that `scene` does not define, or holds another number of history values
+/// per contact than the scene's contact law keeps (contact_history_width): it was written with
+/// another law.
+void fit_checkpoint_to_scene(Checkpoint& checkpoint, const std::string& path, const Scene& scene);
 
 }  // namespace gpudem

@@ -324,6 +324,20 @@ void read_attributes(const Reader& r, Checkpoint& c) {
   if (!(std::isfinite(c.skin) && c.skin >= 0)) r.reject("attribute 'skin' is not finite and >= 0");
 }
 
+/// The index of the scene's material named `name`; the material count when there is none.
+std::size_t material_index_by_name(const Scene& scene, const std::string& name) {
+  std::size_t k = 0;
+  while (k < scene.materials.size() && scene.materials[k].name != name) ++k;
+  return k;
+}
+
+/// The scene's material names, quoted and separated by commas.
+std::string material_list(const Scene& scene) {
+  std::string list;
+  for (const Material& m : scene.materials) list += (list.empty() ? "'" : ", '") + m.name + "'";
+  return list;
+}
+
 }  // namespace
 
 Checkpoint read_checkpoint(const std::string& path, FilePart part) {
@@ -334,10 +348,34 @@ Checkpoint read_checkpoint(const std::string& path, FilePart part) {
   read_particles(reader, part, c);
   read_history(reader, part, c.history);
   read_snapshot_table(reader, c.snapshots);
+  if (reader.has("material_names")) c.material_names = reader.strings("material_names");
   return c;
 }
 
-void check_checkpoint_fits_scene(const Checkpoint& c, const std::string& path, const Scene& scene) {
+void map_materials_by_name(Checkpoint& c, const std::string& path, const Scene& scene) {
+  if (c.material_names.empty()) return;  // a file from before the names: by index
+  std::vector<MaterialId> to_scene(c.material_names.size());
+  for (std::size_t k = 0; k < to_scene.size(); ++k)
+    to_scene[k] = static_cast<MaterialId>(material_index_by_name(scene, c.material_names[k]));
+  ParticleStore& p = c.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const MaterialId m = p.material[i];
+    if (m >= to_scene.size())
+      throw InputError(path, 0, "",
+                       "particle id " + std::to_string(p.id[i]) + " has material index " +
+                           std::to_string(m) + " but the file names " +
+                           std::to_string(to_scene.size()) + " material(s)");
+    if (to_scene[m] == scene.materials.size())
+      throw InputError(path, 0, "",
+                       "its particles are of material '" + c.material_names[m] +
+                           "', which the scene " + scene.file + " does not define (it defines " +
+                           material_list(scene) + "); add a [[material]] of that name");
+    p.material[i] = to_scene[m];
+  }
+}
+
+void fit_checkpoint_to_scene(Checkpoint& c, const std::string& path, const Scene& scene) {
+  map_materials_by_name(c, path, scene);
   const ParticleStore& p = c.particles;
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.material[i] >= scene.materials.size())

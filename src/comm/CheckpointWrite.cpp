@@ -90,6 +90,27 @@ void write_history(MPI_Comm comm, const ParallelFile& file, const ContactHistory
     file.write_dataset(real_rows("mesh_history", h.mesh_values.data(), h.width), meshes);
 }
 
+/// Dataset `name` of rank 0's `texts` (the other ranks write no rows), as null-terminated
+/// fixed-length strings. Collective.
+void write_text_rows(MPI_Comm comm, const H5Calls& h5, const ParallelFile& file, const char* name,
+                     const std::vector<std::string>& texts) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const std::vector<std::string> rows = rank == 0 ? texts : std::vector<std::string>{};
+  const Slice slice = global_slice(comm, rows.size());
+  std::uint64_t local_width = 1, width = 1;
+  for (const std::string& text : rows)
+    local_width = std::max<std::uint64_t>(local_width, text.size() + 1);
+  MPI_Allreduce(&local_width, &width, 1, MPI_UINT64_T, MPI_MAX, comm);
+  std::vector<char> packed(rows.size() * width, '\0');
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    std::memcpy(packed.data() + k * width, rows[k].data(), rows[k].size());
+  const std::string what = std::string("(") + name + ")";
+  H5Handle text = h5.handle(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy" + what);
+  h5.check(H5Tset_size(text.id(), width), "H5Tset_size" + what);
+  file.write_dataset({name, packed.data(), text.id(), text.id(), 1, 1, 0}, slice);
+}
+
 /// The snapshot table, rank 0's rows only; file names as null-terminated fixed-length strings.
 void write_snapshot_table(MPI_Comm comm, const H5Calls& h5, const ParallelFile& file,
                           const std::vector<XdmfSnapshot>& table) {
@@ -97,26 +118,20 @@ void write_snapshot_table(MPI_Comm comm, const H5Calls& h5, const ParallelFile& 
   MPI_Comm_rank(comm, &rank);
   const std::vector<XdmfSnapshot> rows = rank == 0 ? table : std::vector<XdmfSnapshot>{};
   const Slice slice = global_slice(comm, rows.size());
-  std::uint64_t local_width = 1, width = 1;
-  for (const XdmfSnapshot& s : rows)
-    local_width = std::max<std::uint64_t>(local_width, s.h5_file.size() + 1);
-  MPI_Allreduce(&local_width, &width, 1, MPI_UINT64_T, MPI_MAX, comm);
-  std::vector<char> names(rows.size() * width, '\0');
+  std::vector<std::string> names;
   std::vector<double> times;
   std::vector<std::uint64_t> counts;
   std::vector<std::uint8_t> rank_fields, precisions;
   std::vector<std::uint32_t> fields;
   for (std::size_t k = 0; k < rows.size(); ++k) {
-    std::memcpy(names.data() + k * width, rows[k].h5_file.data(), rows[k].h5_file.size());
+    names.push_back(rows[k].h5_file);
     times.push_back(rows[k].time);
     counts.push_back(rows[k].count);
     rank_fields.push_back(rows[k].layout.rank_field ? 1 : 0);
     fields.push_back(rows[k].layout.fields);
     precisions.push_back(static_cast<std::uint8_t>(real_precision(rows[k])));
   }
-  H5Handle text = h5.handle(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy(snapshot_file)");
-  h5.check(H5Tset_size(text.id(), width), "H5Tset_size(snapshot_file)");
-  file.write_dataset({"snapshot_file", names.data(), text.id(), text.id(), 1, 1, 0}, slice);
+  write_text_rows(comm, h5, file, "snapshot_file", names);
   file.write_dataset(real_rows("snapshot_time", times.data(), 1), slice);
   file.write_dataset(id_rows("snapshot_count", counts.data()), slice);
   file.write_dataset(
@@ -177,6 +192,7 @@ void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& c
     write_particles(comm, file, checkpoint);
     write_history(comm, file, checkpoint.history);
     write_snapshot_table(comm, h5, file, checkpoint.snapshots);
+    write_text_rows(comm, h5, file, "material_names", checkpoint.material_names);
     write_attributes(file, checkpoint);
     file.close();
   }

@@ -312,7 +312,7 @@ TEST_F(BedPreparation, MissingBedIsRefused) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-TEST_F(BedPreparation, BedMaterialBeyondTheSceneIsRefused) {
+TEST_F(BedPreparation, BedMaterialIndexBeyondTheFilesNamesIsRefused) {
   const fs::path copy = dir_ / "bed.h5";
   fs::copy_file(bed(), copy);
   const std::size_t n = read_checkpoint(copy.string()).particles.size();
@@ -324,9 +324,27 @@ TEST_F(BedPreparation, BedMaterialBeyondTheSceneIsRefused) {
   const test::RunResult r = test::run_binary(scene(replace(kFromBedScene, "BED", copy.string())) +
                                              " --output-dir " + out.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("key 'insert[0].bed': bed file '" + copy.string() + "': particle id " +
-                          std::to_string(id) +
-                          " has material index 1 but the scene defines 1 material(s)"),
+  EXPECT_NE(r.output.find("key 'insert[0].bed': cannot read the bed: " + copy.string() +
+                          ": particle id " + std::to_string(id) +
+                          " has material index 1 but the file names 1 material(s)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+/// The bed records its materials by name: a scene that calls its material otherwise does not
+/// take the bed's grains for another material; it is refused, naming both files and the name.
+TEST_F(BedPreparation, BedMaterialTheSceneLacksIsRefusedNamingBothFiles) {
+  std::string text = replace(kFromBedScene, "BED", bed().string());
+  for (std::size_t at = text.find("\"sand\""); at != std::string::npos;
+       at = text.find("\"sand\"", at))
+    text.replace(at, 6, "\"loam\"");
+  const fs::path out = dir_ / "out";
+  const test::RunResult r = test::run_binary(scene(text) + " --output-dir " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("key 'insert[0].bed': cannot read the bed: " + bed().string() +
+                          ": its particles are of material 'sand', which the scene " +
+                          (dir_ / "scene.toml").string() + " does not define (it defines 'loam')"),
             std::string::npos)
       << r.output;
   EXPECT_FALSE(fs::exists(out));
@@ -346,8 +364,8 @@ TEST_F(BedPreparation, ProblemInAnotherRanksPartOfABedAloneIsRefusedOnEveryRank)
   const test::RunResult r = test::run_binary_on_ranks(
       2, scene(replace(kBedAloneScene, "BED", copy.string())) + " --output-dir " + out.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  const std::string needle = "key 'insert[0].bed': bed file '" + copy.string() + "': particle id " +
-                             std::to_string(id) + " has material index 1";
+  const std::string needle = "key 'insert[0].bed': cannot read the bed: " + copy.string() +
+                             ": particle id " + std::to_string(id) + " has material index 1";
   const std::size_t first = r.output.find(needle);
   EXPECT_NE(first, std::string::npos) << r.output;
   EXPECT_EQ(r.output.find(needle, first + 1), std::string::npos) << "reported twice:\n" << r.output;

@@ -11,6 +11,7 @@
 #include <mpi.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -447,22 +448,22 @@ TEST_F(DamagedCheckpoint, FieldSetsBeyondTheFieldsAndOtherPrecisionsAreRejected)
 }
 
 TEST_F(DamagedCheckpoint, MaterialWallOrMeshBeyondTheSceneIsRejected) {
-  const Checkpoint c = read_checkpoint(path());  // materials 0..2, walls 0..4, mesh records
+  Checkpoint c = read_checkpoint(path());  // materials 0..2, walls 0..4, mesh records
   Scene scene;
   scene.materials.resize(3);
   scene.walls.resize(5);
   try {
-    check_checkpoint_fits_scene(c, path(), scene);
+    fit_checkpoint_to_scene(c, path(), scene);
     ADD_FAILURE() << "particle-mesh springs were accepted by a scene without meshes";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("but the scene defines no mesh"), std::string::npos)
         << e.what();
   }
   scene.meshes.resize(1);
-  EXPECT_NO_THROW(check_checkpoint_fits_scene(c, path(), scene));
+  EXPECT_NO_THROW(fit_checkpoint_to_scene(c, path(), scene));
   scene.materials.resize(2);
   try {
-    check_checkpoint_fits_scene(c, path(), scene);
+    fit_checkpoint_to_scene(c, path(), scene);
     ADD_FAILURE() << "a material index beyond the scene was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("material index 2"), std::string::npos) << e.what();
@@ -470,25 +471,60 @@ TEST_F(DamagedCheckpoint, MaterialWallOrMeshBeyondTheSceneIsRejected) {
   }
   scene.materials.resize(3);
   scene.walls.resize(4);
-  EXPECT_THROW(check_checkpoint_fits_scene(c, path(), scene), InputError);
+  EXPECT_THROW(fit_checkpoint_to_scene(c, path(), scene), InputError);
+}
+
+/// A checkpoint records its materials' names; a scene that lists them in another order reads
+/// each particle's material by name, and one that lacks a name is refused naming both files.
+TEST_F(CheckpointFile, MaterialsAreMatchedByName) {
+  Checkpoint part = random_part(comm_rank());
+  part.material_names = {"steel", "soil", "clay"};
+  write_checkpoint(MPI_COMM_WORLD, dir_, part);
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (comm_rank() != 0) return;
+  Checkpoint c = read_checkpoint(path());
+  EXPECT_EQ(c.material_names, part.material_names);
+  const std::vector<MaterialId> written = c.particles.material;
+  ASSERT_NE(std::count(written.begin(), written.end(), 2u), 0) << "no particle of clay";
+  Scene scene;
+  scene.file = "till.toml";
+  for (const char* name : {"clay", "soil", "steel"}) {
+    scene.materials.emplace_back();
+    scene.materials.back().name = name;
+  }
+  map_materials_by_name(c, path(), scene);
+  for (std::size_t i = 0; i < written.size(); ++i)
+    EXPECT_EQ(c.particles.material[i], 2 - written[i]) << "particle " << i;
+  scene.materials.erase(scene.materials.begin());
+  Checkpoint again = read_checkpoint(path());
+  try {
+    map_materials_by_name(again, path(), scene);
+    ADD_FAILURE() << "a material the scene lacks was accepted";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path() + ": its particles are of material 'clay', which the scene "
+                                    "till.toml does not define (it defines 'soil', 'steel')"),
+              std::string::npos)
+        << message;
+  }
 }
 
 TEST_F(DamagedCheckpoint, HistoryOfAnotherContactLawIsRejected) {
-  const Checkpoint c = read_checkpoint(path());  // 4 values per contact
+  Checkpoint c = read_checkpoint(path());  // 4 values per contact
   Scene scene;
   scene.materials.resize(3);
   scene.walls.resize(5);
   scene.meshes.resize(1);
   for (const TangentialLaw tangential : {TangentialLaw::LinearHistory, TangentialLaw::Mindlin}) {
     scene.contact.model.tangential = tangential;
-    EXPECT_NO_THROW(check_checkpoint_fits_scene(c, path(), scene));
+    EXPECT_NO_THROW(fit_checkpoint_to_scene(c, path(), scene));
   }
   const auto expect_refused_for = [&](TangentialLaw tangential, RollingLaw rolling,
                                       const std::string& keeps) {
     scene.contact.model.tangential = tangential;
     scene.contact.model.rolling = rolling;
     try {
-      check_checkpoint_fits_scene(c, path(), scene);
+      fit_checkpoint_to_scene(c, path(), scene);
       ADD_FAILURE() << "a history of 4 values per contact fitted a law keeping " << keeps;
     } catch (const InputError& e) {
       const std::string message = e.what();

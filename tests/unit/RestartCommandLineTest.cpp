@@ -425,9 +425,9 @@ TEST_F(RefusedRestart, InconsistentLengths) {
   expect_refused("dataset 'material' has 2 rows but 'id' has 50");
 }
 
-TEST_F(RefusedRestart, MaterialBeyondTheScene) {
+TEST_F(RefusedRestart, MaterialIndexBeyondTheFilesNames) {
   test::replace_u32_dataset(bad(), "material", std::vector<std::uint32_t>(50, 3));
-  expect_refused("material index 3 but the scene defines 1 material");
+  expect_refused("material index 3 but the file names 1 material");
 }
 
 TEST_F(RefusedRestart, ProblemInAnotherRanksPartIsRefusedOnEveryRank) {
@@ -441,7 +441,7 @@ TEST_F(RefusedRestart, ProblemInAnotherRanksPartIsRefusedOnEveryRank) {
       test::run_binary_on_ranks(2, scene(kBedScene) + " --set insert.0.count=50 " + "--restart " +
                                        bad() + " --output-dir " + out.string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  const std::string needle = "has material index 3 but the scene defines 1 material";
+  const std::string needle = "has material index 3 but the file names 1 material";
   const std::size_t first = r.output.find(needle);
   EXPECT_NE(first, std::string::npos) << r.output;
   EXPECT_EQ(r.output.find(needle, first + 1), std::string::npos) << "reported twice:\n" << r.output;
