@@ -19,6 +19,7 @@ bundler=../shared/gpu-node/bundle.sh
 [ -x "$bundler" ] || { echo "gpu_bundle: $bundler not found" >&2; exit 2; }
 BUILD_DIR=$build GPUDEM_CMAKE_ARGS="-DGPUDEM_ENABLE_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=$arch \
 -DGPUDEM_LIBRARY_TYPE=SHARED" scripts/setup.sh
+cmake --build "$build" --target gpudem_tests -j "$(nproc)"
 mkdir -p gpu-bundle
 python3 scripts/gpu_manifest.py "$build" . gpu-bundle/tests.sh
 mapfile -t tests < gpu-bundle/tests.sh.executables

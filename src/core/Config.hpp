@@ -7,9 +7,14 @@
 /// Before a GPUDEM_HD template that calls a callable it is given: the call is checked where the
 /// template is instantiated, so host-only callables may be passed from host code.
 #define GPUDEM_HD_CALLS_ANY _Pragma("nv_exec_check_disable")
+/// A GPUDEM_HD function that the device code calls instead of inlining: a law-independent step
+/// of every law's kernels (the mesh contact search) is then compiled once per translation unit
+/// instead of once per kernel. Host code inlines as the compiler sees fit.
+#define GPUDEM_HD_CALLED __host__ __device__ __noinline__
 #else
 #define GPUDEM_HD
 #define GPUDEM_HD_CALLS_ANY
+#define GPUDEM_HD_CALLED
 #endif
 
 namespace gpudem {

@@ -58,9 +58,10 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
  private:
   /// The particle arrays the law reads; spins only when it needs them.
   static ParticleView<P> view(const ContactInputs<P, S>& in) {
-    ParticleView<P> v = in.particles;
-    if constexpr (!Law::needs_spin) v.angular_velocity = nullptr;
-    return v;
+    if constexpr (Law::needs_spin)
+      return in.particles;
+    else
+      return without_spin(in.particles);
   }
 
   /// The history values as the law's records, written.

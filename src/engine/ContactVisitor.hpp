@@ -6,6 +6,7 @@
 /// visitors, so the contact geometry lives in one place. The sweep loads only what the
 /// contact law's capability flags ask for (spins, inertias, history).
 #include <cstdint>
+#include <type_traits>
 
 #include "core/Config.hpp"
 #include "core/ContactParams.hpp"
@@ -32,6 +33,65 @@ struct ParticleView {
   GPUDEM_HD Real4 velocity(std::size_t i) const { return vec4_cast<Real>(velocity_inv_mass[i]); }
   GPUDEM_HD Vec3 spin(std::size_t i) const { return vec_cast<Real>(angular_velocity[i]); }
 };
+
+/// The state scalar of a particle view chosen at run time, double or float: the force computes
+/// of a float law serve both the mixed policy (state in double) and the float policy (state in
+/// float), so each float law is compiled once per backend, not once per policy.
+struct EitherScalar {};
+
+/// The particle arrays of a state held in double or in float, read in Real as ParticleView<P>
+/// reads them; the branch on `is_float` is the same for every particle of a launch.
+template <>
+struct ParticleView<EitherScalar> {
+  ParticleView<double> in_double;  ///< the arrays when the state is held in double
+  ParticleView<float> in_float;    ///< the arrays when it is held in float
+  bool is_float;
+  const MaterialId* material;
+
+  GPUDEM_HD Real4 position(std::size_t i) const {
+    return is_float ? in_float.position(i) : in_double.position(i);
+  }
+  GPUDEM_HD Real4 velocity(std::size_t i) const {
+    return is_float ? in_float.velocity(i) : in_double.velocity(i);
+  }
+  GPUDEM_HD Vec3 spin(std::size_t i) const {
+    return is_float ? in_float.spin(i) : in_double.spin(i);
+  }
+};
+
+/// The state scalar of the particle views a law of scalar S reads: Real for a double law (the
+/// double policy), either for a float law (the mixed and float policies).
+template <class S>
+using ContactViewScalar = std::conditional_t<std::is_same_v<S, float>, EitherScalar, Real>;
+
+/// A particle system's view as the force computes of law scalar S read it.
+template <class S, class P>
+ParticleView<ContactViewScalar<S>> contact_view(const ParticleView<P>& v) {
+  if constexpr (std::is_same_v<ContactViewScalar<S>, P>) {
+    return v;
+  } else {
+    ParticleView<EitherScalar> either{};
+    either.is_float = std::is_same_v<P, float>;
+    if constexpr (std::is_same_v<P, float>)
+      either.in_float = v;
+    else
+      either.in_double = v;
+    either.material = v.material;
+    return either;
+  }
+}
+
+/// The view without its spins, for a law that does not read them.
+template <class P>
+ParticleView<P> without_spin(ParticleView<P> v) {
+  if constexpr (std::is_same_v<P, EitherScalar>) {
+    v.in_double.angular_velocity = nullptr;
+    v.in_float.angular_velocity = nullptr;
+  } else {
+    v.angular_velocity = nullptr;
+  }
+  return v;
+}
 
 /// Everything besides particles that a contact sweep needs; the history arrays hold
 /// Law::history_size values per contact and are null for a law without history.
@@ -177,31 +237,42 @@ GPUDEM_HD typename Law::State mesh_contact_state(const ContactScene<Law>& s, std
   return state;
 }
 
-/// The listed triangles of particle i within contact, reduced to the contacts that count
-/// once where triangles meet (select_mesh_contacts); each one is visited with the history of
-/// the list entry of its triangle (mesh_contact_state), and the entries with no contact are
-/// separated. Each mesh meets the periodic image of i's centre nearest its image centre
-/// (MeshView::image_for). All history is read before any is written.
+/// The listed triangles of particle i (centre and radius xi) within contact, reduced to the
+/// contacts that count once where triangles meet (select_mesh_contacts): returns their number,
+/// kept at the front of `set.items`, with the list entry of each in `entry`. Each mesh meets
+/// the periodic image of i's centre nearest its image centre (MeshView::image_for). The same
+/// for every law, so called, not inlined, by the device code (GPUDEM_HD_CALLED).
+GPUDEM_HD_CALLED inline int find_mesh_contacts(std::uint32_t i, Real4 xi, const MeshView& m,
+                                               const PeriodicBox& box, MeshContactCandidates& set,
+                                               std::uint32_t* entry) {
+  const std::uint32_t begin = m.offsets[i], end = m.offsets[i + 1];
+  for (std::uint32_t e = begin; e < end; ++e) {
+    const std::uint32_t triangle = m.triangles[e];
+    const TriangleCorners t = m.corners[triangle];
+    add_mesh_candidate(set, m.image_for(box, xyz(xi), m.triangle_mesh[triangle]), xi.w,
+                       m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]], m.ids[triangle]);
+  }
+  const int kept = select_mesh_contacts(set, xi.w);
+  for (int k = 0; k < kept; ++k) {
+    entry[k] = end;
+    for (std::uint32_t e = begin; e < end; ++e)
+      if (m.triangles[e] == set.items[k].ids.triangle) entry[k] = e;
+  }
+  return kept;
+}
+
+/// The mesh contacts of particle i (find_mesh_contacts), each visited with the history of the
+/// list entry of its triangle (mesh_contact_state); the entries with no contact are separated.
+/// All history is read before any is written.
 template <class Law, class Visitor>
 GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi, MaterialId mi,
                                    const ContactScene<Law>& s, Visitor& visit) {
   const MeshView& m = s.mesh;
   const std::uint32_t begin = m.offsets[i], end = m.offsets[i + 1];
   MeshContactCandidates set;
-  for (std::uint32_t e = begin; e < end; ++e) {
-    const std::uint32_t triangle = m.triangles[e];
-    const TriangleCorners t = m.corners[triangle];
-    add_mesh_candidate(set, m.image_for(s.box, xyz(xi), m.triangle_mesh[triangle]), xi.w,
-                       m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]], m.ids[triangle]);
-  }
-  if (set.overflow) visit.mesh_overflow_seen();
-  const int kept = select_mesh_contacts(set, xi.w);
   std::uint32_t entry[MeshContactCandidates::kCapacity];  // list entry of each kept contact
-  for (int k = 0; k < kept; ++k) {
-    entry[k] = end;
-    for (std::uint32_t e = begin; e < end; ++e)
-      if (m.triangles[e] == set.items[k].ids.triangle) entry[k] = e;
-  }
+  const int kept = find_mesh_contacts(i, xi, m, s.box, set, entry);
+  if (set.overflow) visit.mesh_overflow_seen();
   typename Law::State state[MeshContactCandidates::kCapacity];
   if constexpr (Law::history_size > 0)
     for (int k = 0; k < kept; ++k)

@@ -51,7 +51,9 @@ class ParticleSystem final : public StepEngine {
   using StateVec = Vec3T<P>;  ///< angular velocity
 
  public:
-  ParticleSystem(const EngineSetup& setup, std::unique_ptr<ForceCompute<Space, P, S>> law)
+  using LawView = ContactViewScalar<S>;  ///< the state scalar of the views the law reads
+
+  ParticleSystem(const EngineSetup& setup, std::unique_ptr<ForceCompute<Space, LawView, S>> law)
       : setup_(setup),
         law_(std::move(law)),
         width_(law_->history_width()),
@@ -216,16 +218,16 @@ class ParticleSystem final : public StepEngine {
   }
 
   /// What the contact law reads: the state, the lists, the walls and meshes, the history.
-  ContactInputs<P, S> contact_inputs() const {
-    return ContactInputs<P, S>{state_view(),
-                               neighbors_.offsets(),
-                               neighbors_.neighbors(),
-                               setup_.material_count,
-                               walls_.data(),
-                               wall_count(),
-                               setup_.box,
-                               meshes_.view(),
-                               history_pointers()};
+  ContactInputs<LawView, S> contact_inputs() const {
+    return ContactInputs<LawView, S>{contact_view<S>(state_view()),
+                                     neighbors_.offsets(),
+                                     neighbors_.neighbors(),
+                                     setup_.material_count,
+                                     walls_.data(),
+                                     wall_count(),
+                                     setup_.box,
+                                     meshes_.view(),
+                                     history_pointers()};
   }
 
   void kick(Real h) {
@@ -433,8 +435,8 @@ class ParticleSystem final : public StepEngine {
   std::size_t carry_over_bytes() const;
 
   EngineSetup setup_;
-  std::unique_ptr<ForceCompute<Space, P, S>> law_;  ///< the contact law
-  std::uint32_t width_;                             ///< history values per contact (the law's)
+  std::unique_ptr<ForceCompute<Space, LawView, S>> law_;  ///< the contact law
+  std::uint32_t width_;  ///< history values per contact (the law's)
   OneRankDomain one_rank_;
   DomainLink& domain_;  ///< setup.domain, or one_rank_ when there is none
   DeviceArray<PlaneWall, Space> walls_;

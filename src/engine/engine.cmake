@@ -1,7 +1,7 @@
 # The step engine per backend: the particle system once per precision policy
-# (ParticleSystemInstance.in) and the force computes once per normal law and policy
-# (ForceComputeInstance.in, EngineFactory.hpp), one generated translation unit each so that they
-# compile in parallel; launch tuning.
+# (ParticleSystemInstance.in) and the force computes once per normal law and law scalar, double
+# or float (ForceComputeInstance.in, EngineFactory.hpp), one generated translation unit each so
+# that they compile in parallel; launch tuning.
 add_library(gpudem_engine ${GPUDEM_LIBRARY_TYPE} engine/CoarseGrid.cpp engine/LaunchTuning.cpp
             engine/StepEngineHost.cpp)
 target_link_libraries(gpudem_engine PUBLIC gpudem_contact_model gpudem_mesh)
@@ -18,9 +18,11 @@ function(gpudem_add_engine_instances backend space parallel_for_header extension
     set(file ${dir}/ParticleSystem${backend}${POLICY}.${extension})
     configure_file(${CMAKE_CURRENT_SOURCE_DIR}/engine/ParticleSystemInstance.in ${file} @ONLY)
     target_sources(gpudem_engine PRIVATE ${file})
+  endforeach()
+  foreach(SCALAR double float)
     foreach(LAW Hooke Hertz)
       string(TOLOWER ${LAW} LAW_NAME)
-      set(file ${dir}/ForceCompute${backend}${LAW}${POLICY}.${extension})
+      set(file ${dir}/ForceCompute${backend}${LAW}_${SCALAR}.${extension})
       configure_file(${CMAKE_CURRENT_SOURCE_DIR}/engine/ForceComputeInstance.in ${file} @ONLY)
       target_sources(gpudem_engine PRIVATE ${file})
     endforeach()
@@ -29,7 +31,8 @@ endfunction()
 
 gpudem_add_engine_instances(Host HostSpace engine/ParallelFor.hpp cpp)
 if(GPUDEM_HAVE_CUDA)
-  target_sources(gpudem_engine PRIVATE engine/CudaMemory.cu engine/StepEngineCuda.cu)
+  target_sources(gpudem_engine PRIVATE engine/CudaMemory.cu engine/CudaPrimitives.cu
+                                       engine/StepEngineCuda.cu)
   gpudem_add_engine_instances(Cuda CudaSpace engine/ParallelForCuda.cuh cu)
   set_target_properties(gpudem_engine PROPERTIES CUDA_SEPARABLE_COMPILATION OFF)
   target_compile_options(gpudem_engine PRIVATE $<$<COMPILE_LANGUAGE:CUDA>:--extended-lambda>)

@@ -1,7 +1,8 @@
 // The CUDA backend's sort and slot launches against the host backend (skipped without a device):
 // sort_by_key on random keys with duplicates gives the host sort's order for several bit counts,
 // twice in a row (the kept scratch), and parallel_for with a slot visits every index exactly once
-// at each candidate block size, and exclusive_scan's total does not wrap at 32 bits.
+// at each candidate block size, exclusive_scan's total does not wrap at 32 bits, and reduce_sum
+// and reduce_max give the host's results from one block to a grid whose threads stride.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -94,6 +95,37 @@ TEST(CudaExclusiveScan, TotalDoesNotWrapAt32Bits) {
   EXPECT_EQ(total, (std::uint64_t(1) << 32) + 12);
   EXPECT_EQ(total, host_total);
   EXPECT_EQ(out, host_out);
+}
+
+/// Multiples of ½ from a device array, so that every partial sum is exact in double and the sum
+/// does not depend on the order of the additions.
+struct HalfSteps {
+  const double* values;
+  __host__ __device__ Real operator()(std::size_t i) const { return values[i]; }
+};
+
+TEST(CudaReduce, SumAndMaxEqualTheHostOnesFromOneBlockToAStridingGrid) {
+  if (!have_device()) GTEST_SKIP() << "no CUDA device on this machine";
+  // 1 block, a partly filled block, several blocks, and more indices than the 1,024 blocks of
+  // 256 threads hold, so that threads stride.
+  for (const std::size_t n : {std::size_t(1), std::size_t(255), std::size_t(257),
+                              std::size_t(100000), std::size_t(1000003)}) {
+    std::mt19937_64 random(n);
+    std::uniform_int_distribution<int> half_steps(-2000, 2000);
+    std::vector<double> values(n);
+    for (double& v : values) v = 0.5 * half_steps(random);
+    values[n / 3] = 1500.5;  // the largest, somewhere inside
+    DeviceArray<double, CudaSpace> device_values;
+    device_values.upload(values);
+    const Real host_sum = reduce_sum(HostSpace{}, n, HalfSteps{values.data()});
+    const Real host_max = reduce_max(HostSpace{}, n, Real(-1e9), HalfSteps{values.data()});
+    EXPECT_EQ(reduce_sum(CudaSpace{}, n, HalfSteps{device_values.data()}), host_sum) << n;
+    EXPECT_EQ(reduce_max(CudaSpace{}, n, Real(-1e9), HalfSteps{device_values.data()}), host_max)
+        << n;
+    EXPECT_EQ(host_max, 1500.5);
+  }
+  EXPECT_EQ(reduce_sum(CudaSpace{}, 0, HalfSteps{nullptr}), 0.0);
+  EXPECT_EQ(reduce_max(CudaSpace{}, 0, Real(-7), HalfSteps{nullptr}), -7.0);
 }
 
 }  // namespace
