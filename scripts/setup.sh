@@ -8,8 +8,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(build-essential cmake ninja-build pkg-config libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
-          hdf5-tools libmetis-dev libcli11-dev libgtest-dev libtoml11-dev
+packages=(build-essential cmake ninja-build pkg-config libopenmpi-dev openmpi-bin
+          libhdf5-openmpi-dev hdf5-tools libmetis-dev libcli11-dev libgtest-dev libtoml11-dev
           python3 python3-h5py python3-numpy python3-matplotlib xz-utils "$@")
 
 missing=()
