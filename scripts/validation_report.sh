@@ -3,9 +3,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh > /dev/null
+tests=(test_dynamics test_settling test_contact_history test_normal_impact test_oblique_impact
+       test_friction test_janssen)
+cmake --build build --target "${tests[@]}" -j "$(nproc)" > /dev/null
 out=$(mktemp -d)
-for t in test_dynamics test_settling test_contact_history test_normal_impact test_oblique_impact \
-    test_friction test_janssen; do
+for t in "${tests[@]}"; do
   OMP_NUM_THREADS=${OMP_NUM_THREADS:-2} "build/tests/$t" --gtest_filter='*/host' \
     --gtest_output="xml:$out/$t.xml" > /dev/null
 done
