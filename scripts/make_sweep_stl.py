@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
 """Writes the cultivator sweep tool, a closed triangle mesh, as a binary STL.
 
-Usage: scripts/make_sweep_stl.py [OUT]   (default inputs/tillage/sweep.stl)
+Usage: scripts/make_sweep_stl.py [OUT] [--subdivide N]   (default inputs/tillage/sweep.stl)
+
+--subdivide N splits every triangle into N x N congruent ones (32 N^2 triangles: N = 25 gives
+20,000, N = 40 gives 51,200): the same surface, tessellated as finely as a scanned tool. Points
+on an edge are computed alike by both triangles that share it, so the fine mesh welds closed.
 
 Coordinates in metres; the tool travels along +x; z is up; the nose of the sweep (its lowest,
 foremost point) is the origin, so a scene places the tool at its working depth by the offset.
@@ -18,9 +22,9 @@ its rear face where the wings' inner edges meet (0.087 m behind the nose), from 
 surface (its bottom follows the lift angle) up to z = 0.6 m.
 The blade is 20 triangles (upper and lower surfaces, six side walls), the shank 12.
 """
+import argparse
 import math
 import struct
-import sys
 
 WIDTH = 0.300
 SWEEP_DEG = 35.0
@@ -88,6 +92,27 @@ def shank_triangles(x0, x1, half_width, top):
     return tris
 
 
+def subdivided(t, n):
+    """Triangle t split into n x n congruent triangles. The point with barycentric weights
+    (i, j, k)/n is (i a + j b + k c)/n; on an edge one weight is 0 and the sum is that of the
+    two end points, the same whichever triangle of the edge computes it."""
+    if n == 1:
+        return [t]
+    a, b, c = t
+
+    def point(i, j):
+        k = n - i - j
+        return tuple((i * a[d] + j * b[d] + k * c[d]) / n for d in range(3))
+
+    tris = []
+    for i in range(n):
+        for j in range(n - i):
+            tris.append((point(i + 1, j), point(i, j + 1), point(i, j)))
+            if i + j < n - 1:
+                tris.append((point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)))
+    return tris
+
+
 def normal(t):
     (ax, ay, az), (bx, by, bz), (cx, cy, cz) = t
     ux, uy, uz = bx - ax, by - ay, bz - az
@@ -109,10 +134,18 @@ def write_binary_stl(path, tris):
 
 
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else "inputs/tillage/sweep.stl"
+    parser = argparse.ArgumentParser(description="Writes the cultivator sweep as a binary STL.")
+    parser.add_argument("out", nargs="?", default="inputs/tillage/sweep.stl")
+    parser.add_argument("--subdivide", type=int, default=1, metavar="N",
+                        help="split each triangle into N x N (default 1: 32 triangles)")
+    args = parser.parse_args()
+    if args.subdivide < 1:
+        parser.error(f"--subdivide must be 1 or more, not {args.subdivide}")
     tris, outline = blade_triangles()
     centre_x = outline[3][0]
     tris += shank_triangles(centre_x, centre_x + SHANK_LENGTH, SHANK_WIDTH / 2, SHANK_TOP)
+    tris = [fine for t in tris for fine in subdivided(t, args.subdivide)]
+    out = args.out
     write_binary_stl(out, tris)
     xs = [v[0] for t in tris for v in t]
     print(f"{out}: {len(tris)} triangles, x from {min(xs):.4f} to {max(xs):.4f} m")

@@ -256,7 +256,6 @@ int TimeLoop::stop_unstable(std::uint64_t step, const HealthFailure& f) {
 
 std::string TimeLoop::describe(const HealthFailure& f) {
   if (f.non_finite) return "has a non-finite position or velocity";
-  if (f.mesh_overflow) return "touches more mesh triangles at once than the engine holds (16)";
   return "overlaps by " + std::to_string(f.overlap_ratio * 100) + " % of its radius";
 }
 }  // namespace gpudem

@@ -7,9 +7,6 @@
 
 namespace gpudem {
 
-/// Overlap ratio recorded for a particle whose mesh candidates overflowed (health check).
-constexpr Real kMeshOverflowScore = Real(1e200);
-
 /// Torque of a contact force about i's centre, arm·n × F_t, plus the law's rolling torque.
 template <class Law>
 GPUDEM_HD Vec3T<typename Law::Scalar> contact_torque(const ContactSample<Law>& c,
@@ -39,7 +36,6 @@ struct ForceSum {
   Vec3T<typename Law::Scalar> force;
   Vec3T<typename Law::Scalar> torque;
   Real worst_overlap_ratio = 0;
-  bool mesh_overflow = false;
   GPUDEM_HD void operator()(ContactSample<Law>& c) {
     const typename Law::Force f = evaluate_contact(c, c.state.value, dt);
     if constexpr (Law::history_size > 0) history.of(c)[c.slot] = c.state;
@@ -58,8 +54,6 @@ struct ForceSum {
   GPUDEM_HD void separated_from_mesh(std::uint32_t slot) {
     if constexpr (Law::history_size > 0) history.mesh[slot] = typename Law::State{};
   }
-  /// More triangles within contact than MeshContactCandidates holds: flagged as unhealthy.
-  GPUDEM_HD void mesh_overflow_seen() { mesh_overflow = true; }
 };
 
 /// F_i = m_i g + Σ contacts, T_i = Σ (arm × F + rolling torque) (one thread per particle), from
@@ -83,7 +77,7 @@ struct ComputeForces {
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, sum);
     force[i] = sum.force + vec_cast<S>((Real(1) / particles.velocity(i).w) * gravity);
     if constexpr (Law::needs_spin) torque[i] = sum.torque;
-    overlap_ratio[i] = sum.mesh_overflow ? kMeshOverflowScore : sum.worst_overlap_ratio;
+    overlap_ratio[i] = sum.worst_overlap_ratio;
   }
 };
 

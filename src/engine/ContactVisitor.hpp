@@ -115,7 +115,6 @@ struct IgnoreSeparated {
   GPUDEM_HD void separated(std::uint32_t) {}
   GPUDEM_HD void separated_from_wall(std::uint32_t) {}
   GPUDEM_HD void separated_from_mesh(std::uint32_t) {}
-  GPUDEM_HD void mesh_overflow_seen() {}
 };
 
 /// One touching contact as seen from particle i, its geometry formed in Real from the
@@ -222,84 +221,78 @@ GPUDEM_HD inline bool share_vertex(const TriangleIds& s, const TriangleIds& t) {
 /// entry of the particle on a triangle sharing a vertex that is not in contact now — the
 /// contact slid over from that triangle, and its spring goes with it.
 template <class Law>
-GPUDEM_HD typename Law::State mesh_contact_state(const ContactScene<Law>& s, std::uint32_t begin,
-                                                 std::uint32_t end, std::uint32_t e,
-                                                 const std::uint32_t* in_contact, int kept) {
+GPUDEM_HD typename Law::State mesh_contact_state(const ContactScene<Law>& s,
+                                                 const MeshCandidateSpan& set, std::uint32_t begin,
+                                                 std::uint32_t e) {
   typename Law::State state = s.mesh_history[e];
   if (!is_blank(state, Law::history_size)) return state;
-  const TriangleIds& here = s.mesh.ids[s.mesh.triangles[e]];
-  for (std::uint32_t f = begin; f < end; ++f) {
-    bool touching = false;
-    for (int k = 0; k < kept; ++k) touching = touching || in_contact[k] == f;
-    if (touching || is_blank(s.mesh_history[f], Law::history_size)) continue;
-    if (share_vertex(here, s.mesh.ids[s.mesh.triangles[f]])) return s.mesh_history[f];
+  const TriangleIds& here = set.ids(e - begin);
+  for (std::uint32_t k = 0; k < set.count; ++k) {
+    if (set.is_contact(k) || is_blank(s.mesh_history[begin + k], Law::history_size)) continue;
+    if (share_vertex(here, set.ids(k))) return s.mesh_history[begin + k];
   }
   return state;
 }
 
 /// The listed triangles of particle i (centre and radius xi) within contact, reduced to the
-/// contacts that count once where triangles meet (select_mesh_contacts): returns their number,
-/// kept at the front of `set.items`, with the list entry of each in `entry`. Each mesh meets
-/// the periodic image of i's centre nearest its image centre (MeshView::image_for). The same
-/// for every law, so called, not inlined, by the device code (GPUDEM_HD_CALLED).
+/// contacts that count once where triangles meet (select_mesh_contacts): fills the particle's
+/// candidates (MeshView::candidates_of, one per list entry, contacts marked) and returns the
+/// number of contacts. Each mesh meets the periodic image of i's centre nearest its image centre
+/// (MeshView::image_for). The same for every law, so called, not inlined, by the device code
+/// (GPUDEM_HD_CALLED).
 GPUDEM_HD_CALLED inline int find_mesh_contacts(std::uint32_t i, Real4 xi, const MeshView& m,
-                                               const PeriodicBox& box, MeshContactCandidates& set,
-                                               std::uint32_t* entry) {
-  const std::uint32_t begin = m.offsets[i], end = m.offsets[i + 1];
-  for (std::uint32_t e = begin; e < end; ++e) {
-    const std::uint32_t triangle = m.triangles[e];
+                                               const PeriodicBox& box) {
+  const MeshCandidateSpan set = m.candidates_of(i);
+  const std::uint32_t begin = m.offsets[i];
+  for (std::uint32_t k = 0; k < set.count; ++k) {
+    const std::uint32_t triangle = m.triangles[begin + k];
     const TriangleCorners t = m.corners[triangle];
-    add_mesh_candidate(set, m.image_for(box, xyz(xi), m.triangle_mesh[triangle]), xi.w,
-                       m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]], m.ids[triangle]);
+    evaluate_mesh_candidate(set.items[k], m.image_for(box, xyz(xi), m.triangle_mesh[triangle]),
+                            xi.w, m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]],
+                            m.ids[triangle]);
   }
-  const int kept = select_mesh_contacts(set, xi.w);
-  for (int k = 0; k < kept; ++k) {
-    entry[k] = end;
-    for (std::uint32_t e = begin; e < end; ++e)
-      if (m.triangles[e] == set.items[k].ids.triangle) entry[k] = e;
-  }
-  return kept;
+  return select_mesh_contacts(set, xi.w);
 }
 
-/// The mesh contacts of particle i (find_mesh_contacts), each visited with the history of the
-/// list entry of its triangle (mesh_contact_state); the entries with no contact are separated.
-/// All history is read before any is written.
+/// The contact of particle i with the candidate on list entry e, its history not yet set.
+template <class Law>
+GPUDEM_HD ContactSample<Law> mesh_contact_sample(Real4 xi, Real4 vi, Vec3 wi, MaterialId mi,
+                                                 const ContactScene<Law>& s,
+                                                 const MeshContactCandidate& hit, std::uint32_t e) {
+  const MeshView& m = s.mesh;
+  const std::uint32_t mesh = m.triangle_mesh[hit.triangle];
+  ContactSample<Law> c;
+  c.point.normal = mesh_contact_normal(hit, m.image_for(s.box, xyz(xi), mesh));
+  c.point.overlap = mesh_contact_overlap(hit, xi.w);
+  c.arm = xi.w - Real(0.5) * c.point.overlap;
+  describe_wall(c, xi, vi, wi, m.kinematics[mesh].at(hit.point));
+  c.min_radius = xi.w;
+  c.params = &s.pair_params[mi * s.material_count + m.material[mesh]];
+  c.wall = -1;
+  c.mesh = static_cast<std::int32_t>(mesh);
+  c.slot = e;
+  return c;
+}
+
+/// The mesh contacts of particle i (find_mesh_contacts) in list order, each visited with the
+/// history of its list entry (mesh_contact_state); then the entries with no contact are
+/// separated. A contact writes only its own entry and reads only its own or one not in contact,
+/// so every history is read before it is written.
 template <class Law, class Visitor>
 GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi, MaterialId mi,
                                    const ContactScene<Law>& s, Visitor& visit) {
   const MeshView& m = s.mesh;
-  const std::uint32_t begin = m.offsets[i], end = m.offsets[i + 1];
-  MeshContactCandidates set;
-  std::uint32_t entry[MeshContactCandidates::kCapacity];  // list entry of each kept contact
-  const int kept = find_mesh_contacts(i, xi, m, s.box, set, entry);
-  if (set.overflow) visit.mesh_overflow_seen();
-  typename Law::State state[MeshContactCandidates::kCapacity];
-  if constexpr (Law::history_size > 0)
-    for (int k = 0; k < kept; ++k)
-      state[k] = mesh_contact_state(s, begin, end, entry[k], entry, kept);
-  for (std::uint32_t e = begin; e < end; ++e) {
-    int found = -1;
-    for (int k = 0; k < kept; ++k)
-      if (entry[k] == e) found = k;
-    if (found < 0) {
-      visit.separated_from_mesh(e);
-      continue;
-    }
-    const MeshContactCandidate& hit = set.items[found];
-    const std::uint32_t mesh = m.triangle_mesh[hit.ids.triangle];
-    ContactSample<Law> c;
-    c.point.normal = mesh_contact_normal(hit, m.image_for(s.box, xyz(xi), mesh));
-    c.point.overlap = mesh_contact_overlap(hit, xi.w);
-    c.arm = xi.w - Real(0.5) * c.point.overlap;
-    describe_wall(c, xi, vi, wi, m.kinematics[mesh].at(hit.point));
-    c.min_radius = xi.w;
-    c.params = &s.pair_params[mi * s.material_count + m.material[mesh]];
-    c.wall = -1;
-    c.mesh = static_cast<std::int32_t>(mesh);
-    c.slot = e;
-    if constexpr (Law::history_size > 0) c.state = state[found];
+  find_mesh_contacts(i, xi, m, s.box);
+  const MeshCandidateSpan set = m.candidates_of(i);
+  const std::uint32_t begin = m.offsets[i];
+  for (std::uint32_t k = 0; k < set.count; ++k) {
+    if (!set.is_contact(k)) continue;
+    ContactSample<Law> c = mesh_contact_sample(xi, vi, wi, mi, s, set.items[k], begin + k);
+    if constexpr (Law::history_size > 0) c.state = mesh_contact_state(s, set, begin, begin + k);
     visit(c);
   }
+  for (std::uint32_t k = 0; k < set.count; ++k)
+    if (!set.is_contact(k)) visit.separated_from_mesh(begin + k);
 }
 
 /// Calls visit(sample) for each contact of particle i with positive overlap.

@@ -89,7 +89,6 @@ struct ContactTerms {
     GPUDEM_HD void separated_from_mesh(std::uint32_t e) {
       if (entry_load) entry_load[e] = Vec3{};
     }
-    GPUDEM_HD void mesh_overflow_seen() {}
   };
   GPUDEM_HD void operator()(std::size_t i) const {
     const std::uint32_t bodies = scene.wall_count + scene.mesh.mesh_count;

@@ -43,6 +43,14 @@ struct MeshView {
   const std::uint32_t* offsets = nullptr;      ///< per-particle candidate lists (CSR)
   const std::uint32_t* triangles = nullptr;
   const Vec3* image_centre = nullptr;  ///< per mesh [m]
+  /// Per candidate-list entry: the closest point of its triangle at the last contact sweep, the
+  /// working memory of find_mesh_contacts (written by the sweep of the entry's particle only).
+  MeshContactCandidate* candidates = nullptr;
+
+  /// The candidates of particle i, one per listed triangle.
+  GPUDEM_HD MeshCandidateSpan candidates_of(std::uint32_t i) const {
+    return {candidates + offsets[i], offsets[i + 1] - offsets[i], ids};
+  }
 
   /// The periodic image of the particle centre x that mesh `mesh` meets: the one nearest the
   /// mesh's image centre (x itself without periodic axes).
@@ -217,6 +225,7 @@ class MeshWalls {
     candidates_.build(vertices_.data(), vertices_.size(), corners_.data(), ids_.size(), region,
                       images, position_radius, n, max_radius, skin);
     parallel_for(Space{}, vertices_.size(), CopyArray<Vec3>{vertices_.data(), at_build_.data()});
+    sweep_candidates_.resize(candidates_.pairs());
     if (history_width_ > 0) {
       DeviceArray<S, Space> fresh(candidates_.pairs() * history_width_);
       if (had_lists) {
@@ -277,7 +286,8 @@ class MeshWalls {
                     kinematics_.data(),
                     candidates_.offsets(),
                     candidates_.triangles(),
-                    image_centre_.data()};
+                    image_centre_.data(),
+                    sweep_candidates_.data()};
   }
   S* history() { return history_.data(); }
   /// History values of all candidate-list entries.
@@ -286,7 +296,7 @@ class MeshWalls {
   std::size_t memory_bytes() const {
     return initial_.bytes() + vertices_.bytes() + at_build_.bytes() + corners_.bytes() +
            ids_.bytes() + triangle_mesh_.bytes() + history_.bytes() + candidates_.memory_bytes() +
-           kept_.bytes();
+           sweep_candidates_.bytes() + kept_.bytes();
   }
 
  private:
@@ -319,6 +329,9 @@ class MeshWalls {
   MeshCandidateList<Space> candidates_;
   std::uint32_t history_width_ = 0;  ///< history values per candidate-list entry
   DeviceArray<S, Space> history_;    ///< per candidate-list entry
+  /// Per candidate-list entry, the contact sweep's working memory (MeshView::candidates): not
+  /// state, so a const view may hand it out for writing.
+  mutable DeviceArray<MeshContactCandidate, Space> sweep_candidates_;
   // The rows kept for the next rebuild: per particle, (triangle, history) entries.
   CsrRows<Space, std::uint32_t, S> kept_;
 };

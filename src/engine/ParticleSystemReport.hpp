@@ -130,8 +130,8 @@ bool ParticleSystem<Space, P, S>::find_unhealthy_here(double limit, HealthFailur
   for (std::size_t i = 0; i < host.size(); ++i) {
     const Real s = host_score(i);
     if (s <= limit) continue;
-    failure = HealthFailure{host.id[i], xyz(host.position_radius[i]), ratio[i],
-                            s == kNonFiniteScore, ratio[i] == kMeshOverflowScore};
+    failure =
+        HealthFailure{host.id[i], xyz(host.position_radius[i]), ratio[i], s == kNonFiniteScore};
     return true;
   }
   return false;

@@ -112,7 +112,6 @@ struct HealthFailure {
   Vec3 position;
   double overlap_ratio = 0;
   bool non_finite = false;
-  bool mesh_overflow = false;  ///< more mesh triangles in contact than one particle can hold
 };
 
 /// The owned particles of one step, copied aside so that a snapshot of that step can be written

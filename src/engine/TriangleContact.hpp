@@ -85,25 +85,35 @@ struct TriangleIds {
   std::uint32_t edge[3] = {0, 0, 0};
 };
 
-/// Closest point of one triangle to a particle centre within reach of the particle.
-/// `feature_id` names the feature globally: the triangle index for a face, the edge id for an
-/// edge, the vertex id for a vertex; `ids` keeps the triangle's topology for the selection.
+/// Whether a candidate-list entry's triangle is within reach of the particle, and whether the
+/// selection kept it as a contact.
+enum class CandidateStatus : std::uint8_t { kOutOfReach, kInReach, kContact };
+
+/// Closest point of one listed triangle to a particle centre. `feature_id` names the feature
+/// globally: the triangle index for a face, the edge id for an edge, the vertex id for a vertex.
 struct MeshContactCandidate {
   Vec3 point;          ///< closest point on the triangle [m]
   Real distance2 = 0;  ///< |point − centre|² [m²]
-  FeatureKind kind = FeatureKind::kFace;
   std::uint32_t feature_id = 0;
-  TriangleIds ids;
+  std::uint32_t triangle = 0;  ///< global triangle index, into the topology
+  FeatureKind kind = FeatureKind::kFace;
+  CandidateStatus status = CandidateStatus::kOutOfReach;
 };
 
-/// The candidates of one particle, a fixed-capacity array (no allocation on the device).
-/// Candidates beyond the capacity are dropped and `overflow` is set: the selection is then
-/// incomplete and the caller must report it.
-struct MeshContactCandidates {
-  static constexpr int kCapacity = 16;
-  MeshContactCandidate items[kCapacity];
-  int count = 0;
-  bool overflow = false;
+/// The candidates of one particle: one per listed triangle, in list order, in memory the caller
+/// owns (the mesh candidate list's per-entry working array), so a particle may touch any number
+/// of triangles. `topology` holds every triangle's welded vertex and edge ids.
+struct MeshCandidateSpan {
+  MeshContactCandidate* items;
+  std::uint32_t count;
+  const TriangleIds* topology;
+  GPUDEM_HD const TriangleIds& ids(std::uint32_t k) const { return topology[items[k].triangle]; }
+  GPUDEM_HD bool in_reach(std::uint32_t k) const {
+    return items[k].status != CandidateStatus::kOutOfReach;
+  }
+  GPUDEM_HD bool is_contact(std::uint32_t k) const {
+    return items[k].status == CandidateStatus::kContact;
+  }
 };
 
 /// Global id of the feature of a triangle: its index, edge id or vertex id.
@@ -113,20 +123,18 @@ GPUDEM_HD inline std::uint32_t global_feature_id(const TriangleFeature& f, const
   return ids.triangle;
 }
 
-/// Adds the triangle (a, b, c) to the candidates of the sphere (centre, radius) when its
-/// closest point lies within reach, 0 < |x − centre| < radius (a centre exactly on the surface
+/// Fills `item` with the closest point of triangle (a, b, c) to the sphere (centre, radius)
+/// and marks it within reach when 0 < |x − centre| < radius (a centre exactly on the surface
 /// has no contact direction). Returns whether the triangle is within reach.
-GPUDEM_HD inline bool add_mesh_candidate(MeshContactCandidates& set, Vec3 centre, Real radius,
-                                         Vec3 a, Vec3 b, Vec3 c, const TriangleIds& ids) {
+GPUDEM_HD inline bool evaluate_mesh_candidate(MeshContactCandidate& item, Vec3 centre, Real radius,
+                                              Vec3 a, Vec3 b, Vec3 c, const TriangleIds& ids) {
   const TriangleFeature f = closest_triangle_feature(centre, a, b, c);
   const Real distance2 = norm2(f.point - centre);
-  if (!(distance2 > 0 && distance2 < radius * radius)) return false;
-  if (set.count == MeshContactCandidates::kCapacity) {
-    set.overflow = true;
-    return true;
-  }
-  set.items[set.count++] = {f.point, distance2, f.kind, global_feature_id(f, ids), ids};
-  return true;
+  const bool within = distance2 > 0 && distance2 < radius * radius;
+  item = {
+      f.point,      distance2, global_feature_id(f, ids),
+      ids.triangle, f.kind,    within ? CandidateStatus::kInReach : CandidateStatus::kOutOfReach};
+  return within;
 }
 
 /// Two triangles find the same closest point when their points lie within this fraction of
@@ -135,55 +143,48 @@ GPUDEM_HD inline bool add_mesh_candidate(MeshContactCandidates& set, Vec3 centre
 constexpr Real kMeshAgreementTolerance = Real(1e-9);
 
 /// Kept contacts closer than this fraction of the radius are one contact. It exceeds the
-/// agreement tolerance by more than the candidate capacity, so that a chain of candidates, each
-/// agreeing with the next, around a vertex collapses into one contact.
+/// agreement tolerance a thousandfold, more than the triangles that meet at any vertex of a
+/// sound mesh, so that a chain of candidates, each agreeing with the next, around a vertex
+/// collapses into one contact.
 constexpr Real kMeshMergeTolerance = Real(1e-6);
 
 namespace triangle_detail {
 
-/// Whether candidate c's triangle has the edge or vertex `id` of the given kind.
-GPUDEM_HD inline bool has_feature(const MeshContactCandidate& c, FeatureKind kind,
-                                  std::uint32_t id) {
-  const std::uint32_t* ids = kind == FeatureKind::kEdge ? c.ids.edge : c.ids.vertex;
+/// Whether a triangle with these ids has the edge or vertex `id` of the given kind.
+GPUDEM_HD inline bool has_feature(const TriangleIds& t, FeatureKind kind, std::uint32_t id) {
+  const std::uint32_t* ids = kind == FeatureKind::kEdge ? t.edge : t.vertex;
   return ids[0] == id || ids[1] == id || ids[2] == id;
 }
 
 /// Whether candidate i's point is a local minimum of the distance to the centre over the mesh:
-/// always for a face; for an edge or vertex when every candidate triangle that has it finds its
-/// own closest point there (within the agreement tolerance, squared).
-GPUDEM_HD inline bool is_local_minimum(const MeshContactCandidates& set, int i, Real tolerance2) {
+/// always for a face; for an edge or vertex when every candidate triangle within reach that has
+/// it finds its own closest point there (within the agreement tolerance, squared).
+GPUDEM_HD inline bool is_local_minimum(const MeshCandidateSpan& set, std::uint32_t i,
+                                       Real tolerance2) {
   const MeshContactCandidate& c = set.items[i];
   if (c.kind == FeatureKind::kFace) return true;
-  for (int j = 0; j < set.count; ++j) {
-    const MeshContactCandidate& other = set.items[j];
-    if (has_feature(other, c.kind, c.feature_id) && norm2(other.point - c.point) > tolerance2)
-      return false;
+  for (std::uint32_t j = 0; j < set.count; ++j) {
+    if (!set.in_reach(j) || !has_feature(set.ids(j), c.kind, c.feature_id)) continue;
+    if (norm2(set.items[j].point - c.point) > tolerance2) return false;
   }
   return true;
 }
 
 /// Whether candidate i's point coincides (within the merge tolerance, squared) with a point
-/// already kept.
-GPUDEM_HD inline bool duplicates_kept(const MeshContactCandidates& set, const bool* kept, int i,
+/// already kept as a contact.
+GPUDEM_HD inline bool duplicates_kept(const MeshCandidateSpan& set, std::uint32_t i,
                                       Real tolerance2) {
-  for (int j = 0; j < set.count; ++j)
-    if (kept[j] && norm2(set.items[j].point - set.items[i].point) <= tolerance2) return true;
+  for (std::uint32_t j = 0; j < set.count; ++j)
+    if (set.is_contact(j) && norm2(set.items[j].point - set.items[i].point) <= tolerance2)
+      return true;
   return false;
-}
-
-/// Moves the kept candidates to the front, in their original order; returns their number.
-GPUDEM_HD inline int compact_kept(MeshContactCandidates& set, const bool* kept) {
-  int count = 0;
-  for (int i = 0; i < set.count; ++i)
-    if (kept[i]) set.items[count++] = set.items[i];
-  set.count = count;
-  return count;
 }
 
 }  // namespace triangle_detail
 
-/// Reduces the candidates of a particle of the given radius to its contacts, each once, and
-/// returns their number (kept at the front of `set.items`). O(k²) in the candidate count.
+/// Marks, among the candidates of a particle of the given radius within reach, its contacts,
+/// each once (status kContact), and returns their number. O(k²) in the candidate count k, with
+/// no bound on k: the candidates live in the caller's memory, one per listed triangle.
 ///
 /// A contact is a local minimum of the distance from the centre over the mesh surface
 /// (Kremmer & Favier 2001, IJNME 51; Su, Gu & Xu 2011, Chem. Eng. Sci. 66; Hu et al. 2013,
@@ -192,10 +193,11 @@ GPUDEM_HD inline int compact_kept(MeshContactCandidates& set, const bool* kept) 
 /// triangle with a closer point beside it shows that the distance still decreases into that
 /// triangle. A triangle that has the feature is never farther than the feature, so it is
 /// always among the candidates within reach. Faces are kept first, then edges, then vertices,
-/// each only if its point is not already kept, so a point reported by several triangles (a
-/// shared edge or vertex, or a point on a boundary that rounding assigns to two faces) counts
-/// once, as its highest-dimensional feature. The candidate closest to the centre always passes
-/// the test, so a particle within reach of the mesh keeps at least one contact.
+/// each in list order and only if its point is not already kept, so a point reported by
+/// several triangles (a shared edge or vertex, or a point on a boundary that rounding assigns
+/// to two faces) counts once, as its highest-dimensional feature. The candidate closest to the
+/// centre always passes the test, so a particle within reach of the mesh keeps at least one
+/// contact.
 ///
 /// This contains the feature-priority rule (keep faces; an edge only if no kept face has it;
 /// a vertex only if no kept face or edge touches it; each edge and vertex once) and also
@@ -209,17 +211,20 @@ GPUDEM_HD inline int compact_kept(MeshContactCandidates& set, const bool* kept) 
 ///   one face normal to the other; beside the wedge, one face contact.
 /// - Concave fold (angle < 180°): a centre inside the fold touching both sides gets two face
 ///   contacts, one per side, as from two planes; the fold edge is not reported from inside.
-GPUDEM_HD inline int select_mesh_contacts(MeshContactCandidates& set, Real radius) {
+GPUDEM_HD inline int select_mesh_contacts(MeshCandidateSpan set, Real radius) {
   using namespace triangle_detail;
   const Real agreement2 = (kMeshAgreementTolerance * radius) * (kMeshAgreementTolerance * radius);
   const Real merge2 = (kMeshMergeTolerance * radius) * (kMeshMergeTolerance * radius);
-  bool kept[MeshContactCandidates::kCapacity] = {};
   const FeatureKind order[3] = {FeatureKind::kFace, FeatureKind::kEdge, FeatureKind::kVertex};
+  int contacts = 0;
   for (FeatureKind kind : order)
-    for (int i = 0; i < set.count; ++i)
-      if (set.items[i].kind == kind)
-        kept[i] = is_local_minimum(set, i, agreement2) && !duplicates_kept(set, kept, i, merge2);
-  return compact_kept(set, kept);
+    for (std::uint32_t i = 0; i < set.count; ++i) {
+      if (!set.in_reach(i) || set.items[i].kind != kind) continue;
+      if (!is_local_minimum(set, i, agreement2) || duplicates_kept(set, i, merge2)) continue;
+      set.items[i].status = CandidateStatus::kContact;
+      ++contacts;
+    }
+  return contacts;
 }
 
 /// Unit contact normal of a selected contact, from the centre to the contact point.

@@ -73,17 +73,30 @@ struct TestMesh {
   }
 };
 
-/// Candidates of every triangle, reduced to the contacts of the sphere (centre, r).
-MeshContactCandidates contacts(const TestMesh& mesh, Vec3 centre, Real r) {
-  MeshContactCandidates set;
+/// The contacts the selection marks, in triangle order.
+struct SelectedContacts {
+  std::vector<MeshContactCandidate> items;
+  int count = 0;
+};
+
+/// Every triangle a candidate of the sphere (centre, r), as the engine keeps one per listed
+/// triangle, reduced to its contacts.
+SelectedContacts contacts(const TestMesh& mesh, Vec3 centre, Real r) {
   const std::vector<TriangleIds> ids = mesh.topology();
+  std::vector<MeshContactCandidate> candidates(mesh.triangles.size());
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
-    add_mesh_candidate(set, centre, r, mesh.vertices[tri[0]], mesh.vertices[tri[1]],
-                       mesh.vertices[tri[2]], ids[t]);
+    evaluate_mesh_candidate(candidates[t], centre, r, mesh.vertices[tri[0]], mesh.vertices[tri[1]],
+                            mesh.vertices[tri[2]], ids[t]);
   }
-  EXPECT_FALSE(set.overflow);
-  select_mesh_contacts(set, r);
+  const MeshCandidateSpan span{candidates.data(), static_cast<std::uint32_t>(candidates.size()),
+                               ids.data()};
+  const int selected = select_mesh_contacts(span, r);
+  SelectedContacts set;
+  for (const MeshContactCandidate& c : candidates)
+    if (c.status == CandidateStatus::kContact) set.items.push_back(c);
+  set.count = static_cast<int>(set.items.size());
+  EXPECT_EQ(set.count, selected);
   return set;
 }
 
@@ -153,7 +166,7 @@ TEST(MeshContact, FaceContactHasFaceNormalTowardsTheMeshAndOverlapRMinusDistance
   const Vec3 foot = 0.2 * s.a + 0.3 * s.b + 0.5 * s.c;
   for (Real side : {1.0, -1.0}) {
     const Vec3 centre = foot + side * height * s.normal;
-    const MeshContactCandidates set = contacts(s.mesh, centre, r);
+    const SelectedContacts set = contacts(s.mesh, centre, r);
     ASSERT_EQ(set.count, 1);
     EXPECT_EQ(set.items[0].kind, FeatureKind::kFace);
     EXPECT_EQ(set.items[0].feature_id, 0u);
@@ -170,7 +183,7 @@ TEST(MeshContact, EdgeContactIsAtTheDistanceToTheSegment) {
   ASSERT_LT(dot(outward, s.c - s.a), 0);
   const Vec3 foot = s.a + along * edge;
   const Vec3 centre = foot + out * outward + height * s.normal;
-  const MeshContactCandidates set = contacts(s.mesh, centre, r);
+  const SelectedContacts set = contacts(s.mesh, centre, r);
   ASSERT_EQ(set.count, 1);
   EXPECT_EQ(set.items[0].kind, FeatureKind::kEdge);
   EXPECT_EQ(set.items[0].feature_id, s.mesh.edge_of(0, 1));
@@ -185,7 +198,7 @@ TEST(MeshContact, VertexContactIsAtTheDistanceToThePoint) {
   const Real r = 0.1;
   const Vec3 away = -0.03 * (unit(s.b - s.a) + unit(s.c - s.a)) + 0.04 * s.normal;
   const Vec3 centre = s.a + away;
-  const MeshContactCandidates set = contacts(s.mesh, centre, r);
+  const SelectedContacts set = contacts(s.mesh, centre, r);
   ASSERT_EQ(set.count, 1);
   EXPECT_EQ(set.items[0].kind, FeatureKind::kVertex);
   EXPECT_EQ(set.items[0].feature_id, 0u);
@@ -194,34 +207,24 @@ TEST(MeshContact, VertexContactIsAtTheDistanceToThePoint) {
   expect_near(mesh_contact_normal(set.items[0], centre), -unit(away), kTight);
 }
 
-TEST(MeshContact, TriangleOutOfReachGivesNoCandidate) {
+TEST(MeshContact, TriangleOutOfReachIsNoCandidate) {
   const SingleTriangle s;
-  MeshContactCandidates set;
+  MeshContactCandidate item;
   const Real distance = 0.1;
   const Vec3 centre = (1.0 / 3) * (s.a + s.b + s.c) + distance * s.normal;
   const TriangleIds ids = s.mesh.topology()[0];
-  EXPECT_FALSE(add_mesh_candidate(set, centre, distance * (1 - 1e-9), s.a, s.b, s.c, ids));
-  EXPECT_EQ(set.count, 0);
-  EXPECT_TRUE(add_mesh_candidate(set, centre, distance * (1 + 1e-9), s.a, s.b, s.c, ids));
-  EXPECT_EQ(set.count, 1);
-}
-
-TEST(MeshContact, CandidatesBeyondCapacitySetOverflow) {
-  const SingleTriangle s;
-  MeshContactCandidates set;
-  const Vec3 centre = (1.0 / 3) * (s.a + s.b + s.c) + 0.05 * s.normal;
-  for (int k = 0; k < MeshContactCandidates::kCapacity; ++k)
-    add_mesh_candidate(set, centre, 0.1, s.a, s.b, s.c, s.mesh.topology()[0]);
-  EXPECT_FALSE(set.overflow);
-  add_mesh_candidate(set, centre, 0.1, s.a, s.b, s.c, s.mesh.topology()[0]);
-  EXPECT_TRUE(set.overflow);
-  EXPECT_EQ(set.count, MeshContactCandidates::kCapacity);
+  EXPECT_FALSE(evaluate_mesh_candidate(item, centre, distance * (1 - 1e-9), s.a, s.b, s.c, ids));
+  EXPECT_EQ(item.status, CandidateStatus::kOutOfReach);
+  EXPECT_EQ(contacts(s.mesh, centre, distance * (1 - 1e-9)).count, 0);
+  EXPECT_TRUE(evaluate_mesh_candidate(item, centre, distance * (1 + 1e-9), s.a, s.b, s.c, ids));
+  EXPECT_EQ(item.status, CandidateStatus::kInReach);
+  EXPECT_EQ(contacts(s.mesh, centre, distance * (1 + 1e-9)).count, 1);
 }
 
 // --- where triangles meet ------------------------------------------------------------------
 
 /// Hertz-like force on the particle, −k δ^{3/2} n, summed over its contacts (k = 1).
-Vec3 contact_force(const MeshContactCandidates& set, Vec3 centre, Real r) {
+Vec3 contact_force(const SelectedContacts& set, Vec3 centre, Real r) {
   Vec3 force{};
   for (int i = 0; i < set.count; ++i)
     force -= std::pow(mesh_contact_overlap(set.items[i], r), 1.5) *
@@ -245,7 +248,7 @@ TEST(MeshContact, CoplanarSquareGivesThePlaneContactAcrossTheSharedDiagonal) {
   for (Real tiny : {1e-9, 1e-12, 1e-15, 1e-17}) offsets.insert(offsets.end(), {tiny, -tiny});
   for (Real offset : offsets) {
     const Vec3 centre = place({0.5 + offset, 0.5 - offset, 0}) + height * normal;
-    const MeshContactCandidates set = contacts(square, centre, r);
+    const SelectedContacts set = contacts(square, centre, r);
     ASSERT_EQ(set.count, 1) << "offset " << offset;
     EXPECT_NEAR(mesh_contact_overlap(set.items[0], r), expected_overlap, kTight);
     expect_near(mesh_contact_normal(set.items[0], centre), -normal, kTight);
@@ -274,7 +277,7 @@ TEST(MeshContact, FlatFanGivesOneContactNearItsSharedVertex) {
       const Real angle = sector_step * kPi / 12 + (sector_step % 3 == 1 ? 0.01 : 0);
       const Vec3 foot = place({distance * std::cos(angle), distance * std::sin(angle), 0});
       const Vec3 centre = foot + height * normal;
-      const MeshContactCandidates set = contacts(fan, centre, r);
+      const SelectedContacts set = contacts(fan, centre, r);
       ASSERT_EQ(set.count, 1) << "distance " << distance << " angle " << angle;
       EXPECT_NEAR(mesh_contact_overlap(set.items[0], r), r - height, kTight);
       expect_near(mesh_contact_normal(set.items[0], centre), -normal, kTight);
@@ -295,7 +298,7 @@ TEST(MeshContact, ConvexFoldGivesOneEdgeContactFromOutside) {
   const Real r = 0.1, distance = 0.09;
   for (Real angle : {0.01, kPi / 4, kPi / 2 - 0.01}) {  // in the wedge x > 0, z > 0
     const Vec3 centre = place({distance * std::cos(angle), 0.1, distance * std::sin(angle)});
-    const MeshContactCandidates set = contacts(box_edge, centre, r);
+    const SelectedContacts set = contacts(box_edge, centre, r);
     ASSERT_EQ(set.count, 1) << "angle " << angle;
     EXPECT_EQ(set.items[0].kind, FeatureKind::kEdge);
     EXPECT_EQ(set.items[0].feature_id, box_edge.edge_of(0, 1));
@@ -316,7 +319,7 @@ TEST(MeshContact, ConvexFoldContactIsContinuousAroundTheEdge) {
     const Vec3 nearest = {std::min(x, Real(0)), 0.1, std::min(z, Real(0))};
     const Vec3 to_surface = nearest - Vec3{x, 0.1, z};
     const Vec3 centre = place({x, 0.1, z});
-    const MeshContactCandidates set = contacts(box_edge, centre, r);
+    const SelectedContacts set = contacts(box_edge, centre, r);
     ASSERT_EQ(set.count, 1) << "angle " << angle;
     EXPECT_NEAR(mesh_contact_overlap(set.items[0], r), r - norm(to_surface), kTight);
     expect_near(mesh_contact_normal(set.items[0], centre), place.direction(unit(to_surface)),
@@ -331,7 +334,7 @@ TEST(MeshContact, ConcaveFoldGivesTwoFaceContacts) {
   // Inside the corner x < 0, z > 0 at (−to_vertical, y, to_horizontal).
   for (auto [to_vertical, to_horizontal] : {std::pair{0.06, 0.07}, std::pair{0.03, 0.03}}) {
     const Vec3 centre = place({-to_vertical, 0.1, to_horizontal});
-    const MeshContactCandidates set = contacts(corner, centre, r);
+    const SelectedContacts set = contacts(corner, centre, r);
     ASSERT_EQ(set.count, 2);
     for (int i = 0; i < 2; ++i) {
       const MeshContactCandidate& c = set.items[i];
@@ -405,11 +408,108 @@ TEST(MeshContact, ConvexPolyhedronGivesExactlyOneContactAtTheClosestPoint) {
     }
     if (closest2 >= r * r) continue;
     ++tested;
-    const MeshContactCandidates set = contacts(mesh, centre, r);
+    const SelectedContacts set = contacts(mesh, centre, r);
     ASSERT_EQ(set.count, 1) << "trial " << trial;
     EXPECT_NEAR(std::sqrt(set.items[0].distance2), std::sqrt(closest2), kTight);
   }
   EXPECT_GT(tested, 1000);
+}
+
+// --- finely tessellated surfaces: many triangles within reach at once -----------------------
+
+/// Each triangle split into four at its edge midpoints (welded), the new vertices pushed onto
+/// the unit sphere.
+TestMesh subdivide_on_unit_sphere(const TestMesh& coarse) {
+  TestMesh fine{coarse.vertices, {}};
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoint;
+  auto middle = [&](std::uint32_t u, std::uint32_t w) {
+    const auto key = std::make_pair(std::min(u, w), std::max(u, w));
+    const auto found = midpoint.find(key);
+    if (found != midpoint.end()) return found->second;
+    fine.vertices.push_back(unit(fine.vertices[u] + fine.vertices[w]));
+    const auto index = static_cast<std::uint32_t>(fine.vertices.size() - 1);
+    midpoint.emplace(key, index);
+    return index;
+  };
+  for (const auto& t : coarse.triangles) {
+    const std::uint32_t ab = middle(t[0], t[1]), bc = middle(t[1], t[2]), ca = middle(t[2], t[0]);
+    fine.triangles.push_back({t[0], ab, ca});
+    fine.triangles.push_back({ab, t[1], bc});
+    fine.triangles.push_back({ca, bc, t[2]});
+    fine.triangles.push_back({ab, bc, ca});
+  }
+  return fine;
+}
+
+/// Triangles of the mesh within reach of the sphere (centre, r).
+int triangles_within_reach(const TestMesh& mesh, Vec3 centre, Real r) {
+  int within = 0;
+  for (const auto& t : mesh.triangles) {
+    const Vec3 x = reference_closest_point(centre, mesh.vertices[t[0]], mesh.vertices[t[1]],
+                                           mesh.vertices[t[2]]);
+    if (norm2(x - centre) < r * r) ++within;
+  }
+  return within;
+}
+
+TEST(MeshContact, GeodesicSphereGivesOneContactWithHundredsOfTrianglesWithinReach) {
+  TestMesh mesh = icosahedron();
+  for (int level = 0; level < 4; ++level) mesh = subdivide_on_unit_sphere(mesh);
+  ASSERT_EQ(mesh.triangles.size(), 5120u);  // edges ≈ 0.03, against a particle radius of 0.3
+  const Real r = 0.3;
+  std::mt19937_64 rng(5);
+  std::normal_distribution<Real> gaussian;
+  std::uniform_real_distribution<Real> gap(0.02, 0.25);
+  int most_within = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const Vec3 direction = unit({gaussian(rng), gaussian(rng), gaussian(rng)});
+    const Vec3 centre = (1 + gap(rng)) * direction;
+    Real closest2 = std::numeric_limits<Real>::infinity();
+    for (const auto& t : mesh.triangles)
+      closest2 = std::min(
+          closest2, norm2(reference_closest_point(centre, mesh.vertices[t[0]], mesh.vertices[t[1]],
+                                                  mesh.vertices[t[2]]) -
+                          centre));
+    most_within = std::max(most_within, triangles_within_reach(mesh, centre, r));
+    const SelectedContacts set = contacts(mesh, centre, r);
+    ASSERT_EQ(set.count, 1) << "trial " << trial;
+    EXPECT_NEAR(std::sqrt(set.items[0].distance2), std::sqrt(closest2), kTight);
+  }
+  EXPECT_GT(most_within, 100);
+}
+
+/// The square [0, 1]² (placed) as an n × n grid of cells, each split into two triangles.
+TestMesh tessellated_square(const Placement& place, int n) {
+  TestMesh square;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) square.vertices.push_back(place({Real(i) / n, Real(j) / n, 0}));
+  const auto at = [n](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      square.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      square.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  return square;
+}
+
+TEST(MeshContact, FinelyTessellatedPlaneGivesThePlaneContactAnywhere) {
+  const Placement place;
+  const TestMesh square = tessellated_square(place, 60);  // 7,200 triangles, cells of 1/60
+  const Vec3 normal = place.direction({0, 0, 1});
+  const Real r = 0.1, height = 0.03;  // about 200 triangles within reach
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<Real> inner(0.2, 0.8);
+  for (int trial = 0; trial < 30; ++trial) {
+    // Random feet, and feet exactly on grid vertices and edges, where the features compete.
+    const Real x = trial % 3 == 0 ? std::round(60 * inner(rng)) / 60 : inner(rng);
+    const Real y = trial % 3 == 2 ? x : inner(rng);
+    const Vec3 centre = place({x, y, 0}) + height * normal;
+    ASSERT_GT(triangles_within_reach(square, centre, r), 150);
+    const SelectedContacts set = contacts(square, centre, r);
+    ASSERT_EQ(set.count, 1) << "trial " << trial;
+    EXPECT_NEAR(mesh_contact_overlap(set.items[0], r), r - height, kTight);
+    expect_near(mesh_contact_normal(set.items[0], centre), -normal, kTight);
+  }
 }
 
 }  // namespace
