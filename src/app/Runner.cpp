@@ -105,6 +105,15 @@ void print_mesh_summary(const Scene& scene, const EngineSetup& setup) {
                   box(r.swept_lo, r.swept_hi).c_str());
     std::printf("\n");
   }
+  for (const ImplementSettings& im : scene.implements) {
+    std::string names;
+    for (std::size_t m : im.meshes) names += (names.empty() ? "" : ", ") + scene.meshes[m].name;
+    std::printf(
+        "implement %s: meshes %s; reference point (%.4g, %.4g, %.4g) m; forward (%.3g, %.3g, "
+        "%.3g), up (%.3g, %.3g, %.3g)\n",
+        im.name.c_str(), names.c_str(), im.reference.x, im.reference.y, im.reference.z,
+        im.forward.x, im.forward.y, im.forward.z, im.up.x, im.up.y, im.up.z);
+  }
 }
 
 /// The start-up summary; engine_bytes < 0 when no engine was made (--check).

@@ -29,7 +29,7 @@ std::uint64_t step_count(double end_time, double dt) {
 
 namespace {
 
-std::vector<std::string> timeseries_columns(const Scene& scene) {
+std::vector<std::string> timeseries_columns(const Scene& scene, const ImplementLoads& loads) {
   std::vector<std::string> c = {"time",
                                 "step",
                                 "particles",
@@ -46,11 +46,13 @@ std::vector<std::string> timeseries_columns(const Scene& scene) {
   for (const MeshSettings& m : scene.meshes)
     for (const char* axis_name : {"fx", "fy", "fz", "tx", "ty", "tz"})
       c.push_back(m.name + "_" + axis_name);
+  for (std::string& name : loads.columns()) c.push_back(std::move(name));
   return c;
 }
 
 std::vector<double> timeseries_row(double time, std::uint64_t step, const Diagnostics& d,
-                                   std::uint64_t removed, double imbalance) {
+                                   std::uint64_t removed, double imbalance,
+                                   const ImplementLoads& loads) {
   std::vector<double> row = {time,
                              static_cast<double>(step),
                              static_cast<double>(d.particle_count),
@@ -68,6 +70,7 @@ std::vector<double> timeseries_row(double time, std::uint64_t step, const Diagno
     append(d.mesh_force[m]);
     append(d.mesh_torque[m]);
   }
+  for (double value : loads.row(time, d.mesh_force, d.mesh_torque)) row.push_back(value);
   return row;
 }
 
@@ -110,8 +113,9 @@ TimeLoop::TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine
                                                    : 0),
       snapshots_(mpi.comm(), scene.output.dir, snapshot_options(scene, setup),
                  scene.output.asynchronous),
-      series_(scene.output.dir + "/timeseries.csv", timeseries_columns(scene), mpi.is_root(),
-              series_resume(start)),
+      implement_loads_(scene),
+      series_(scene.output.dir + "/timeseries.csv", timeseries_columns(scene, implement_loads_),
+              mpi.is_root(), series_resume(start)),
       progress_(!quiet && mpi.is_root(), kProgressInterval, total_steps_, start.step),
       quiet_(quiet),
       resumed_(start.resumed),
@@ -221,7 +225,7 @@ std::optional<Diagnostics> TimeLoop::record_row(std::uint64_t step, bool snapsho
     removal_reported_ = removal_reported_ || removed > 0;
     row = engine_.diagnostics();
     imbalance_ = balance_.imbalance(engine_);
-    series_.append(timeseries_row(time, step, *row, removed, imbalance_));
+    series_.append(timeseries_row(time, step, *row, removed, imbalance_, implement_loads_));
   }
   if (snapshot) write_snapshot(time, step);
   return row;

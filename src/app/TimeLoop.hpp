@@ -13,6 +13,7 @@
 #include "comm/MpiContext.hpp"
 #include "comm/SnapshotQueue.hpp"
 #include "comm/TimeSeriesWriter.hpp"
+#include "core/ImplementLoads.hpp"
 #include "core/Scene.hpp"
 #include "engine/StepEngine.hpp"
 
@@ -92,6 +93,7 @@ class TimeLoop {
   std::uint64_t series_every_;
   std::uint64_t checkpoint_every_;  ///< 0: no checkpoints
   SnapshotQueue snapshots_;
+  ImplementLoads implement_loads_;
   TimeSeriesWriter series_;
   Progress progress_;
   bool quiet_;

@@ -177,6 +177,19 @@ struct MeshSettings {
   MeshPlacement placement;
   Vec3 centre;  ///< rotation centre at t = 0 [m] (default: the placement offset)
   std::vector<MotionKeyframe> keyframes;  ///< none: the mesh stands still
+  bool own_motion = false;                ///< the scene gives it a [mesh.motion]
+};
+
+/// One [[implement]]: meshes moved as one rigid body by one motion about one reference point,
+/// its loads also given in its own frame (forward, up and lateral = up × forward at t = 0,
+/// turned with the implement).
+struct ImplementSettings {
+  std::string name;
+  std::vector<std::size_t> meshes;        ///< indices into Scene::meshes
+  Vec3 reference;                         ///< reference point at t = 0, the rotation centre [m]
+  Vec3 forward;                           ///< unit travel direction at t = 0
+  Vec3 up;                                ///< unit, normal to forward
+  std::vector<MotionKeyframe> keyframes;  ///< none: the implement stands still
 };
 
 struct Scene {
@@ -191,6 +204,7 @@ struct Scene {
   NeighborSettings neighbor;
   std::vector<WallSettings> walls;
   std::vector<MeshSettings> meshes;
+  std::vector<ImplementSettings> implements;
   std::vector<ParticleSource> sources;
   OutputSettings output;
   CheckpointSettings checkpoint;

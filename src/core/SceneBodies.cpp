@@ -29,14 +29,9 @@ WallSettings read_wall(const TableReader& table, std::size_t index,
   return w;
 }
 
-/// [mesh.motion]: keyframe times [s], velocities [m/s] and angular velocities [rad/s] (zero
-/// when absent), one per time, times strictly increasing; the centre defaults to `offset`.
-void read_motion(const TableReader& mesh, MeshSettings& m) {
-  m.centre = m.placement.offset;
-  if (!mesh.has("motion")) return;
-  const TableReader motion = mesh.table("motion");
-  motion.allow_only({"centre", "times", "velocities", "angular_velocities"});
-  m.centre = motion.vec3("centre", "m", m.centre);
+/// A motion table's keyframes: times [s], velocities [m/s] and angular velocities [rad/s]
+/// (zero when absent), one per time, times strictly increasing.
+std::vector<MotionKeyframe> read_keyframes(const TableReader& motion) {
   const std::vector<double> times = motion.numbers("times", any_value("s"));
   for (std::size_t k = 1; k < times.size(); ++k)
     if (!(times[k] > times[k - 1]))
@@ -46,7 +41,20 @@ void read_motion(const TableReader& mesh, MeshSettings& m) {
   const std::vector<Vec3> w = motion.has("angular_velocities")
                                   ? motion.vec3s("angular_velocities", "rad/s", times.size())
                                   : std::vector<Vec3>(times.size());
-  for (std::size_t k = 0; k < times.size(); ++k) m.keyframes.push_back({times[k], v[k], w[k]});
+  std::vector<MotionKeyframe> keyframes;
+  for (std::size_t k = 0; k < times.size(); ++k) keyframes.push_back({times[k], v[k], w[k]});
+  return keyframes;
+}
+
+/// [mesh.motion]: its keyframes (read_keyframes) about `centre`, which defaults to `offset`.
+void read_motion(const TableReader& mesh, MeshSettings& m) {
+  m.centre = m.placement.offset;
+  if (!mesh.has("motion")) return;
+  const TableReader motion = mesh.table("motion");
+  motion.allow_only({"centre", "times", "velocities", "angular_velocities"});
+  m.centre = motion.vec3("centre", "m", m.centre);
+  m.keyframes = read_keyframes(motion);
+  m.own_motion = true;
 }
 
 constexpr double kPi = 3.14159265358979323846;
@@ -103,6 +111,90 @@ std::vector<MeshSettings> read_meshes(const TableReader& root, const Scene& scen
     meshes.push_back(std::move(mesh));
   }
   return meshes;
+}
+
+namespace {
+
+/// The index of the mesh named `name`, free for an implement with no motion of its own.
+std::size_t implement_member(const TableReader& table, const std::string& name,
+                             const Scene& scene) {
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (scene.meshes[m].name != name) continue;
+    for (const ImplementSettings& other : scene.implements)
+      for (std::size_t taken : other.meshes)
+        if (taken == m)
+          table.fail("meshes", "mesh '" + name + "' is already in implement '" + other.name + "'");
+    if (scene.meshes[m].own_motion)
+      table.fail("meshes", "mesh '" + name +
+                               "' has its own [mesh.motion]; an implement's meshes move with "
+                               "the implement's [implement.motion], so remove the mesh's");
+    return m;
+  }
+  std::string known;
+  for (const MeshSettings& m : scene.meshes) known += (known.empty() ? "'" : ", '") + m.name + "'";
+  table.fail("meshes", "no [[mesh]] is named '" + name +
+                           "' (meshes: " + (known.empty() ? "none" : known) + ")");
+}
+
+/// The implement's frame at t = 0: `up` (default against gravity, +z without it) and
+/// `forward` (default the first non-zero velocity of the motion), made normal to up.
+void read_frame(const TableReader& table, const Scene& scene, ImplementSettings& im) {
+  const Vec3 g = scene.simulation.gravity;
+  const Vec3 up = table.vec3("up", "", norm(g) > 0 ? (1 / norm(g)) * (Vec3{} - g) : Vec3{0, 0, 1});
+  if (!(norm(up) > 0)) table.fail_found("up", "a non-zero direction");
+  im.up = (1 / norm(up)) * up;
+  Vec3 forward{};
+  for (const MotionKeyframe& k : im.keyframes)
+    if (norm(forward) == 0) forward = k.velocity;
+  if (!table.has("forward") && norm(forward) == 0)
+    table.fail("forward",
+               "give the implement's travel direction: its motion has no velocity "
+               "to take it from");
+  const Vec3 given = table.vec3("forward", "", forward);
+  const Vec3 across = given - dot(given, im.up) * im.up;
+  if (!(norm(across) > 1e-6 * norm(given)))
+    table.fail("forward", std::string("the travel direction (") +
+                              (table.has("forward") ? "given" : "the motion's first velocity") +
+                              ") must be non-zero and not along up");
+  im.forward = (1 / norm(across)) * across;
+}
+
+ImplementSettings read_implement(const TableReader& table, std::size_t index, Scene& scene) {
+  table.allow_only({"name", "meshes", "reference", "forward", "up", "motion"});
+  ImplementSettings im;
+  im.name = table.string("name", "implement" + std::to_string(index));
+  for (const std::string& name : table.names("meshes"))
+    im.meshes.push_back(implement_member(table, name, scene));
+  im.reference = table.vec3("reference", "m");
+  if (table.has("motion")) {
+    const TableReader motion = table.table("motion");
+    motion.allow_only({"times", "velocities", "angular_velocities"});
+    im.keyframes = read_keyframes(motion);
+  }
+  read_frame(table, scene, im);
+  return im;
+}
+
+}  // namespace
+
+void read_implements(const TableReader& root, Scene& scene) {
+  const std::vector<TableReader> tables = root.array_of_tables("implement");
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    ImplementSettings im = read_implement(tables[i], i, scene);
+    bool taken = false;
+    for (const WallSettings& w : scene.walls) taken = taken || w.name == im.name;
+    for (const MeshSettings& m : scene.meshes) taken = taken || m.name == im.name;
+    for (const ImplementSettings& other : scene.implements) taken = taken || other.name == im.name;
+    if (taken)
+      tables[i].fail("name", "name '" + im.name +
+                                 "' is already used by a wall, mesh or implement; names label "
+                                 "the force columns");
+    for (std::size_t m : im.meshes) {
+      scene.meshes[m].centre = im.reference;
+      scene.meshes[m].keyframes = im.keyframes;
+    }
+    scene.implements.push_back(std::move(im));
+  }
 }
 
 std::vector<WallSettings> read_walls(const TableReader& root,

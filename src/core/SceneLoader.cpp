@@ -26,6 +26,7 @@ namespace gpudem {
 using scene_reading::material_named;
 using scene_reading::mesh_angle_warnings;
 using scene_reading::named_choice;
+using scene_reading::read_implements;
 using scene_reading::read_meshes;
 using scene_reading::read_sources;
 using scene_reading::read_walls;
@@ -414,7 +415,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   apply_overrides(tree, overrides);
   const TableReader root(tree, path, "", "");
   root.allow_only({"simulation", "domain", "material", "contact", "pair", "neighbor", "wall",
-                   "mesh", "insert", "output", "checkpoint", "preparation", "decomposition"});
+                   "mesh", "implement", "insert", "output", "checkpoint", "preparation",
+                   "decomposition"});
   Scene scene;
   scene.file = path;
   scene.simulation = read_simulation(root);
@@ -426,6 +428,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   scene.neighbor = read_neighbor(root);
   scene.walls = read_walls(root, scene.materials);
   scene.meshes = read_meshes(root, scene);
+  read_implements(root, scene);
   for (std::string& warning : mesh_angle_warnings(root, path))
     scene.warnings.push_back(std::move(warning));
   scene.sources = read_sources(root, scene);

@@ -275,6 +275,21 @@ class TableReader {
     return result;
   }
 
+  /// One or more distinct non-empty strings.
+  std::vector<std::string> names(const std::string& key) const {
+    const toml::value& v = value(key);
+    const std::string expected = "an array of one or more distinct non-empty strings";
+    if (!v.is_array() || v.as_array().empty()) fail_found(key, expected);
+    std::vector<std::string> result;
+    for (const toml::value& e : v.as_array()) {
+      if (!e.is_string() || e.as_string().str.empty()) fail_found(key, expected);
+      if (std::find(result.begin(), result.end(), e.as_string().str) != result.end())
+        fail_found(key, expected);
+      result.push_back(e.as_string().str);
+    }
+    return result;
+  }
+
   /// One of `options` (strings), or `fallback` when absent.
   std::string choice(const std::string& key, const std::vector<std::string>& options,
                      const std::string& fallback) const {
