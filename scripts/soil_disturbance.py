@@ -12,19 +12,22 @@ first snapshot for BEFORE and its last for AFTER. The travel is along AXIS (x, -
 default x) or, with --scene, along the first non-zero velocity of mesh NAME (default sweep) in
 that scene's [mesh.motion] (scripts/plot_draft.py). The steady window is the range A..B of the
 travel axis's coordinate; by default the middle half of the tool's path through the soil: from
-the soil's start (or the tool's front in BEFORE, if further on) to the tool's rear in AFTER
-(from the snapshots' /mesh/NAME/vertices).
+the soil's start (its first particle centre, or the tool's front in BEFORE if further on) to
+the tool's rear in AFTER (from the snapshots' /mesh/NAME/vertices).
 
-Over the window the ground is cut into square cells W wide (default: one mean diameter) along
-and across the travel; a cell's surface height is the P-th percentile (default 100: the highest)
-of the tops z + r of its particles, and the profile of a bin across the travel is the mean over
-its cells. Where the profile after differs from the one before by more than T (default: one
-mean radius), the soil moved: the cut area is the area lost below the original surface, the
-ridge area the area gained above it, the ridge height the highest rise. The surface particles
-are those of the window whose top lies within --layer (default one mean radius) of their
-cell's surface before the pass; matched by id, those that moved at least D (default one mean
-diameter) are the thrown ones: their forward, lateral (to the left of the travel) and vertical
-displacements give the throw's histograms, mean, standard deviation and percentiles.
+The ground is cut into square cells about W wide (default: one mean diameter): across the
+travel a whole number of them spans BEFORE's soil (from its particles' extent), along it the
+window is cut to the whole cells that fit in it from its start. A cell's surface height is the
+P-th percentile (default 100: the highest) of the tops z + r of its particles, the whole column
+under it; the profile of a bin across the travel is the mean of its cells in the window.
+Where the profile after differs from the one before by more than T (default: one mean radius),
+the soil moved: the cut area is the area lost below the original surface, the ridge area the
+area gained above it, the ridge height the highest rise (the cut depth the deepest fall). The
+surface particles are those of the window whose top lies within --layer (default one mean
+radius) of their cell's surface before the pass; matched by id, those that moved at least D
+(default one mean diameter) are the thrown ones: their forward, lateral (to the left of the
+travel) and vertical displacements give the throw's histograms, mean, standard deviation and
+5th, 50th and 95th percentiles.
 
 Writes OUT_DIR/profile.csv, summary.json, profile.png and throw.png. Exit 2 on bad input,
 before writing anything.
@@ -38,6 +41,11 @@ import sys
 import xml.etree.ElementTree as ET
 
 import numpy as np
+
+try:
+    import h5py
+except ImportError:
+    sys.exit("soil_disturbance.py needs h5py (Debian: python3-h5py); run it with /usr/bin/python3")
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import plot_draft  # noqa: E402  (also selects matplotlib's Agg backend)
@@ -78,8 +86,6 @@ def snapshot_file(path, last):
 def read_particles(path, tool):
     """The particles of a snapshot, bed or checkpoint file, and the vertices of mesh `tool`
     (None when the file has none)."""
-    import h5py
-
     if not pathlib.Path(path).is_file():
         fail(f"{path}: no such file")
     try:
@@ -286,20 +292,26 @@ def print_summary(summary):
 
 
 def parse_args():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("before", help="HDF5 file, or output folder / .xmf (its first snapshot)")
     parser.add_argument("after", help="HDF5 file, or output folder / .xmf (its last snapshot)")
-    parser.add_argument("out_dir")
+    parser.add_argument("out_dir", help="folder for profile.csv, summary.json and the plots")
     direction = parser.add_mutually_exclusive_group()
-    direction.add_argument("--scene", metavar="TOML")
-    direction.add_argument("--axis", default="x", choices=["x", "-x", "y", "-y"])
-    parser.add_argument("--tool", default="sweep", metavar="NAME")
-    parser.add_argument("--window", nargs=2, type=float, metavar=("A", "B"))
+    direction.add_argument("--scene", metavar="TOML", help="travel along mesh NAME's motion")
+    direction.add_argument("--axis", default="x", choices=["x", "-x", "y", "-y"],
+                           help="travel direction (default x)")
+    parser.add_argument("--tool", default="sweep", metavar="NAME", help="default sweep")
+    parser.add_argument("--window", nargs=2, type=float, metavar=("A", "B"),
+                        help="m along the travel axis; default the middle of the tool's path")
     parser.add_argument("--cell", type=float, metavar="W", help="m; default one mean diameter")
-    parser.add_argument("--percentile", type=float, default=100.0, metavar="P")
-    parser.add_argument("--layer", type=float, metavar="T", help="m; default one mean radius")
-    parser.add_argument("--moved", type=float, metavar="D", help="m; default one mean diameter")
-    parser.add_argument("--tolerance", type=float, metavar="T", help="m; default one mean radius")
+    parser.add_argument("--percentile", type=float, default=100.0, metavar="P",
+                        help="of the tops in a cell: its surface (default 100, the highest)")
+    parser.add_argument("--layer", type=float, metavar="T",
+                        help="surface layer, m; default one mean radius")
+    parser.add_argument("--moved", type=float, metavar="D",
+                        help="least throw counted, m; default one mean diameter")
+    parser.add_argument("--tolerance", type=float, metavar="T",
+                        help="least change of the profile counted, m; default one mean radius")
     args = parser.parse_args()
     if args.cell is not None and args.cell <= 0:
         parser.error("--cell must be positive")
