@@ -53,9 +53,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 Particles = collections.namedtuple("Particles", "path position radius ids tool")
 Travel = collections.namedtuple("Travel", "axis direction")  # axis 0 (x) or 1 (y); unit vector
-# Cells: `along_cells` from `start` (a coordinate along the travel direction), `across_cells`
-# from `low` (across), each `width` wide.
-Grid = collections.namedtuple("Grid", "travel start along_cells low width across_cells")
+# Cells `width` wide: `along_cells` of them from `start` (a coordinate along the travel
+# direction), and across from `low` (the bed's side) on.
+Grid = collections.namedtuple("Grid", "travel start along_cells low width")
 UP = np.array([0.0, 0.0, 1.0])
 ACROSS_NAMES = "yx"  # the coordinate across a travel along x, along y
 
@@ -153,7 +153,7 @@ def grid_of(before, window, travel, cell):
     if along_cells < 1:
         fail(f"empty steady window: {window[1] - window[0]:g} m long, less than a cell "
              f"({width:g} m)")
-    return Grid(travel, window[0], along_cells, low, width, across_cells)
+    return Grid(travel, window[0], along_cells, low, width)
 
 
 def world_window(grid):
