@@ -41,7 +41,8 @@ def dot(a, b):
 
 
 def scene_directions(path, tool):
-    """Travel direction of mesh `tool` and the upward direction, from scene file `path`."""
+    """Travel direction of mesh `tool` and the upward direction, from scene file `path`; raises
+    ValueError when the scene has no such mesh or it does not move."""
     with open(path, "rb") as f:
         scene = tomllib.load(f)
     gravity = scene.get("simulation", {}).get("gravity", [0, 0, -9.81])
@@ -51,8 +52,8 @@ def scene_directions(path, tool):
         for v in mesh.get("motion", {}).get("velocities", []):
             if any(c != 0 for c in v):
                 return unit(v), unit([-c for c in gravity])
-        sys.exit(f"plot_draft.py: mesh '{tool}' of {path} does not move; give --axis")
-    sys.exit(f"plot_draft.py: {path} has no [[mesh]] named '{tool}'")
+        raise ValueError(f"mesh '{tool}' of {path} does not move; give --axis")
+    raise ValueError(f"{path} has no [[mesh]] named '{tool}'")
 
 
 def axis_direction(text):
@@ -119,7 +120,10 @@ def main():
     if missing:
         sys.exit(f"plot_draft.py: {args.csv} has no column '{missing[0]}'")
     if args.scene:
-        travel, up = scene_directions(args.scene, args.tool)
+        try:
+            travel, up = scene_directions(args.scene, args.tool)
+        except ValueError as error:
+            sys.exit(f"plot_draft.py: {error}")
     else:
         travel, up = axis_direction(args.axis), (0.0, 0.0, 1.0)
     if abs(dot(travel, up)) > 1e-9:
