@@ -70,7 +70,8 @@ def find_tool(scene, path, name):
     motion = meshes[index].get("motion", {})
     moving = [v for v in motion.get("velocities", []) if any(c != 0 for c in v)]
     if not moving:
-        raise SceneError(f"mesh '{name}' of {path} does not move; give --axis")
+        raise SceneError(f"mesh '{name}' of {path} does not move "
+                         "(no non-zero [mesh.motion] velocity)")
     gravity = scene.get("simulation", {}).get("gravity", [0, 0, -9.81])
     return Tool(path, name, index, meshes[index], unit(moving[0]), unit([-c for c in gravity]),
                 tuple(motion["times"]), tuple(tuple(v) for v in motion["velocities"]))
