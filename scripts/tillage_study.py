@@ -107,15 +107,18 @@ def check_options(args):
         raise StudyError(f"--solver: {args.solver} is not executable")
     if args.np > 1 and not shutil.which("mpirun"):
         raise StudyError("--np: more than one rank needs mpirun, which is not on the PATH")
-    if any(v <= 0 for v in (args.depth or []) + (args.speed or [])):
-        raise StudyError("--depth and --speed take values > 0")
+    given = (("--depth", args.depth), ("--speed", args.speed), ("--end-time", [args.end_time]),
+             ("--np", [args.np]), ("--checkpoint-every", [args.checkpoint_every]))
+    for option, values in given:
+        if any(v is not None and v <= 0 for v in values or []):
+            raise StudyError(f"{option} takes values > 0")
     for axis in args.vary:
         if len(axis) < 2:
             raise StudyError(f"--vary {axis[0]}: no values (an empty grid)")
-    keys = [axis[0] for axis in args.vary] + [s.partition("=")[0] for s in args.set]
-    if any("=" not in s for s in args.set):
-        raise StudyError(f"--set {next(s for s in args.set if '=' not in s)}: expected KEY=VALUE")
-    for key in keys:
+    for setting in args.set:
+        if "=" not in setting:
+            raise StudyError(f"--set {setting}: expected KEY=VALUE")
+    for key in [axis[0] for axis in args.vary] + [s.partition("=")[0] for s in args.set]:
         if STUDY_KEYS.fullmatch(key):
             raise StudyError(f"--set/--vary {key}: the study sets this key itself "
                              "(use --depth, --speed, --end-time or --bed)")
@@ -189,7 +192,9 @@ def grid(args, tool):
 def plan_runs(args, scene, tool):
     """The runs of the study, each with its window and command line."""
     bed_index = bed_insert_index(scene, args.scene)
-    run_end = args.end_time or scene.get("simulation", {}).get("end_time")
+    run_end = args.end_time
+    if run_end is None:
+        run_end = scene.get("simulation", {}).get("end_time")
     if run_end is None:
         raise StudyError(f"--scene: {args.scene} has no simulation.end_time; give --end-time")
     runs = []
