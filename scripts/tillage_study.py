@@ -153,17 +153,24 @@ def scene_depth(tool, surface):
     return surface - dot(tool.mesh.get("offset", [0.0, 0.0, 0.0]), tool.up)
 
 
+def at_speed(tool, speed):
+    """The tool with its keyframe velocities scaled to `speed` (12 significant digits)."""
+    scale = speed / scene_speed(tool)
+    return dataclasses.replace(tool, velocities=tuple(
+        tuple(float(f"{c * scale:.12g}") for c in v) for v in tool.velocities))
+
+
 def toml_vector(values):
     return "[" + ", ".join(repr(float(f"{v:.12g}")) for v in values) + "]"
 
 
 def solver_args(args, tool, bed_index, point):
-    """The command-line arguments (after the executable) of the run at `point`."""
-    depth, speed, varied, end, out_dir = point
+    """The command-line arguments (after the executable) of the run at `point`, `tool` moving
+    at its speed."""
+    depth, varied, end, out_dir = point
     rise = scene_depth(tool, args.surface_height) - depth
     offset = [c + rise * u for c, u in zip(tool.mesh.get("offset", [0.0, 0.0, 0.0]), tool.up)]
-    scale = speed / scene_speed(tool)
-    velocities = ", ".join(toml_vector([c * scale for c in v]) for v in tool.velocities)
+    velocities = ", ".join(toml_vector(v) for v in tool.velocities)
     settings = [f"simulation.end_time={end!r}", f"checkpoint.every={args.checkpoint_every!r}",
                 f"insert.{bed_index}.bed=\"{pathlib.Path(args.bed).resolve()}\"",
                 f"mesh.{tool.index}.offset={toml_vector(offset)}",
@@ -199,17 +206,15 @@ def plan_runs(args, scene, tool):
         raise StudyError(f"--scene: {args.scene} has no simulation.end_time; give --end-time")
     runs = []
     for depth, speed, varied in grid(args, tool):
-        scale = speed / scene_speed(tool)
-        moving = dataclasses.replace(tool, velocities=tuple(
-            tuple(c * scale for c in v) for v in tool.velocities))
+        moving = at_speed(tool, speed)
         try:
             window = steady_window(moving, scene, run_end, args.entry_length, args.exit_margin)
         except SceneError as error:
             raise StudyError(f"--speed {speed:g}: {error}") from None
         name = run_name(depth, speed, varied)
-        point = (depth, speed, varied, window[1], pathlib.Path(args.out, "runs", name).resolve())
+        point = (depth, varied, window[1], pathlib.Path(args.out, "runs", name).resolve())
         runs.append(Run(name, depth, speed, varied, window,
-                        solver_args(args, tool, bed_index, point)))
+                        solver_args(args, moving, bed_index, point)))
     return runs
 
 
