@@ -331,7 +331,7 @@ def progress(done, total, run, result, ran, seconds):
     """The line printed once a run is done; `seconds` of the runs made so far, for the ETA."""
     left = total - done
     eta = f"ETA {sum(seconds) / len(seconds) * left / 60:.1f} min" if seconds and left else \
-        ("all done" if not left else "ETA after the first run made")
+        ("all done" if not left else "ETA once a run is timed")
     mean, std, _ = result["draft"]
     how = f"ran in {seconds[-1]:.0f} s" if ran else "done before"
     return (f"[{done}/{total}] {run.name}: draft {mean:.4g} ± {std:.3g} N over "
