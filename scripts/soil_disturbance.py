@@ -49,6 +49,7 @@ except ImportError:
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import plot_draft  # noqa: E402  (also selects matplotlib's Agg backend)
+import tool_travel  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
 Particles = collections.namedtuple("Particles", "path position radius ids tool")
@@ -111,9 +112,10 @@ def travel_of(args):
     """The travel axis and direction, from --scene or --axis: horizontal, along x or y."""
     if args.scene:
         try:
-            direction, up = plot_draft.scene_directions(args.scene, args.tool)
-        except (OSError, ValueError) as error:
+            tool = tool_travel.find_tool(tool_travel.load_scene(args.scene), args.scene, args.tool)
+        except tool_travel.SceneError as error:
             fail(f"--scene: {error}")
+        direction, up = tool.travel, tool.up
         if np.dot(up, UP) < 1 - 1e-9:
             fail(f"--scene {args.scene}: its gravity is not along -z")
     else:
