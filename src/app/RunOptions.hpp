@@ -18,6 +18,7 @@ struct RunOptions {
   BackendChoice backend = BackendChoice::Auto;
   GpuAwareChoice gpu_aware_mpi = GpuAwareChoice::Auto;  ///< --gpu-aware-mpi
   bool check_only = false;                              ///< --check
+  bool preview = false;                                 ///< --preview
   bool quiet = false;                                   ///< --quiet
   bool verbose = false;           ///< --verbose: the memory report at start-up
   bool exact_time_split = false;  ///< --exact-time-split: EngineSetup::exact_phase_times

@@ -13,6 +13,7 @@
 #include "app/DomainSetup.hpp"
 #include "app/LoadBalance.hpp"
 #include "app/MemoryReport.hpp"
+#include "app/Preview.hpp"
 #include "app/Progress.hpp"
 #include "app/Resume.hpp"
 #include "app/ThreadCores.hpp"
@@ -297,6 +298,17 @@ void warn_of_mesh_start_overlaps(const Scene& scene, const EngineSetup& setup,
   print_warnings(check_mesh_start_overlaps(scene, setup.meshes, share, mpi.group()), mpi);
 }
 
+/// --preview: the scene at t = 0 written without a step (Preview.hpp). Collective.
+void preview_scene(const Scene& scene, const EngineSetup& setup, const ParticleStore& share,
+                   const MpiContext& mpi) {
+  write_preview(scene, setup, share, mpi);
+  if (mpi.is_root())
+    std::printf(
+        "preview of t = 0 written to %s/preview.xmf (open it in ParaView) and %s/preview.png "
+        "(from above, the front and the side)\n",
+        scene.output.dir.c_str(), scene.output.dir.c_str());
+}
+
 }  // namespace
 
 int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
@@ -330,13 +342,14 @@ int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
   if (checkpoint && mpi.is_root() && (banner || options.check_only))
     std::printf("restart from %s at t = %.6g s (step %llu)\n", options.restart_file.c_str(),
                 checkpoint->time, static_cast<unsigned long long>(checkpoint->step));
-  if (options.check_only) {
+  if (options.check_only || options.preview) {
     if (mpi.is_root()) {
       print_summary(scene, deciding, particle_count, setup, nullptr, -1, steps);
       if (domain) print_decomposition(*domain);
       if (settle) print_preparation(scene, *settle, setup.dt);
-      std::printf("scene is valid\n");
     }
+    if (options.preview) preview_scene(scene, setup, share.particles(), mpi);
+    if (options.check_only && mpi.is_root()) std::printf("scene is valid\n");
     return kExitOk;
   }
   std::unique_ptr<StepEngine> engine = make_engine(options.backend, mpi, setup);

@@ -19,7 +19,11 @@ void print_error(const gpudem::MpiContext& mpi, const std::string& message) {
 void add_options(CLI::App& app, gpudem::RunOptions& options) {
   app.set_version_flag("--version", std::string("gpudem-mpi ") + GPUDEM_VERSION);
   app.add_option("scene", options.scene_file, "scene file (TOML)")->required();
-  app.add_flag("--check", options.check_only, "validate the scene and exit");
+  CLI::Option* check = app.add_flag("--check", options.check_only, "validate the scene and exit");
+  app.add_flag("--preview", options.preview,
+               "validate the scene, write it at t = 0 (preview.xmf, preview.h5, preview.png in "
+               "the output directory) and exit without a step")
+      ->excludes(check);
   app.add_option("--set", options.overrides,
                  "override a scene key, e.g. --set simulation.end_time=0.5 (repeatable)")
       ->type_name("KEY=VALUE");
