@@ -3,9 +3,9 @@
 # about 13,000 spheres of radius 8.5 mm, the sweep at 0.08 m depth and 0.7 m/s) cut once with the
 # shipped 32-triangle sweep and once with the same surface split into 20,000 triangles
 # (scripts/make_sweep_stl.py --subdivide 25, blade edges of 10.5 mm and less, so a sphere on
-# the blade is within reach of tens of triangles at once). The fine pass must run to its end and its steady
-# draft (−F_x over 0.45–0.84 s, the tool wholly in the bed) must agree with the coarse one within
-# the coarse draft's fluctuation (its standard deviation over that window).
+# the blade is within reach of tens of triangles at once). The fine pass must run to its end and
+# its steady draft (−F_x over 0.45–0.84 s, the tool wholly in the bed) must agree with the coarse
+# one within the coarse draft's fluctuation (its standard deviation over that window).
 # Usage: check_fine_tool.sh SOURCE_DIR GPUDEM_BINARY WORK_DIR
 set -euo pipefail
 source_dir=$1
