@@ -25,7 +25,8 @@ if [[ ! -f $BED ]]; then
     --set output.every=10.0
 fi
 results="$OUT/results.csv"
-[[ -f $results ]] || echo "triangles,round,wall_s,forces_s,lists_s,peak_rss_mib,draft_n" > "$results"
+header="triangles,round,wall_s,forces_s,lists_s,peak_rss_mib,draft_n"
+[[ -f $results ]] || echo "$header" > "$results"
 for round in $(seq 1 "$ROUNDS"); do
   for n in 2 4 8 16 25 40; do
     triangles=$((32 * n * n))
