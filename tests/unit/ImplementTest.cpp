@@ -17,6 +17,7 @@
 
 #include "core/ImplementLoads.hpp"
 #include "core/Rotation.hpp"
+#include "support/PlateScene.hpp"
 #include "support/RunBinary.hpp"
 
 namespace gpudem {
@@ -70,31 +71,7 @@ std::string half_plate_stl(double z0) {
 
 /// Grains on a floor ahead of the two plates, which move at 0.2 m/s along +x from t = 0.01 s,
 /// either each by its own [mesh.motion] (MOTION_LOW, MOTION_HIGH) or as one implement (IMPLEMENT).
-const char* kScene = R"([simulation]
-end_time = 0.05
-dt = 1e-5
-
-[domain]
-min = [-0.05, 0.0, 0.0]
-max = [0.2, 0.1, 0.1]
-
-[[material]]
-name = "sand"
-density = 2500.0
-young = 1e7
-restitution = 0.3
-friction = 0.5
-
-[contact]
-stiffness = 2000
-
-[[wall]]
-name = "floor"
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-material = "sand"
-
-[[mesh]]
+const std::string kScene = test::plate_scene_head("0.05") + R"([[mesh]]
 name = "low"
 file = "low.stl"
 offset = [0.005, 0.0, 0.0]
@@ -105,12 +82,7 @@ file = "high.stl"
 offset = [0.005, 0.0, 0.0]
 MOTION_HIGH
 IMPLEMENT
-[[insert]]
-region = { min = [0.01, 0.02, 0.0], max = [0.05, 0.08, 0.02] }
-count = 40
-radius = 0.003
-material = "sand"
-
+)" + test::kPlateGrains + R"(
 [output]
 timeseries_every = 0.001
 )";

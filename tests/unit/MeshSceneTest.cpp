@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "support/PlateScene.hpp"
 #include "support/RunBinary.hpp"
 
 namespace gpudem {
@@ -19,44 +20,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A plate in the plane x = 0 facing +x (two triangles), 0.1 m × 0.1 m around (0, 0.05, 0.05),
-/// plus `extra` facets.
-std::string plate_stl(const std::string& extra = "") {
-  const auto facet = [](const char* a, const char* b, const char* c) {
-    return std::string("facet normal 1 0 0\n outer loop\n  vertex ") + a + "\n  vertex " + b +
-           "\n  vertex " + c + "\n endloop\nendfacet\n";
-  };
-  return "solid plate\n" + facet("0 0 0", "0 0.1 0", "0 0.1 0.1") +
-         facet("0 0 0", "0 0.1 0.1", "0 0 0.1") + extra + "endsolid plate\n";
-}
+using test::plate_stl;
 
 /// Grains resting on a floor ahead of the plate (+x), which moves at 0.2 m/s along +x from
 /// t = 0.01 s. Line 27 is the mesh's `file`.
-const char* kScene = R"([simulation]
-end_time = 0.05
-dt = 1e-5
-
-[domain]
-min = [-0.05, 0.0, 0.0]
-max = [0.2, 0.1, 0.1]
-
-[[material]]
-name = "sand"
-density = 2500.0
-young = 1e7
-restitution = 0.3
-friction = 0.5
-
-[contact]
-stiffness = 2000
-
-[[wall]]
-name = "floor"
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-material = "sand"
-
-[[mesh]]
+const std::string kScene = test::plate_scene_head("0.05") + R"([[mesh]]
 name = "plate"
 file = "MESH"
 offset = [0.005, 0.0, 0.0]
@@ -65,12 +33,7 @@ offset = [0.005, 0.0, 0.0]
 times = [0.01, 1.0]
 velocities = [[0.2, 0.0, 0.0], [0.2, 0.0, 0.0]]
 
-[[insert]]
-region = { min = [0.01, 0.02, 0.0], max = [0.05, 0.08, 0.02] }
-count = 40
-radius = 0.003
-material = "sand"
-
+)" + test::kPlateGrains + R"(
 [output]
 timeseries_every = 0.001
 )";

@@ -17,6 +17,7 @@
 
 #include "core/PreviewGeometry.hpp"
 #include "core/PreviewImage.hpp"
+#include "support/PlateScene.hpp"
 #include "support/RunBinary.hpp"
 
 namespace gpudem {
@@ -158,31 +159,7 @@ TEST(PreviewImage, PngHoldsTheCanvasPixelForPixel) {
 // --- through the binary ----------------------------------------------------------------------
 
 /// 40 grains on a floor and a plate facing +x ahead of them that moves 0.19 m along +x.
-const char* kScene = R"([simulation]
-end_time = 1.0
-dt = 1e-5
-
-[domain]
-min = [-0.05, 0.0, 0.0]
-max = [0.2, 0.1, 0.1]
-
-[[material]]
-name = "sand"
-density = 2500.0
-young = 1e7
-restitution = 0.3
-friction = 0.5
-
-[contact]
-stiffness = 2000
-
-[[wall]]
-name = "floor"
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-material = "sand"
-
-[[mesh]]
+const std::string kScene = test::plate_scene_head("1.0") + R"([[mesh]]
 name = "plate"
 file = "plate.stl"
 offset = [-0.01, 0.0, 0.0]
@@ -191,21 +168,13 @@ offset = [-0.01, 0.0, 0.0]
 times = [0.01, 1.0]
 velocities = [[0.2, 0.0, 0.0], [0.2, 0.0, 0.0]]
 
-[[insert]]
-region = { min = [0.01, 0.02, 0.0], max = [0.05, 0.08, 0.02] }
-count = 40
-radius = 0.003
-material = "sand"
-)";
+)" + test::kPlateGrains;
 
 TEST(PreviewScene, WritesTheSceneAtTimeZeroWithoutAStep) {
   const fs::path dir = fs::temp_directory_path() / ("gpudem_preview_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::ofstream(dir / "plate.stl")
-      << "solid plate\nfacet normal 1 0 0\n outer loop\n  vertex 0 0 0\n  vertex 0 0.1 0\n"
-         "  vertex 0 0.1 0.1\n endloop\nendfacet\nfacet normal 1 0 0\n outer loop\n"
-         "  vertex 0 0 0\n  vertex 0 0.1 0.1\n  vertex 0 0 0.1\n endloop\nendfacet\nendsolid\n";
+  std::ofstream(dir / "plate.stl") << test::plate_stl();
   std::ofstream(dir / "scene.toml") << kScene;
   const fs::path out = dir / "out";
   const test::RunResult r =

@@ -371,6 +371,17 @@ TestMesh icosahedron() {
   return m;
 }
 
+/// The squared distance from `centre` to the mesh, by the reference closest point.
+Real closest_distance2(const TestMesh& mesh, Vec3 centre) {
+  Real closest2 = std::numeric_limits<Real>::infinity();
+  for (const auto& t : mesh.triangles)
+    closest2 =
+        std::min(closest2, norm2(reference_closest_point(centre, mesh.vertices[t[0]],
+                                                         mesh.vertices[t[1]], mesh.vertices[t[2]]) -
+                                 centre));
+  return closest2;
+}
+
 /// Whether a point lies outside a convex mesh around the origin: beyond one face plane.
 bool outside_convex(const TestMesh& mesh, Vec3 point) {
   for (const auto& t : mesh.triangles) {
@@ -400,12 +411,7 @@ TEST(MeshContact, ConvexPolyhedronGivesExactlyOneContactAtTheClosestPoint) {
     const Vec3 lean = {gaussian(rng), gaussian(rng), gaussian(rng)};
     const Vec3 centre = on_surface + 1.2 * r * fraction(rng) * unit(on_surface + 0.6 * lean);
     if (!outside_convex(mesh, centre)) continue;
-    Real closest2 = std::numeric_limits<Real>::infinity();
-    for (const auto& t : mesh.triangles) {
-      const Vec3 x = reference_closest_point(centre, mesh.vertices[t[0]], mesh.vertices[t[1]],
-                                             mesh.vertices[t[2]]);
-      closest2 = std::min(closest2, norm2(x - centre));
-    }
+    const Real closest2 = closest_distance2(mesh, centre);
     if (closest2 >= r * r) continue;
     ++tested;
     const SelectedContacts set = contacts(mesh, centre, r);
@@ -464,12 +470,7 @@ TEST(MeshContact, GeodesicSphereGivesOneContactWithHundredsOfTrianglesWithinReac
   for (int trial = 0; trial < 40; ++trial) {
     const Vec3 direction = unit({gaussian(rng), gaussian(rng), gaussian(rng)});
     const Vec3 centre = (1 + gap(rng)) * direction;
-    Real closest2 = std::numeric_limits<Real>::infinity();
-    for (const auto& t : mesh.triangles)
-      closest2 = std::min(
-          closest2, norm2(reference_closest_point(centre, mesh.vertices[t[0]], mesh.vertices[t[1]],
-                                                  mesh.vertices[t[2]]) -
-                          centre));
+    const Real closest2 = closest_distance2(mesh, centre);
     most_within = std::max(most_within, triangles_within_reach(mesh, centre, r));
     const SelectedContacts set = contacts(mesh, centre, r);
     ASSERT_EQ(set.count, 1) << "trial " << trial;
