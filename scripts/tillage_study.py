@@ -60,6 +60,9 @@ PROJECT = pathlib.Path(__file__).resolve().parent.parent
 FORCES = ("draft", "vertical", "lateral")
 STUDY_KEYS = re.compile(r"simulation\.end_time|checkpoint\.every|insert\.\d+\.bed|"
                         r"mesh\.\d+\.(offset|motion\.velocities)")
+# Keys that move the tool, the bin or "up": the study reads them from the scene file to place
+# the tool and find each run's steady window, so a run must not change them.
+GEOMETRY_KEYS = re.compile(r"(mesh|implement|domain)\..*|simulation\.gravity")
 
 
 class StudyError(Exception):
@@ -122,6 +125,9 @@ def check_options(args):
         if STUDY_KEYS.fullmatch(key):
             raise StudyError(f"--set/--vary {key}: the study sets this key itself "
                              "(use --depth, --speed, --end-time or --bed)")
+        if GEOMETRY_KEYS.fullmatch(key):
+            raise StudyError(f"--set/--vary {key}: the study places the tool and finds its "
+                             "steady window from the scene file; change this key there")
 
 
 def bed_surface(bed, up):
@@ -213,6 +219,10 @@ def plan_runs(args, scene, tool):
             raise StudyError(f"--speed {speed:g}: {error}") from None
         name = run_name(depth, speed, varied)
         point = (depth, varied, window[1], pathlib.Path(args.out, "runs", name).resolve())
+        if any(run.name == name for run in runs):
+            raise StudyError(f"two grid points share the run folder name {name}; give values "
+                             "that differ in their first 6 significant digits and their "
+                             "letters and digits")
         runs.append(Run(name, depth, speed, varied, window,
                         solver_args(args, moving, bed_index, point)))
     return runs
@@ -278,7 +288,9 @@ def run_once(args, run, tool):
     if (run_dir / "forces.json").is_file():
         return json.loads((run_dir / "forces.json").read_text()), False
     run_dir.mkdir(parents=True, exist_ok=True)
-    (run_dir / "run.json").write_text(json.dumps({"solver_args": run.solver_args}, indent=1))
+    record = run_dir / "run.json.part"  # renamed once whole: a kill leaves no torn run.json
+    record.write_text(json.dumps({"solver_args": run.solver_args}, indent=1))
+    record.replace(run_dir / "run.json")
     code = launch(args, run, run_dir / "solver.log")
     if code != 0:
         tail = (run_dir / "solver.log").read_text().splitlines()[-5:]

@@ -75,9 +75,15 @@ def find_tool(scene, path, name):
     if not moving:
         raise SceneError(f"mesh '{name}' of {path} does not move "
                          "(no non-zero [mesh.motion] or [implement.motion] velocity)")
+    if "times" not in motion:
+        raise SceneError(f"mesh '{name}' of {path}: its motion has no times")
     gravity = scene.get("simulation", {}).get("gravity", [0, 0, -9.81])
-    up = unit((implement or {}).get("up", [-c for c in gravity]))
-    forward = unit((implement or {}).get("forward", moving[0]))
+    default_up = [-c for c in gravity] if any(c != 0 for c in gravity) else [0, 0, 1]
+    up = unit((implement or {}).get("up", default_up))
+    forward = unit(moving[0])
+    if implement:  # the implement's frame, as the solver makes it: forward normal to up
+        forward = implement.get("forward", moving[0])
+        forward = unit([f - dot(forward, up) * u for f, u in zip(forward, up)])
     return Tool(path, name, index, meshes[index], forward, up, tuple(motion["times"]),
                 tuple(tuple(v) for v in motion["velocities"]), implement is not None)
 

@@ -26,7 +26,8 @@ PreviewContent scene_geometry(const Scene& scene, const EngineSetup& setup) {
   for (const MeshWallSetup& m : setup.meshes) {
     c.mesh_start.push_back({m.mesh.vertices, m.mesh.triangles});
     c.mesh_end.push_back({vertices_at(m.mesh.vertices, m.motion, end), m.mesh.triangles});
-    c.paths.push_back(centre_path(m.motion, end, kPathSamples));
+    c.paths.push_back(m.motion.stands_still() ? std::vector<Vec3>{}
+                                              : centre_path(m.motion, end, kPathSamples));
   }
   return c;
 }
@@ -69,6 +70,7 @@ void write_h5(const std::string& path, const Scene& scene, const PreviewContent&
   for (std::size_t m = 0; m < c.mesh_start.size(); ++m) {
     write_surface(file, mpi, "mesh/" + scene.meshes[m].name, c.mesh_start[m]);
     write_surface(file, mpi, "mesh_end/" + scene.meshes[m].name, c.mesh_end[m]);
+    if (c.paths[m].empty()) continue;  // a mesh that stands still
     const std::string path_name = "path/" + scene.meshes[m].name;
     file.write_dataset(
         {path_name.c_str(), c.paths[m].data(), native_type<Real>(), H5T_IEEE_F64LE, 3, 3, 0},
@@ -107,11 +109,17 @@ std::string particle_grid(std::uint64_t count) {
          "      </Grid>\n";
 }
 
+/// A Polyline of the path's points in order, its connectivity given inline.
 std::string path_grid(const std::string& name, const std::vector<Vec3>& path) {
   using namespace xdmf_detail;
+  std::string order;
+  for (std::size_t k = 0; k < path.size(); ++k) order += (k ? " " : "") + std::to_string(k);
   return "      <Grid Name=\"" + escape(name) + "_path\" GridType=\"Uniform\">\n" +
          "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"1\" NodesPerElement=\"" +
-         std::to_string(path.size()) + "\"/>\n        <Geometry GeometryType=\"XYZ\">\n          " +
+         std::to_string(path.size()) +
+         "\">\n          <DataItem Format=\"XML\" NumberType=\"UInt\" Dimensions=\"1 " +
+         std::to_string(path.size()) + "\">" + order +
+         "</DataItem>\n        </Topology>\n        <Geometry GeometryType=\"XYZ\">\n          " +
          hdf_item("preview.h5", "path/" + name, "Float", 8, path.size(), 3) +
          "\n        </Geometry>\n      </Grid>\n";
 }
@@ -123,7 +131,7 @@ void write_xmf(const std::string& path, const Scene& scene, const PreviewContent
     const std::string& name = scene.meshes[m].name;
     grids += surface_grid(name, "mesh/" + name, c.mesh_start[m]);
     grids += surface_grid(name + "_end", "mesh_end/" + name, c.mesh_end[m]);
-    grids += path_grid(name, c.paths[m]);
+    if (!c.paths[m].empty()) grids += path_grid(name, c.paths[m]);
   }
   for (std::size_t w = 0; w < c.walls.size(); ++w)
     if (!c.walls[w].triangles.empty())

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "app/BedPreparation.hpp"
+#include "core/ForceColumns.hpp"
 #include "core/Stopwatch.hpp"
 
 namespace gpudem {
@@ -29,7 +30,7 @@ std::uint64_t step_count(double end_time, double dt) {
 
 namespace {
 
-std::vector<std::string> timeseries_columns(const Scene& scene, const ImplementLoads& loads) {
+std::vector<std::string> timeseries_columns(const Scene& scene) {
   std::vector<std::string> c = {"time",
                                 "step",
                                 "particles",
@@ -41,12 +42,7 @@ std::vector<std::string> timeseries_columns(const Scene& scene, const ImplementL
                                 "max_overlap_ratio",
                                 "removed",
                                 "imbalance"};
-  for (const WallSettings& w : scene.walls)
-    for (const char* axis_name : {"fx", "fy", "fz"}) c.push_back(w.name + "_" + axis_name);
-  for (const MeshSettings& m : scene.meshes)
-    for (const char* axis_name : {"fx", "fy", "fz", "tx", "ty", "tz"})
-      c.push_back(m.name + "_" + axis_name);
-  for (std::string& name : loads.columns()) c.push_back(std::move(name));
+  for (std::string& name : force_columns(scene)) c.push_back(std::move(name));
   return c;
 }
 
@@ -114,8 +110,8 @@ TimeLoop::TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine
       snapshots_(mpi.comm(), scene.output.dir, snapshot_options(scene, setup),
                  scene.output.asynchronous),
       implement_loads_(scene),
-      series_(scene.output.dir + "/timeseries.csv", timeseries_columns(scene, implement_loads_),
-              mpi.is_root(), series_resume(start)),
+      series_(scene.output.dir + "/timeseries.csv", timeseries_columns(scene), mpi.is_root(),
+              series_resume(start)),
       progress_(!quiet && mpi.is_root(), kProgressInterval, total_steps_, start.step),
       quiet_(quiet),
       resumed_(start.resumed),

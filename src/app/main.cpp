@@ -20,10 +20,11 @@ void add_options(CLI::App& app, gpudem::RunOptions& options) {
   app.set_version_flag("--version", std::string("gpudem-mpi ") + GPUDEM_VERSION);
   app.add_option("scene", options.scene_file, "scene file (TOML)")->required();
   CLI::Option* check = app.add_flag("--check", options.check_only, "validate the scene and exit");
-  app.add_flag("--preview", options.preview,
-               "validate the scene, write it at t = 0 (preview.xmf, preview.h5, preview.png in "
-               "the output directory) and exit without a step")
-      ->excludes(check);
+  CLI::Option* preview =
+      app.add_flag("--preview", options.preview,
+                   "validate the scene, write it at t = 0 (preview.xmf, preview.h5, preview.png "
+                   "in the output directory) and exit without a step")
+          ->excludes(check);
   app.add_option("--set", options.overrides,
                  "override a scene key, e.g. --set simulation.end_time=0.5 (repeatable)")
       ->type_name("KEY=VALUE");
@@ -32,12 +33,14 @@ void add_options(CLI::App& app, gpudem::RunOptions& options) {
       app.add_option("--restart", options.restart_file,
                      "continue from a checkpoint: particles, contact history and time come from "
                      "FILE, everything else from the scene")
-          ->type_name("FILE");
+          ->type_name("FILE")
+          ->excludes(preview);
   app.add_flag("--resume", options.resume,
                "continue from the output directory's checkpoint.h5 when there is one (and do "
                "nothing when it has reached end_time), otherwise start the scene anew: the "
                "same command line for every job of a batch chain")
-      ->excludes(restart);
+      ->excludes(restart)
+      ->excludes(preview);
   const std::map<std::string, gpudem::BackendChoice> backends{
       {"auto", gpudem::BackendChoice::Auto},
       {"host", gpudem::BackendChoice::Host},

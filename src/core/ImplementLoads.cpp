@@ -6,9 +6,6 @@ namespace gpudem {
 
 namespace {
 
-constexpr const char* kFrameSuffixes[] = {"_draft",     "_vertical",  "_lateral",
-                                          "_m_forward", "_m_lateral", "_m_vertical"};
-
 void append_frame(const FrameLoads& f, std::vector<double>& row) {
   row.insert(row.end(), {f.draft, f.vertical, f.lateral, f.moment_forward, f.moment_lateral,
                          f.moment_vertical});
@@ -25,18 +22,6 @@ FrameLoads frame_loads(Vec3 force, Vec3 torque, const Rotation& turned, Vec3 for
 ImplementLoads::ImplementLoads(const Scene& scene) : scene_(scene) {
   for (const ImplementSettings& im : scene.implements)
     implements_.push_back({&im, PrescribedMotion(im.reference, im.keyframes)});
-}
-
-std::vector<std::string> ImplementLoads::columns() const {
-  std::vector<std::string> c;
-  for (const Implement& im : implements_) {
-    for (const char* axis_name : {"_fx", "_fy", "_fz", "_tx", "_ty", "_tz"})
-      c.push_back(im.settings->name + axis_name);
-    for (const char* suffix : kFrameSuffixes) c.push_back(im.settings->name + suffix);
-    for (std::size_t m : im.settings->meshes)
-      for (const char* suffix : kFrameSuffixes) c.push_back(scene_.meshes[m].name + suffix);
-  }
-  return c;
 }
 
 std::vector<double> ImplementLoads::row(double t, const std::vector<Vec3>& mesh_force,

@@ -32,12 +32,8 @@ class ImplementLoads {
  public:
   explicit ImplementLoads(const Scene& scene);
 
-  /// Per implement <name>_fx, _fy, _fz, _tx, _ty, _tz (global) and the frame columns
-  /// <name>_draft, _vertical, _lateral, _m_forward, _m_lateral, _m_vertical, then the frame
-  /// columns of each of its meshes.
-  std::vector<std::string> columns() const;
-
-  /// The values of columns() at time t from each mesh's force and torque about its centre.
+  /// The values of the implements' columns of force_columns (ForceColumns.hpp) at time t from
+  /// each mesh's force and torque about its centre.
   std::vector<double> row(double t, const std::vector<Vec3>& mesh_force,
                           const std::vector<Vec3>& mesh_torque) const;
 

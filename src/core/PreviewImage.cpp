@@ -79,17 +79,21 @@ struct View {
   }
 };
 
-/// The box holding the domain and every mesh vertex, grown by 5 %.
+/// The box holding the domain, every mesh vertex and every path, grown by 5 %.
 void scene_box(const PreviewContent& c, Vec3& lo, Vec3& hi) {
   lo = c.domain_lo;
   hi = c.domain_hi;
+  const auto hold = [&](const Vec3& p) {
+    for (int k = 0; k < 3; ++k) {
+      axis(lo, k) = std::min(axis(lo, k), axis(p, k));
+      axis(hi, k) = std::max(axis(hi, k), axis(p, k));
+    }
+  };
   for (const auto* set : {&c.mesh_start, &c.mesh_end})
     for (const PreviewSurface& s : *set)
-      for (const Vec3& p : s.vertices)
-        for (int k = 0; k < 3; ++k) {
-          axis(lo, k) = std::min(axis(lo, k), axis(p, k));
-          axis(hi, k) = std::max(axis(hi, k), axis(p, k));
-        }
+      for (const Vec3& p : s.vertices) hold(p);
+  for (const auto& path : c.paths)
+    for (const Vec3& p : path) hold(p);
   const Vec3 margin = 0.05 * (hi - lo);
   lo = lo - margin;
   hi = hi + margin;

@@ -5,7 +5,8 @@
 /// at its start and end pose. Particles are discs coloured by material, drawn far to near; the
 /// plane walls' polygons in the domain are outlined in blue, the domain box in black; each mesh
 /// is filled in orange at its start pose (over the particles, so a buried tool shows) and in
-/// light orange at its end pose, and its centre's path is a red line. Rasterised here and
+/// light orange at its end pose, and the path of a moving mesh's centre is a red line. The
+/// views hold the paths too, so nothing is drawn into the next panel. Rasterised here and
 /// written as an 8-bit RGB PNG (zlib stored blocks; no image library).
 #include <cstdint>
 #include <string>

@@ -2,11 +2,13 @@
 // motions.
 #include "core/SceneBodies.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/ForceColumns.hpp"
 #include "core/InputError.hpp"
 #include "core/SceneReading.hpp"
 
@@ -175,6 +177,14 @@ ImplementSettings read_implement(const TableReader& table, std::size_t index, Sc
   return im;
 }
 
+/// The first load column of the scene named twice, or empty.
+std::string repeated_column(const Scene& scene) {
+  std::vector<std::string> names = force_columns(scene);
+  std::sort(names.begin(), names.end());
+  const auto twice = std::adjacent_find(names.begin(), names.end());
+  return twice == names.end() ? std::string() : *twice;
+}
+
 }  // namespace
 
 void read_implements(const TableReader& root, Scene& scene) {
@@ -194,6 +204,9 @@ void read_implements(const TableReader& root, Scene& scene) {
       scene.meshes[m].keyframes = im.keyframes;
     }
     scene.implements.push_back(std::move(im));
+    if (const std::string twice = repeated_column(scene); !twice.empty())
+      tables[i].fail("name", "the time series would have two columns '" + twice +
+                                 "'; rename the implement or its meshes");
   }
 }
 

@@ -12,7 +12,7 @@ invocation runs only the six others (the killed one with --resume and checkpoint
 real solver would continue it from its last checkpoint); a third one runs nothing. Settings that change a finished
 run's command line (--end-time), and bad input (an unknown option, an empty grid, a grid axis
 without values, a tool that does not move, a missing bed, a speed without a steady window, a key
-the study sets itself) are refused with exit 2 before any run; a run that fails stops the study
+the study sets itself or reads from the scene, two grid points with one run folder) are refused with exit 2 before any run; a run that fails stops the study
 with exit 1, naming it.
 usage: check_tillage_study.py PROJECT_SOURCE_DIR WORK_DIR"""
 import csv
@@ -140,6 +140,9 @@ REFUSED = [
     (["--bed", str(work / "none.h5")], f"--bed: no file {work / 'none.h5'}"),
     (["--speed", "0.1", "--end-time", "1"], "--speed 0.1: no steady window"),
     (["--set", "simulation.end_time=2"], "simulation.end_time: the study sets this key itself"),
+    (["--vary", "mesh.0.scale", "1", "2"], "mesh.0.scale: the study places the tool and finds"),
+    (["--set", "domain.max=[1, 1, 1]"], "domain.max: the study places the tool and finds"),
+    (["--depth", "0.05", "0.05000001"], "two grid points share the run folder name"),
 ]
 for options, wanted in REFUSED:
     code, out = study(*GRID, *options)

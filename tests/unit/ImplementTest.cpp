@@ -201,6 +201,8 @@ TEST_F(ImplementScene, BadTablesAreRefused) {
   expect_refused(
       run("bad", "", "", implement_with("reference", "up = [1, 0, 0]\nreference"), " --check"),
       "key 'implement[0].forward'", "not along up");
+  expect_refused(run("bad", "", "", implement_with("\"frame\"", "\"low_m\""), " --check"),
+                 "key 'implement[0].name'", "two columns 'low_m_lateral'");
   const std::string still =
       "[implement.motion]\ntimes = [0.01, 1.0]\n"
       "velocities = [[0.2, 0.0, 0.0], [0.2, 0.0, 0.0]]\n";

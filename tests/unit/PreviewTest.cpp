@@ -1,7 +1,8 @@
 // --preview: the wall polygons, the end pose and the path against hand-worked cases; the PNG
 // decoded here (its chunks' CRCs, the zlib stream's stored blocks and Adler-32) pixel for pixel;
 // and through the binary, a scene previewed without a step: the XDMF pair holds every particle,
-// the mesh and the walls, and the picture shows the grains and the tool.
+// the mesh and the walls, and the picture shows the grains and the tool; --preview with
+// --resume, --restart or --check is refused.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -205,6 +206,14 @@ TEST(PreviewScene, WritesTheSceneAtTimeZeroWithoutAStep) {
     }
   EXPECT_GT(grain, 100u);
   EXPECT_GT(tool, 1000u);  // the plate face-on in the side view, 0.1 m square
+  for (const char* other : {" --resume", " --restart x.h5", " --check"}) {
+    const test::RunResult refused =
+        test::run_binary((dir / "scene.toml").string() + " --preview --output-dir " +
+                         (dir / "other").string() + other);
+    EXPECT_EQ(refused.exit_code, 2) << other << refused.output;
+    EXPECT_NE(refused.output.find("excludes"), std::string::npos) << refused.output;
+    EXPECT_FALSE(fs::exists(dir / "other"));
+  }
   fs::remove_all(dir);
 }
 
