@@ -19,7 +19,7 @@ FrameLoads frame_loads(Vec3 force, Vec3 torque, const Rotation& turned, Vec3 for
           dot(torque, f), dot(torque, l), dot(torque, u)};
 }
 
-ImplementLoads::ImplementLoads(const Scene& scene) : scene_(scene) {
+ImplementLoads::ImplementLoads(const Scene& scene) {
   for (const ImplementSettings& im : scene.implements)
     implements_.push_back({&im, PrescribedMotion(im.reference, im.keyframes)});
 }

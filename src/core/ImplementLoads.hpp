@@ -1,5 +1,5 @@
 #pragma once
-/// The time-series columns of the scene's implements ([[implement]]): each implement's force
+/// The values of the implements' time-series columns (ForceColumns.hpp): each implement's force
 /// and its torque about its reference point in the global frame, and both in the implement's
 /// own frame, as for each of its meshes. The frame is forward f, up u and lateral l = u × f
 /// (to the left of the travel) at t = 0, turned with the implement by R(t), the rotation by
@@ -10,7 +10,6 @@
 ///   axes.
 /// The meshes of an implement turn about its reference point, so the diagnostics give their
 /// torques about that point, and the implement's torque is their sum.
-#include <string>
 #include <vector>
 
 #include "core/PrescribedMotion.hpp"
@@ -42,7 +41,6 @@ class ImplementLoads {
     const ImplementSettings* settings;
     PrescribedMotion motion;
   };
-  const Scene& scene_;
   std::vector<Implement> implements_;
 };
 
