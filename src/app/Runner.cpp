@@ -123,17 +123,23 @@ void print_mesh_summary(const Scene& scene, const EngineSetup& setup) {
 void print_summary(const Scene& scene, const ParticleStore& deciding, std::uint64_t count,
                    const EngineSetup& setup, const StepEngine* engine, double engine_bytes,
                    std::uint64_t steps) {
-  const TimeStepLimits limits = time_step_limits(scene, deciding);
+  const TimeStepLimits limits = time_step_limits(scene, deciding, setup.meshes);
   std::printf(
       "scene %s: %llu particles, %s, %s, contact law %s\n", scene.file.c_str(),
       static_cast<unsigned long long>(count), counted(scene.materials.size(), "material").c_str(),
       counted(scene.walls.size(), "wall").c_str(), contact_model_name(setup.contact_model).c_str());
   std::printf(
-      "dt = %.4g s (%s; contact duration %.4g s, Rayleigh time %.4g s, stable limit %.4g s), "
-      "%llu steps to t = %.4g s, skin %.4g m\n",
+      "dt = %.4g s (%s; contact duration %.4g s, Rayleigh time %.4g s, stable limit %.4g s, "
+      "displacement limit %.4g s at v_max %.4g m/s), %llu steps to t = %.4g s, skin %.4g m\n",
       setup.dt, scene.simulation.dt_auto ? "auto" : "explicit", limits.contact_duration,
-      limits.rayleigh, limits.stable, static_cast<unsigned long long>(steps),
-      scene.simulation.end_time, setup.skin);
+      limits.rayleigh, limits.stable, limits.displacement, limits.max_speed,
+      static_cast<unsigned long long>(steps), scene.simulation.end_time, setup.skin);
+  const PeakOverlap impact = peak_overlap(scene, deciding, impact_speed(scene, deciding));
+  if (impact.ratio > 0)
+    std::printf(
+        "impacts at v = %.4g m/s overlap by at most %.3g %% of the radius (instability at %.3g %%, "
+        "reached at %.4g m/s)\n",
+        impact.speed, 100 * impact.ratio, 100 * kUnstableOverlapRatio, impact.unstable_speed);
   print_mesh_summary(scene, setup);
   if (engine) {
     const std::string device =
@@ -271,15 +277,17 @@ bool reached_end(const Scene& scene, const MpiContext& mpi, const Checkpoint& ch
   return true;
 }
 
-/// The engine's start-up notes: a warning of crowded OpenMP threads (host backend), and with
-/// --verbose the memory report and the launch tuning line.
+/// The engine's start-up notes: on the host backend the OpenMP threads per rank and a warning
+/// of crowded threads, and with --verbose the memory report and the launch tuning line.
 void print_engine_notes(const RunOptions& options, const MpiContext& mpi, const StepEngine& engine,
-                        const std::vector<MemoryUse>& memory, const std::string& tuning) {
-  if (!options.quiet && engine.backend_name() == "host") {
-    const std::string crowded = crowded_threads_warning(mpi);
-    if (!crowded.empty()) std::printf("%s\n", crowded.c_str());
+                        const ThreadPlan& threads, const std::vector<MemoryUse>& memory,
+                        const std::string& tuning) {
+  if (options.quiet || !mpi.is_root()) return;
+  if (engine.backend_name() == "host") {
+    std::printf("%s\n", threads.note.c_str());
+    if (!threads.warning.empty()) std::printf("%s\n", threads.warning.c_str());
   }
-  if (options.quiet || !mpi.is_root() || !options.verbose) return;
+  if (!options.verbose) return;
   print_memory_report(memory, engine.particle_count());
   std::printf("%s\n", tuning.c_str());
 }
@@ -309,9 +317,34 @@ void preview_scene(const Scene& scene, const EngineSetup& setup, const ParticleS
         scene.output.dir.c_str(), scene.output.dir.c_str());
 }
 
+/// What --check and --preview report of a scene set up without an engine.
+struct SetUpScene {
+  const ParticleStore& deciding;  ///< the particles that set the time step, from all ranks
+  std::uint64_t particle_count;   ///< on all ranks
+  const EngineSetup& setup;
+  const MpiDomain* domain;     ///< null on one rank
+  const SettleCheck* settle;   ///< null unless the scene prepares a bed
+  const ParticleStore& share;  ///< this rank's particles
+};
+
+/// --check: the start-up summary and "scene is valid"; --preview: the summary and the scene at
+/// t = 0 (Preview.hpp). Collective.
+void check_or_preview(const Scene& scene, const RunOptions& options, const MpiContext& mpi,
+                      const SetUpScene& s) {
+  if (mpi.is_root()) {
+    print_summary(scene, s.deciding, s.particle_count, s.setup, nullptr, -1,
+                  step_count(scene.simulation.end_time, s.setup.dt));
+    if (s.domain) print_decomposition(*s.domain);
+    if (s.settle) print_preparation(scene, *s.settle, s.setup.dt);
+  }
+  if (options.preview) preview_scene(scene, s.setup, s.share, mpi);
+  if (options.check_only && mpi.is_root()) std::printf("scene is valid\n");
+}
+
 }  // namespace
 
 int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
+  const ThreadPlan threads = share_node_cores(mpi);
   Scene scene = load_scene(command_line.scene_file, command_line.overrides);
   print_warnings(scene.warnings, mpi);
   if (!command_line.output_dir.empty()) scene.output.dir = command_line.output_dir;
@@ -326,6 +359,7 @@ int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
       gather_particles(mpi.group(), setup_deciding_particles(scene, share.particles()));
   const std::uint64_t particle_count = mpi.group().sum<std::uint64_t>(share.particles().size());
   EngineSetup setup = make_engine_setup(scene, deciding);
+  print_warnings(time_step_warnings(scene, deciding, setup), mpi);
   if (checkpoint)
     adopt_checkpoint_step(setup, scene, *checkpoint, options.restart_file);
   else
@@ -343,13 +377,9 @@ int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
     std::printf("restart from %s at t = %.6g s (step %llu)\n", options.restart_file.c_str(),
                 checkpoint->time, static_cast<unsigned long long>(checkpoint->step));
   if (options.check_only || options.preview) {
-    if (mpi.is_root()) {
-      print_summary(scene, deciding, particle_count, setup, nullptr, -1, steps);
-      if (domain) print_decomposition(*domain);
-      if (settle) print_preparation(scene, *settle, setup.dt);
-    }
-    if (options.preview) preview_scene(scene, setup, share.particles(), mpi);
-    if (options.check_only && mpi.is_root()) std::printf("scene is valid\n");
+    check_or_preview(scene, options, mpi,
+                     {deciding, particle_count, setup, domain.get(), settle ? &*settle : nullptr,
+                      share.particles()});
     return kExitOk;
   }
   std::unique_ptr<StepEngine> engine = make_engine(options.backend, mpi, setup);
@@ -360,7 +390,7 @@ int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
   const std::vector<MemoryUse> memory = memory_over_ranks(mpi, *engine);
   if (banner)
     print_summary(scene, deciding, particle_count, setup, engine.get(), total_bytes(memory), steps);
-  print_engine_notes(options, mpi, *engine, memory, tuning);
+  print_engine_notes(options, mpi, *engine, threads, memory, tuning);
   if (banner) print_output_mode(scene);
   if (banner && domain) print_decomposition(*domain);
   if (banner && settle) print_preparation(scene, *settle, setup.dt);

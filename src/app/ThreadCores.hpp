@@ -1,27 +1,27 @@
 #pragma once
-/// Whether a rank's OpenMP threads have cores of their own: mpirun (Open MPI) binds each rank to
-/// one core unless told otherwise, and a rank of T threads bound to C < T cores runs them in
-/// turns (README, "Running").
+/// The OpenMP threads of the host backend's ranks and the cores they run on (README, "Running").
+/// Open MPI binds each rank to one core when there are at least as many cores as ranks, and binds
+/// none when it oversubscribes; OpenMP starts as many threads as the rank's affinity mask holds
+/// cores. Unless OMP_NUM_THREADS says otherwise, each rank therefore takes its share of the cores
+/// it may use with the node's other ranks whose masks overlap its own; a warning names the fix
+/// when a rank has more threads than its cores, or a node's ranks more than the node's cores.
 #include <string>
 
 #include "comm/MpiContext.hpp"
+#include "core/ThreadShare.hpp"
 
 namespace gpudem {
 
-/// The OpenMP threads a rank runs and the cores its affinity mask lets it run on.
-struct ThreadCores {
-  int threads = 1;
-  int cores = 1;
+/// The host backend's threads as rank 0 reports them at start-up.
+struct ThreadPlan {
+  /// "host backend: N OpenMP thread(s) on rank 0 (...)", saying whether OMP_NUM_THREADS set
+  /// them or the cores were shared (rank 0; empty elsewhere)
+  std::string note;
+  std::string warning;  ///< crowded_threads_warning over all ranks (rank 0; empty elsewhere)
 };
 
-/// This process's ThreadCores (threads 1 without OpenMP).
-ThreadCores this_rank_thread_cores();
-
-/// The warning for ranks with more threads than cores (`first` the lowest such rank, `rank`
-/// its index, `crowded` how many of `ranks` are), or empty when `crowded` is 0.
-std::string crowded_threads_warning(const ThreadCores& first, int rank, int crowded, int ranks);
-
-/// crowded_threads_warning over all ranks, on rank 0 (empty elsewhere). Collective.
-std::string crowded_threads_warning(const MpiContext& mpi);
+/// Sets this rank's OpenMP threads to shared_thread_count when OMP_NUM_THREADS is unset (and
+/// OpenMP is built in) and says what every rank runs. Collective; call before any parallel work.
+ThreadPlan share_node_cores(const MpiContext& mpi);
 
 }  // namespace gpudem

@@ -7,13 +7,12 @@
 #include "app/BedPreparation.hpp"
 #include "core/ForceColumns.hpp"
 #include "core/Stopwatch.hpp"
+#include "engine/TimeStepLimits.hpp"
 
 namespace gpudem {
 
 namespace {
 
-/// Overlap beyond this fraction of the smaller radius stops the run.
-constexpr double kOverlapLimit = 0.5;
 /// Seconds of wall time between progress lines.
 constexpr double kProgressInterval = 2.0;
 
@@ -124,7 +123,7 @@ int TimeLoop::run() {
   for (std::uint64_t step = first_step_ + 1; step <= total_steps_; ++step) {
     engine_.step();
     HealthFailure failure;
-    if (engine_.find_unhealthy(kOverlapLimit, failure)) return stop_unstable(step, failure);
+    if (engine_.find_unhealthy(kUnstableOverlapRatio, failure)) return stop_unstable(step, failure);
     balance_.maybe_rebalance(step, engine_);
     const bool last = step == total_steps_;
     const bool snapshot = last || step % snapshot_every_ == 0;

@@ -28,6 +28,10 @@ ParticleStore place_sequential_box(const MpiRankGroup& ranks, const Scene& scene
 
 ParticleStore create_start_part(const MpiRankGroup& ranks, const Scene& scene,
                                 const BedReader& read_bed_part) {
+  agree_on_failure(ranks, [&] {
+    check_box_sources(scene);
+    return 0;
+  });
   const std::size_t bed_index = bed_source_index(scene);
   ParticleStore bed;
   if (bed_index < scene.sources.size())

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/ParticleStore.hpp"
+#include "core/RadiusSampling.hpp"
 #include "core/RowShare.hpp"
 #include "core/Scene.hpp"
 
@@ -95,19 +96,12 @@ ParticleId id_after(const ParticleStore& particles);
 
 /// Refuses box source i when it cannot be placed: a material the scene lacks, a distribution
 /// that cannot be sampled or may give radii <= 0, neither a count nor a volume fraction in
-/// (0, 1), or more particles than one source may hold. Throws InputError naming its key.
+/// (0, 1), a count above what its region holds at the densest packing of its smallest radius,
+/// or more particles than one source may hold. Throws InputError naming its key.
 void check_box_source(const Scene& scene, std::size_t i);
 
-/// Draws `count` radii from `dist` [m]: uniform on [mean - spread, mean + spread]; normal
-/// (mean, stddev) redrawn until within [min, max]; or values[k] with probability
-/// weights[k] / sum(weights) (equal weights when none are given). Throws
-/// std::invalid_argument for a distribution that cannot be sampled (no value of positive
-/// weight, or bounds holding less than 1e-6 of the normal's probability).
-std::vector<double> sample_radii(const RadiusDistribution& dist, std::size_t count,
-                                 std::mt19937_64& rng);
-
-/// Smallest and largest radius `dist` can produce [m].
-double min_radius(const RadiusDistribution& dist);
-double max_radius(const RadiusDistribution& dist);
+/// check_box_source for every box source of the scene, in order: before any is placed, so a
+/// source that cannot be placed is refused at once.
+void check_box_sources(const Scene& scene);
 
 }  // namespace gpudem

@@ -29,7 +29,9 @@ struct SimulationSettings {
   double dt = 0;             ///< [s] explicit step (when dt_auto is false)
   int dt_line = 0;           ///< line of `dt` in the scene file (0: absent or from --set)
   double dt_fraction = 0.1;  ///< fraction of the critical step used by "auto" [-]
-  double end_time = 0;       ///< [s] simulated time to reach (required)
+  /// "auto" also keeps v_max dt within this fraction of the smallest radius [-]
+  double displacement_fraction = 0.1;
+  double end_time = 0;  ///< [s] simulated time to reach (required)
   IntegratorKind integrator = IntegratorKind::VelocityVerlet;
   Precision precision = Precision::Double;
   std::uint64_t seed = 1;     ///< random seed for particle insertion
@@ -37,7 +39,9 @@ struct SimulationSettings {
   /// [m/s] largest expected impact speed, for the Hertz contact duration; 0 = "auto":
   /// free fall over the domain height plus the fastest inserted particle
   double impact_speed = 0;
-  bool allow_unstable_dt = false;  ///< accept an explicit dt above the stable limit
+  /// accept an explicit dt above the stable limit, and impacts whose peak overlap would pass the
+  /// instability limit (warned of instead)
+  bool allow_unstable_dt = false;
 };
 
 struct DomainSettings {

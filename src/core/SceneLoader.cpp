@@ -61,14 +61,16 @@ double auto_or_positive(const TableReader& table, const std::string& key, const 
 
 SimulationSettings read_simulation(const TableReader& root) {
   const TableReader table = root.table("simulation");
-  table.allow_only({"end_time", "dt", "dt_fraction", "integrator", "precision", "seed", "gravity",
-                    "impact_speed", "allow_unstable_dt"});
+  table.allow_only({"end_time", "dt", "dt_fraction", "displacement_fraction", "integrator",
+                    "precision", "seed", "gravity", "impact_speed", "allow_unstable_dt"});
   SimulationSettings s;
   s.end_time = table.number("end_time", positive("s"));
   s.dt = auto_or_positive(table, "dt", "s");
   s.dt_auto = s.dt == 0;
   s.dt_line = table.has("dt") ? table.line("dt") : 0;
   s.dt_fraction = table.number("dt_fraction", interval(0, true, 1, false), s.dt_fraction);
+  s.displacement_fraction =
+      table.number("displacement_fraction", interval(0, true, 1, false), s.displacement_fraction);
   const std::string integrator =
       table.choice("integrator", {"velocity_verlet", "symplectic_euler"}, "velocity_verlet");
   s.integrator = integrator == "velocity_verlet" ? IntegratorKind::VelocityVerlet

@@ -19,19 +19,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-/// G of a material [Pa].
-double shear_modulus(const Material& m) { return gpudem::shear_modulus(m.young, m.poisson); }
-
-/// E* of two materials (HertzNormal).
-double effective_young(const Material& a, const Material& b) {
-  return HertzNormal::effective_modulus(a.young, a.poisson, b.young, b.poisson);
-}
-
-/// G* of two materials (MindlinTangential).
-double effective_shear(const Material& a, const Material& b) {
-  return MindlinTangential::effective_shear_modulus(a.young, a.poisson, b.young, b.poisson);
-}
-
 /// μ_d of a material: friction_dynamic, or the static friction when it is not given (< 0).
 double dynamic_friction(const Material& m) {
   return m.friction_dynamic < 0 ? m.friction : m.friction_dynamic;
@@ -52,8 +39,8 @@ void set_elastic_constants(ContactPairParams& p, const ContactSettings& contact,
   p.hooke_tangential_stiffness = contact.model.tangential == TangentialLaw::LinearHistory
                                      ? LinearHistoryTangential::stiffness_ratio * contact.stiffness
                                      : 0.0;
-  p.effective_young = effective_young(a, b);
-  p.effective_shear = effective_shear(a, b);
+  p.effective_young = pair_young_modulus(a, b);
+  p.effective_shear = pair_shear_modulus(a, b);
 }
 
 /// Restitution, friction, rolling and cohesion values: the [[pair]] entry's where it gives
@@ -88,35 +75,6 @@ std::vector<ContactPairParams> pair_table(const Scene& scene) {
   return table;
 }
 
-/// The smallest radius in the store, or +inf.
-double smallest_radius(const ParticleStore& particles) {
-  double r = kInfinity;
-  for (const Real4& p : particles.position_radius) r = std::min(r, p.w);
-  return r;
-}
-
-/// T_R = π r √(ρ/G) / (0.1631 ν + 0.8766) of a sphere of radius r (Rayleigh wave crossing).
-double rayleigh_time(const Material& m, double radius) {
-  return kPi * radius * std::sqrt(m.density / shear_modulus(m)) / (0.1631 * m.poisson + 0.8766);
-}
-
-double smallest_rayleigh_time(const Scene& scene, const ParticleStore& particles) {
-  double t = kInfinity;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    t = std::min(
-        t, rayleigh_time(scene.materials[particles.material[i]], particles.position_radius[i].w));
-  }
-  return t;
-}
-
-/// The materials of the plane walls and the mesh walls, each as often as it is used.
-std::vector<MaterialId> wall_materials(const Scene& scene) {
-  std::vector<MaterialId> ids;
-  for (const WallSettings& w : scene.walls) ids.push_back(w.material);
-  for (const MeshSettings& m : scene.meshes) ids.push_back(m.material);
-  return ids;
-}
-
 /// The mesh walls of the scene, read, placed and welded. An STL error becomes an error of the
 /// scene's `mesh[i].file` key, its message naming the STL file.
 std::vector<MeshWallSetup> mesh_walls(const Scene& scene) {
@@ -134,81 +92,6 @@ std::vector<MeshWallSetup> mesh_walls(const Scene& scene) {
     walls.push_back(std::move(wall));
   }
   return walls;
-}
-
-/// Index of the smallest particle of each material; particles.size() for an absent material.
-std::vector<std::size_t> smallest_particle_per_material(const Scene& scene,
-                                                        const ParticleStore& particles) {
-  const std::size_t none = particles.size();
-  std::vector<std::size_t> smallest(scene.materials.size(), none);
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    std::size_t& s = smallest[particles.material[i]];
-    if (s == none || particles.position_radius[i].w < particles.position_radius[s].w) s = i;
-  }
-  return smallest;
-}
-
-/// The contacts that bound the step of a law whose stiffness depends on the contact's size
-/// (Normal::needs_effective_radius): the smallest particles of every two materials present (a
-/// material with itself included), and of every material present with each wall, at impact
-/// speed v.
-std::vector<ImpactPair> extreme_pairs(const Scene& scene, const ParticleStore& particles,
-                                      double v) {
-  const std::vector<std::size_t> smallest = smallest_particle_per_material(scene, particles);
-  std::vector<ImpactPair> pairs;
-  for (std::size_t a = 0; a < smallest.size(); ++a) {
-    if (smallest[a] == particles.size()) continue;
-    const double ra = particles.position_radius[smallest[a]].w;
-    const double ma = 1 / particles.velocity_inv_mass[smallest[a]].w;
-    const Material& mat_a = scene.materials[a];
-    for (std::size_t b = a; b < smallest.size(); ++b) {
-      if (smallest[b] == particles.size()) continue;
-      const double rb = particles.position_radius[smallest[b]].w;
-      const double mb = 1 / particles.velocity_inv_mass[smallest[b]].w;
-      const Material& mat_b = scene.materials[b];
-      pairs.push_back({ra * rb / (ra + rb), ma * mb / (ma + mb), effective_young(mat_a, mat_b),
-                       effective_shear(mat_a, mat_b), scene.contact.stiffness, v});
-    }
-    for (const MaterialId id : wall_materials(scene)) {
-      const Material& wall = scene.materials[id];
-      pairs.push_back({ra, ma, effective_young(mat_a, wall), effective_shear(mat_a, wall),
-                       scene.contact.stiffness, v});
-    }
-  }
-  return pairs;
-}
-
-/// The contact that bounds the step of a law whose stiffness does not depend on size: the two
-/// lightest particles (m* = 1 / (2 max 1/m)); none without particles.
-std::vector<ImpactPair> lightest_pair(const Scene& scene, const ParticleStore& particles) {
-  double max_inv_mass = 0;
-  for (const Real4& v : particles.velocity_inv_mass) max_inv_mass = std::max(max_inv_mass, v.w);
-  if (!(max_inv_mass > 0)) return {};
-  ImpactPair pair;
-  pair.mass = 0.5 / max_inv_mass;
-  pair.stiffness = scene.contact.stiffness;
-  return {pair};
-}
-
-/// The smallest t_c and stable step of normal law Normal with tangential law Tangential over
-/// the pairs that bound them.
-template <class Normal, class Tangential>
-void set_contact_limits(TimeStepLimits& limits, const Scene& scene,
-                        const ParticleStore& particles) {
-  const std::vector<ImpactPair> pairs =
-      Normal::needs_effective_radius
-          ? extreme_pairs(scene, particles, impact_speed(scene, particles))
-          : lightest_pair(scene, particles);
-  for (const ImpactPair& p : pairs) {
-    limits.contact_duration = std::min(limits.contact_duration, Normal::contact_duration(p));
-    limits.stable = std::min(limits.stable, Normal::template stable_step<Tangential>(p));
-  }
-}
-
-/// Extent of the box [lo, hi] along the unit vector u: Σ_k |(hi − lo)_k u_k| [m].
-double extent_along(Vec3 lo, Vec3 hi, Vec3 u) {
-  const Vec3 l = hi - lo;
-  return std::abs(l.x * u.x) + std::abs(l.y * u.y) + std::abs(l.z * u.z);
 }
 
 /// "1.234e-05": numbers in messages, four significant digits.
@@ -288,32 +171,62 @@ void require_stable_dt(const Scene& scene, const TimeStepLimits& limits) {
           "to run anyway");
 }
 
-}  // namespace
-
-double impact_speed(const Scene& scene, const ParticleStore& particles) {
-  if (scene.simulation.impact_speed > 0) return scene.simulation.impact_speed;
-  const Vec3 g = scene.simulation.gravity;
-  const double g_norm = norm(g);
-  const double height =
-      g_norm > 0 ? extent_along(scene.domain.min, scene.domain.max, (1 / g_norm) * g) : 0.0;
-  double fastest = 0;
-  for (const Real4& v : particles.velocity_inv_mass) fastest = std::max(fastest, norm(xyz(v)));
-  const double v = std::sqrt(2 * g_norm * height) + fastest;
-  return v > 0 ? v : 1.0;
+/// What the deepest impact of `p` would do, and how fast this law holds it.
+std::string impact_text(const Scene& scene, const PeakOverlap& p) {
+  const std::string against = p.wall ? "a wall of '" + scene.materials[p.other].name + "'"
+                                     : "a '" + scene.materials[p.other].name + "' particle";
+  return "an impact at v = " + short_number(p.speed) + " m/s of a '" +
+         scene.materials[p.material].name + "' particle of radius " + short_number(p.radius) +
+         " m against " + against + " would overlap by " + short_number(100 * p.ratio) +
+         " % of its radius at the peak (" + contact_model_name(scene.contact.model) +
+         ", undamped), past the " + short_number(100 * kUnstableOverlapRatio) +
+         " % at which a run stops as unstable; this contact holds impacts up to " +
+         short_number(p.unstable_speed) + " m/s";
 }
 
-TimeStepLimits time_step_limits(const Scene& scene, const ParticleStore& particles) {
-  TimeStepLimits limits;
-  limits.rayleigh = smallest_rayleigh_time(scene, particles);
-  limits.contact_duration = kInfinity;
-  limits.stable = limits.rayleigh;
-  const ContactModel& model = scene.contact.model;
-  visit_slot(NormalSlots{}, static_cast<std::size_t>(model.normal), [&](auto normal) {
-    visit_slot(TangentialSlots{}, static_cast<std::size_t>(model.tangential), [&](auto tangential) {
-      set_contact_limits<decltype(normal), decltype(tangential)>(limits, scene, particles);
-    });
-  });
-  return limits;
+/// The key that stiffens the deepest contact: contact.stiffness for a law of one stiffness,
+/// else the Young's modulus of the softer material of the contact.
+std::string stiffness_key(const Scene& scene, const PeakOverlap& p) {
+  if (scene.contact.model.normal == NormalLaw::Hooke) return "contact.stiffness";
+  const bool other_softer = scene.materials[p.other].young < scene.materials[p.material].young;
+  return "material[" + std::to_string(other_softer ? p.other : p.material) + "].young";
+}
+
+/// Refuses impacts whose peak overlap would pass kUnstableOverlapRatio unless the scene allows
+/// it, naming the key that stiffens the contact.
+void require_holdable_impacts(const Scene& scene, const PeakOverlap& p) {
+  if (!(p.ratio > kUnstableOverlapRatio) || scene.simulation.allow_unstable_dt) return;
+  throw InputError(scene.file, 0, stiffness_key(scene, p),
+                   impact_text(scene, p) + ": stiffen the contact (" + stiffness_key(scene, p) +
+                       ") or lower the speed, or set simulation.allow_unstable_dt = true to run "
+                       "anyway");
+}
+
+}  // namespace
+
+std::vector<std::string> time_step_warnings(const Scene& scene, const ParticleStore& particles,
+                                            const EngineSetup& setup) {
+  std::vector<std::string> warnings;
+  const PeakOverlap launched =
+      peak_overlap(scene, particles, launch_speed(scene, particles, setup.meshes));
+  const PeakOverlap fallen = peak_overlap(scene, particles, impact_speed(scene, particles));
+  if (launched.ratio > kUnstableOverlapRatio)
+    warnings.push_back(impact_text(scene, launched) +
+                       " (run anyway: simulation.allow_unstable_dt)");
+  else if (fallen.ratio > kUnstableOverlapRatio)
+    warnings.push_back(impact_text(scene, fallen) +
+                       "; particles falling that far at once would stop the run");
+  const TimeStepLimits limits = time_step_limits(scene, particles, setup.meshes);
+  const double r_min = smallest_radius(particles);
+  const double moved = limits.max_speed * setup.dt / r_min;
+  if (!scene.simulation.dt_auto && moved > scene.simulation.displacement_fraction)
+    warnings.push_back("dt = " + short_number(setup.dt) + " s lets a particle at v_max = " +
+                       short_number(limits.max_speed) + " m/s move " + short_number(moved) +
+                       " of the smallest radius in one step, more than "
+                       "simulation.displacement_fraction = " +
+                       short_number(scene.simulation.displacement_fraction) +
+                       ", so contacts may start that deep; dt = \"auto\" keeps within it");
+  return warnings;
 }
 
 EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles) {
@@ -335,12 +248,13 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
       scene.neighbor.skin > 0 ? scene.neighbor.skin : (std::isfinite(r_min) ? 0.5 * r_min : 0.0);
   require_meshes_fit_periodic_axes(scene, s.meshes, largest_radius(particles), s.skin);
   require_meshes_meet_the_domain(scene, s.meshes, std::isfinite(r_min) ? 2 * r_min : 0.0);
-  const TimeStepLimits limits = time_step_limits(scene, particles);
+  const TimeStepLimits limits = time_step_limits(scene, particles, s.meshes);
   require_stable_dt(scene, limits);
+  require_holdable_impacts(
+      scene, peak_overlap(scene, particles, launch_speed(scene, particles, s.meshes)));
   if (scene.simulation.dt_auto) {
-    const double critical = limits.critical();
-    s.dt = std::isfinite(critical) ? scene.simulation.dt_fraction * critical
-                                   : scene.simulation.end_time;
+    const double step = limits.automatic(scene.simulation.dt_fraction);
+    s.dt = std::isfinite(step) ? step : scene.simulation.end_time;
   } else {
     s.dt = scene.simulation.dt;
   }

@@ -31,15 +31,21 @@ inline RunResult run_binary(const std::string& args) {
   return run_command(binary_path() + " " + args + " 2>&1");
 }
 
-/// The binary on `ranks` MPI ranks: mpiexec_path(), allowed as root and past the core count,
-/// one OpenMP thread per rank, and without the variables that make this test process an MPI
-/// process (under them the launcher would take itself for one of its ranks).
+/// The shell command that runs the binary on `ranks` MPI ranks: mpiexec_path(), allowed as root
+/// and past the core count, without the variables that make this test process an MPI process
+/// (under them the launcher would take itself for one of its ranks), stderr into stdout. The
+/// OpenMP threads are those the environment gives; `launcher` goes before the launcher (e.g.
+/// "taskset -c 0 ").
+inline std::string ranks_command(int ranks, const std::string& args,
+                                 const std::string& launcher = "") {
+  return "for v in $(env | grep -Eo '^(OMPI|PMIX|OPAL)_[A-Za-z0-9_]*'); do unset \"$v\"; done; " +
+         launcher + mpiexec_path() + " --allow-run-as-root --oversubscribe -np " +
+         std::to_string(ranks) + " " + binary_path() + " " + args + " 2>&1";
+}
+
+/// The binary on `ranks` MPI ranks (ranks_command), one OpenMP thread per rank.
 inline RunResult run_binary_on_ranks(int ranks, const std::string& args) {
-  return run_command(
-      "for v in $(env | grep -Eo '^(OMPI|PMIX|OPAL)_[A-Za-z0-9_]*'); do unset \"$v\"; done; "
-      "OMP_NUM_THREADS=1 " +
-      mpiexec_path() + " --allow-run-as-root --oversubscribe -np " + std::to_string(ranks) + " " +
-      binary_path() + " " + args + " 2>&1");
+  return run_command("OMP_NUM_THREADS=1; export OMP_NUM_THREADS; " + ranks_command(ranks, args));
 }
 
 }  // namespace gpudem::test

@@ -204,6 +204,35 @@ TEST_F(CommandLine, MoreThreadsThanCoresIsWarnedOf) {
   EXPECT_EQ(one.output.find("OpenMP threads than the cores"), std::string::npos) << one.output;
 }
 
+/// With OMP_NUM_THREADS unset a lone rank takes every core of its mask, and ranks that share
+/// their cores split them: three ranks on one core take one thread each and are told that the
+/// node has fewer cores than ranks.
+TEST_F(CommandLine, RanksShareTheirCoresWhenNoThreadCountIsSet) {
+#if !defined(GPUDEM_HAVE_OPENMP)
+  GTEST_SKIP() << "built without OpenMP";
+#endif
+  const std::string args = scene(kValidScene) + " --output-dir " + out();
+  const Result alone =
+      gpudem::test::run_command("env -u OMP_NUM_THREADS taskset -c 0,1 " +
+                                gpudem::test::binary_path() + " " + args + " 2>&1");
+  ASSERT_EQ(alone.exit_code, 0) << alone.output;
+  EXPECT_NE(alone.output.find("host backend: 2 OpenMP thread(s) on rank 0 (OMP_NUM_THREADS unset"),
+            std::string::npos)
+      << alone.output;
+  EXPECT_EQ(alone.output.find("take turns"), std::string::npos) << alone.output;
+  fs::remove_all(out());
+  const Result three = gpudem::test::run_command(
+      "unset OMP_NUM_THREADS; " + gpudem::test::ranks_command(3, args, "taskset -c 0 "));
+  ASSERT_EQ(three.exit_code, 0) << three.output;
+  EXPECT_NE(three.output.find("host backend: 1 OpenMP thread(s) on rank 0 (OMP_NUM_THREADS unset"),
+            std::string::npos)
+      << three.output;
+  EXPECT_NE(three.output.find("warning: 3 ranks on one node run 3 OpenMP threads in all on its 1 "
+                              "core(s), so they take turns; run at most 1 rank(s) per node"),
+            std::string::npos)
+      << three.output;
+}
+
 /// Without the floor the 50 spheres fall out through the bottom over many time-series rows: one
 /// warning at the first removal, then the count in the progress lines (the last says all 50).
 TEST_F(CommandLine, ParticlesLeavingTheDomainAreWarnedOfOnceThenCounted) {

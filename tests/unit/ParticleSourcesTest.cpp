@@ -235,7 +235,9 @@ TEST(BoxInsertion, VolumeFractionReachedWithinOneParticle) {
 TEST(BoxInsertion, ImpossibleRequestNamesTheSource) {
   Scene scene = make_scene();
   scene.sources.push_back(box({0.5, 0.5, 0.5}, {0.6, 0.6, 0.6}, 10, uniform(1e-3, 0)));
-  scene.sources.push_back(box({0, 0, 0}, {0.05, 0.05, 0.05}, 10000, uniform(5e-3, 0)));
+  // 150 spheres of 5 mm fill 0.52 of the box: under the densest packing (at most 176), past
+  // where random insertion jams.
+  scene.sources.push_back(box({0, 0, 0}, {0.05, 0.05, 0.05}, 150, uniform(5e-3, 0)));
   ParticleStore store;
   try {
     create_particles(scene, store);
@@ -243,8 +245,35 @@ TEST(BoxInsertion, ImpossibleRequestNamesTheSource) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.key(), "insert[1]");
     EXPECT_NE(std::string(e.what()).find("could only place"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("of 10000 particles"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("of 150 particles"), std::string::npos) << e.what();
   }
+}
+
+/// More spheres than fit at the densest packing of the smallest radius (π/√18 of the region's
+/// volume) are refused before any is drawn, with that capacity in the message; the second source
+/// is checked on its own region.
+TEST(BoxInsertion, CountBeyondTheDensestPackingIsRefusedBeforePlacement) {
+  Scene scene = make_scene();
+  scene.sources.push_back(box({0, 0, 0}, {0.01, 0.01, 0.01}, 10, uniform(1e-3, 0)));
+  scene.sources.push_back(box({0, 0, 0}, {0.1, 0.2, 0.1}, 600000000, uniform(1e-3, 0.5e-3)));
+  // 0.74048 × 2e-3 m³ / (4/3 π (0.5e-3 m)³) = 2,828,427.1
+  const double capacity = std::floor(M_PI / std::sqrt(18.0) * 2e-3 / (4.0 / 3.0 * M_PI * 1.25e-10));
+  ASSERT_EQ(capacity, 2828427.0);
+  ParticleStore store;
+  try {
+    create_particles(scene, store);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "insert[1].count");
+    const std::string what = e.what();
+    EXPECT_NE(what.find("count = 600000000 is more than the region can hold: at most 2828427 "
+                        "spheres of the smallest radius 0.0005 m"),
+              std::string::npos)
+        << what;
+  }
+  EXPECT_TRUE(store.position_radius.empty());
+  scene.sources.back().count = 2828428;
+  EXPECT_THROW(create_particles(scene, store), InputError);
 }
 
 TEST_P(BoxPlacement, RegionThinnerThanADiameterIsRefused) {

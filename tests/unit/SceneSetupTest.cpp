@@ -21,6 +21,7 @@
 #include "core/InputError.hpp"
 #include "core/RowShare.hpp"
 #include "core/SceneLoader.hpp"
+#include "support/InputErrorText.hpp"
 #include "support/RunBinary.hpp"
 
 namespace gpudem {
@@ -285,7 +286,7 @@ struct HertzFixture {
 
 TEST(TimeStep, HertzLimitsWhereRayleighTimeBinds) {
   const HertzFixture f(2);
-  const TimeStepLimits limits = time_step_limits(f.scene, f.particles);
+  const TimeStepLimits limits = time_step_limits(f.scene, f.particles, {});
   expect_relative(limits.contact_duration, f.duration());
   expect_relative(limits.rayleigh, f.rayleigh());
   ASSERT_LT(f.rayleigh(), f.hertz_stable_limit());
@@ -296,7 +297,7 @@ TEST(TimeStep, HertzLimitsWhereRayleighTimeBinds) {
 
 TEST(TimeStep, HertzLimitsWhereContactBinds) {
   const HertzFixture f(1000);
-  const TimeStepLimits limits = time_step_limits(f.scene, f.particles);
+  const TimeStepLimits limits = time_step_limits(f.scene, f.particles, {});
   expect_relative(limits.contact_duration, f.duration());
   ASSERT_LT(f.hertz_stable_limit(), f.rayleigh());
   expect_relative(limits.stable, f.hertz_stable_limit());
@@ -310,20 +311,20 @@ TEST(TimeStep, HookeContactDurationAndStableLimit) {
   add_particle(particles, s, 0, 1e-3);
   const double lightest_pair = sphere_mass_of(2500, 1e-3) / 2;
   const double oscillation_limit = 2 * std::sqrt(lightest_pair / 1e4);  // 2/ω = 4.58e-5 s
-  TimeStepLimits limits = time_step_limits(s, particles);
+  TimeStepLimits limits = time_step_limits(s, particles, {});
   expect_relative(limits.contact_duration, kPi * std::sqrt(lightest_pair / 1e4));
   expect_relative(limits.rayleigh, rayleigh_of(s.materials[0], 1e-3));  // 8.65e-5 s
   expect_relative(limits.stable, oscillation_limit);
   // A steel ball is heavier (same t_c) but its Rayleigh time, 3.2e-6 s, now binds.
   add_particle(particles, s, 1, 3e-3);
-  limits = time_step_limits(s, particles);
+  limits = time_step_limits(s, particles, {});
   expect_relative(limits.contact_duration, kPi * std::sqrt(lightest_pair / 1e4));
   expect_relative(limits.rayleigh, rayleigh_of(s.materials[1], 3e-3));
   expect_relative(limits.stable, rayleigh_of(s.materials[1], 3e-3));
 }
 
 TEST(TimeStep, NoParticlesNoLimits) {
-  const TimeStepLimits limits = time_step_limits(two_material_scene(), ParticleStore{});
+  const TimeStepLimits limits = time_step_limits(two_material_scene(), ParticleStore{}, {});
   EXPECT_TRUE(std::isinf(limits.contact_duration));
   EXPECT_TRUE(std::isinf(limits.rayleigh));
   EXPECT_TRUE(std::isinf(limits.stable));
@@ -377,15 +378,19 @@ TEST(TimeStep, DecidingParticlesGiveTheLimitsOfAllAndOfConcatenatedShares) {
   Scene s = two_material_scene();
   s.materials.push_back(material("clay", 1800, 5e6, 0.4));
   s.simulation.dt_auto = true;
+  s.simulation.allow_unstable_dt = true;  // the soft Hooke contacts overlap past the limit
   for (const NormalLaw law : {NormalLaw::Hooke, NormalLaw::Hertz}) {
     s.contact.model.normal = law;
     const ParticleStore all = with_heavier_twins(s, varied_particles(s));
     const ParticleStore deciding = setup_deciding_particles(s, all);
     EXPECT_LE(deciding.size(), s.materials.size() + 3);
-    const TimeStepLimits expected = time_step_limits(s, all), got = time_step_limits(s, deciding);
+    const TimeStepLimits expected = time_step_limits(s, all, {}),
+                         got = time_step_limits(s, deciding, {});
     EXPECT_EQ(got.rayleigh, expected.rayleigh);
     EXPECT_EQ(got.contact_duration, expected.contact_duration);
     EXPECT_EQ(got.stable, expected.stable);
+    EXPECT_EQ(got.max_speed, expected.max_speed);
+    EXPECT_EQ(got.displacement, expected.displacement);
     EXPECT_EQ(impact_speed(s, deciding), impact_speed(s, all));
     EXPECT_EQ(make_engine_setup(s, deciding).dt, make_engine_setup(s, all).dt);
     EXPECT_EQ(make_engine_setup(s, deciding).skin, make_engine_setup(s, all).skin);
@@ -418,6 +423,7 @@ TEST(TimeStep, AutoDtIsFractionOfCriticalStep) {
   for (const double v : {2.0, 1e4}) {  // T_R binds, then t_c
     HertzFixture f(v);
     f.scene.simulation.dt_fraction = 0.2;
+    f.scene.simulation.allow_unstable_dt = true;  // 10^4 m/s impacts pass the overlap limit
     EXPECT_EQ(f.duration() < f.rayleigh(), v == 1e4);
     expect_relative(make_engine_setup(f.scene, f.particles).dt,
                     0.2 * std::min(f.rayleigh(), f.duration()));
@@ -455,7 +461,11 @@ TEST(TimeStep, ExplicitDtAboveStableLimitIsRefused) {
   EXPECT_EQ(make_engine_setup(f.scene, f.particles).dt, 1.01 * stable);
   f.scene.simulation.allow_unstable_dt = false;
   f.scene.simulation.dt = 0.99 * stable;
-  EXPECT_EQ(make_engine_setup(f.scene, f.particles).dt, 0.99 * stable);
+  // The step passes; what is refused now is the 1,000 m/s impact itself (peak_overlap).
+  const std::string refusal =
+      test::input_error_text([&] { make_engine_setup(f.scene, f.particles); });
+  EXPECT_EQ(refusal.find("simulation.dt"), std::string::npos) << refusal;
+  EXPECT_NE(refusal.find("key 'material[0].young'"), std::string::npos) << refusal;
 }
 
 /// Writes scenes to a private temporary directory, removed after each test.

@@ -19,7 +19,8 @@ struct NormalResponse {
 
 /// Linear spring (Cundall & Strack 1979): F_e = k_n δ, S_n = k_n, energy ½ k_n δ².
 /// With γ = 2|β|√(k_n m*) the damped oscillator rebounds with restitution e exactly.
-/// Host: t_c = π √(m*/k_n); velocity Verlet is stable for ω dt < 2, ω = √(k_n/m*), i.e.
+/// Host: t_c = π √(m*/k_n), the peak overlap of an undamped impact at v δ_max = v √(m*/k_n)
+/// (½ m* v² = ½ k_n δ_max²); velocity Verlet is stable for ω dt < 2, ω = √(k_n/m*), i.e.
 /// dt < 2 √(m*/k_n) (the linear history spring's tangential mode, k_t = 2/7 k_n on the
 /// effective mass 2/7 m*, has the same ω).
 struct HookeNormal {
@@ -38,6 +39,9 @@ struct HookeNormal {
   }
   static double contact_duration(const ImpactPair& p) {
     return 3.14159265358979323846 * std::sqrt(p.mass / p.stiffness);
+  }
+  static double peak_overlap(const ImpactPair& p) {
+    return p.speed * std::sqrt(p.mass / p.stiffness);
   }
   template <class Tangential>
   static double stable_step(const ImpactPair& p) {
