@@ -383,6 +383,7 @@ def check_options(args):
         return
     if not pathlib.Path(args.solver).is_file() or not os.access(args.solver, os.X_OK):
         raise CalibrationError(f"--solver: no executable file {args.solver}")
+    args.solver = str(pathlib.Path(args.solver).resolve())
     if args.np > 1 and not args.slurm and not shutil.which("mpirun"):
         raise CalibrationError("--np: more than one rank needs mpirun, which is not on the PATH")
     if args.slurm and not shutil.which("sbatch"):
@@ -937,46 +938,54 @@ def plot_best_draft(path, spec, folder, best):
 FLAT_RISE = 1.0   # a direction is flat when half the range along it raises the objective less
 
 
-def quadratic_design(z):
-    """Columns 1, z_i and z_i z_j (i <= j) of the points z (rows)."""
+def quadratic_terms(z):
+    """The columns 1, z_i and z_i z_j (i <= j) of the points z (rows), and the pairs (i, j)."""
     d = z.shape[1]
     pairs = [(i, j) for i in range(d) for j in range(i, d)]
     return np.hstack([np.ones((len(z), 1)), z, np.stack([z[:, i] * z[:, j] for i, j in pairs],
                                                         1)]), pairs
 
 
-def sensitivity(spec, records, neighbours=None):
-    """Local fits around the best evaluation, in unit coordinates z = u − u_best: each target
-    linear (its gradient), the objective quadratic (its Hessian's eigenvalues and vectors)."""
-    d = len(spec.parameters)
-    best = min(records, key=lambda r: r["objective"])
-    points = np.array([r["point"] for r in records])
-    z = points - np.array(best["point"])
-    design, pairs = quadratic_design(z)
-    count = neighbours or 2 * design.shape[1]
-    if len(records) < design.shape[1] + 1:
-        raise CalibrationError(f"--sensitivity: a quadratic in {d} parameters needs at least "
-                               f"{design.shape[1] + 1} evaluations; there are {len(records)}")
-    near = np.argsort(np.linalg.norm(z, axis=1))[:count]
+def fitted_hessian(z, values):
+    """The Hessian of the least-squares quadratic through `values` at the points z."""
+    terms, pairs = quadratic_terms(z)
+    fit = np.linalg.lstsq(terms, values, rcond=None)[0]
+    d = z.shape[1]
     hessian = np.zeros((d, d))
-    coefficients = np.linalg.lstsq(design[near], [records[i]["objective"] for i in near],
-                                   rcond=None)[0]
-    for c, (i, j) in zip(coefficients[1 + d:], pairs):
-        hessian[i, j] += c if i != j else 2 * c
-        hessian[j, i] += c if i != j else 0
-    eigenvalues, vectors = np.linalg.eigh(hessian)
-    flat_below = 2 * FLAT_RISE / 0.5 ** 2
-    linear = np.hstack([np.ones((len(near), 1)), z[near]])
+    for c, (i, j) in zip(fit[1 + d:], pairs):
+        hessian[i, j] = hessian[j, i] = 2 * c if i == j else c
+    return hessian
+
+
+def fitted_gradient(z, values):
+    """The gradient of the least-squares plane through `values` at the points z."""
+    return np.linalg.lstsq(np.hstack([np.ones((len(z), 1)), z]), values, rcond=None)[0][1:]
+
+
+def sensitivity(spec, records, neighbours=None):
+    """Local fits over the evaluations nearest the best, in unit coordinates z = u − u_best:
+    each target linear (its gradient, also per unit of each parameter at the best), the
+    objective quadratic (its Hessian's eigenvalues; the flat directions)."""
+    d = len(spec.parameters)
+    terms = 1 + d + d * (d + 1) // 2
+    if len(records) <= terms:
+        raise CalibrationError(f"--sensitivity: a quadratic in {d} parameters needs at least "
+                               f"{terms + 1} evaluations; there are {len(records)}")
+    best = min(records, key=lambda r: r["objective"])
+    z = np.array([r["point"] for r in records]) - np.array(best["point"])
+    near = np.argsort(np.linalg.norm(z, axis=1))[:max(neighbours or 2 * terms, terms + 1)]
+    eigenvalues, vectors = np.linalg.eigh(
+        fitted_hessian(z[near], [records[i]["objective"] for i in near]))
     targets = {}
     for t in spec.targets:
-        gradient = np.linalg.lstsq(linear, [records[i]["targets"][t.quantity] for i in near],
-                                   rcond=None)[0][1:]
-        targets[t.quantity] = {p.name: {"per_range": g, "per_unit": g / p.span() /
-                                        (best["parameters"][p.name] if p.log else 1.0)}
-                               for p, g in zip(spec.parameters, gradient)}
+        gradient = fitted_gradient(z[near], [records[i]["targets"][t.quantity] for i in near])
+        targets[t.quantity] = {
+            p.name: {"per_range": g,
+                     "per_unit": g / p.span() / (best["parameters"][p.name] if p.log else 1.0)}
+            for p, g in zip(spec.parameters, gradient)}
     flat = [{"eigenvalue": float(v), "direction": dict(zip((p.name for p in spec.parameters),
                                                             map(float, vectors[:, k])))}
-            for k, v in enumerate(eigenvalues) if v < flat_below]
+            for k, v in enumerate(eigenvalues) if 0.5 * v * 0.5 ** 2 < FLAT_RISE]
     return {"best": best, "neighbours": len(near), "targets": targets,
             "hessian_eigenvalues": [float(v) for v in eigenvalues],
             "flat_directions": flat, "optimum": "ridge" if flat else "unique"}
