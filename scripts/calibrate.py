@@ -73,7 +73,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import calibration_optimizers as optimizers  # noqa: E402
 import plot_draft  # noqa: E402
 from tillage_study import GEOMETRY_KEYS  # noqa: E402
-from tool_travel import SceneError, cross, dot, find_tool, load_scene, steady_window, unit  # noqa: E402,E501
+from tool_travel import (SceneError, cross, find_tool, load_scene, steady_window,  # noqa: E402
+                         unit)
 
 PROJECT = pathlib.Path(__file__).resolve().parent.parent
 QUANTITIES = {"draft_mean": "N", "draft_std": "N", "bed_height": "m"}
@@ -188,8 +189,10 @@ class SpecReader:
             if required:
                 raise self.error(table, None, None, f"no {key} (a file, relative to the spec)")
             return None
+        if not isinstance(value, str):
+            raise self.error(table, None, key, "expected a file name")
         path = (self.path.parent / value).resolve()
-        if not isinstance(value, str) or not path.is_file():
+        if not path.is_file():
             raise self.error(table, None, key, f"no file {path}")
         return path
 
@@ -198,6 +201,9 @@ class SpecReader:
             if table not in SPEC_KEYS:
                 raise self.error(table, None, None, f"unknown table; a spec has "
                                  f"{', '.join(SPEC_KEYS)}")
+            if isinstance(value, list) != (table != "calibration"):
+                form = "[calibration]" if table == "calibration" else f"[[{table}]]"
+                raise self.error(table, None, None, f"expected {form}")
             entries = value if isinstance(value, list) else [value]
             for index, entry in enumerate(entries):
                 unknown = sorted(set(entry) - SPEC_KEYS[table])
@@ -260,7 +266,6 @@ def read_spec(path):
     """The checked spec of file `path`."""
     reader = SpecReader(path)
     reader.check_tables()
-    calibration = reader.data.get("calibration", {})
     scene = reader.path_of("calibration", "scene", required=True)
     bed, bed_scene = reader.path_of("calibration", "bed"), reader.path_of("calibration",
                                                                           "bed_scene")
