@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake ninja-build pkg-config libopenmpi-dev openmpi-bin
           libhdf5-openmpi-dev hdf5-tools libmetis-dev libcli11-dev libgtest-dev libtoml11-dev
-          python3 python3-h5py python3-numpy python3-matplotlib xz-utils "$@")
+          python3 python3-h5py python3-numpy python3-scipy python3-matplotlib xz-utils "$@")
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,11 +1,13 @@
 # Every scene shipped in inputs/ that does not start from the bed an earlier stage writes passes
 # `gpudem-mpi --check` (the scene, its meshes, CSV files and sources read and checked, the
 # particles created, nothing run; exit 0 only for a valid scene), so that the examples keep up
-# with the input format.
+# with the input format. Calibration specs (a [calibration] table) are not scenes:
+# calibration_specs.cmake checks them.
 file(GLOB_RECURSE GPUDEM_SHIPPED_SCENES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/inputs/*.toml)
 foreach(scene ${GPUDEM_SHIPPED_SCENES})
   file(STRINGS ${scene} bed_source REGEX "^bed *=")
-  if(bed_source)
+  file(STRINGS ${scene} calibration_table REGEX "^\\[calibration\\]")
+  if(bed_source OR calibration_table)
     continue()
   endif()
   file(RELATIVE_PATH name ${PROJECT_SOURCE_DIR}/inputs ${scene})
