@@ -1,0 +1,159 @@
+#!/usr/bin/python3
+"""The hard cases of inputs/hard/, each run through gpudem-mpi and checked against what a run
+must do there (docs/validation.md, "Hard cases").
+
+- projectile: a 2.5 mm glass sphere at 750 m/s into 2,000 loose glass grains (Hertz-Mindlin,
+  E = 70 GPa). Ten times faster (7,500 m/s) is refused at start-up (exit 2, nothing written)
+  with the predicted overlap and the speed the contact holds. At 750 m/s, at dt_fraction 0.1,
+  0.05 and 0.025, every run keeps its 2,001 particles, never overlaps by half a radius, and its
+  total energy (kinetic + elastic, no gravity) never rises; the projectile's depth at the end
+  converges as dt halves (the second difference smaller than the first and under 0.1 mm).
+- settle SCENE: a bed poured and settled (polydisperse_bed.toml, stiffness_contrast_bed.toml):
+  it runs to its end, keeps every particle, never overlaps by half a radius, and its kinetic
+  energy at the end is under 5 % of its peak (in the 10:1 bed small grains still sift through
+  the large ones' gaps long after the pour).
+- unstable: dt about eight times the stable limit, allowed (unstable_dt.toml): the run stops
+  with exit 3, names the step and particle, and writes its last state.
+
+Every run's time series and snapshots hold no NaN or infinity.
+Usage: check_hard_cases.py CASE SOURCE_DIR GPUDEM_BINARY WORK_DIR [SCENE]
+"""
+import csv
+import glob
+import math
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+FAILURES = []
+
+
+def check(condition, message):
+    if not condition:
+        FAILURES.append(message)
+        print("FAIL:", message)
+
+
+def run(binary, scene, out, *sets):
+    command = [binary, str(scene), "--backend", "host", "--quiet", "--output-dir", str(out)]
+    for s in sets:
+        command += ["--set", s]
+    return subprocess.run(command, capture_output=True, text=True)
+
+
+def rows_of(out):
+    return list(csv.DictReader(open(out / "timeseries.csv")))
+
+
+def check_finite_output(out, label):
+    """No NaN or infinity in the time series or any snapshot dataset."""
+    values = [float(v) for row in rows_of(out) for v in row.values()]
+    check(all(math.isfinite(v) for v in values), f"{label}: a non-finite value in the CSV")
+    for name in sorted(glob.glob(str(out / "particles_*.h5"))):
+        with h5py.File(name, "r") as f:
+            for key, data in f.items():
+                if isinstance(data, h5py.Dataset) and data.dtype.kind == "f":
+                    check(np.all(np.isfinite(data[:])), f"{label}: {name} {key} not finite")
+
+
+def check_kept_and_held(rows, count, label):
+    check(all(int(row["particles"]) == count and row["removed"] == "0" for row in rows),
+          f"{label}: particles lost")
+    deepest = max(float(row["max_overlap_ratio"]) for row in rows)
+    check(deepest < 0.5, f"{label}: an overlap reached {deepest} of a radius")
+    return deepest
+
+
+def projectile_z(out):
+    """The projectile's (id 0) z at the last snapshot [m]."""
+    with h5py.File(sorted(glob.glob(str(out / "particles_*.h5")))[-1], "r") as f:
+        return float(f["position"][int(np.where(f["id"][:] == 0)[0][0])][2])
+
+
+def projectile_run(binary, scene, work, fraction):
+    out = work / f"dt{fraction}"
+    r = run(binary, scene, out, f"simulation.dt_fraction={fraction}")
+    check(r.returncode == 0, f"dt_fraction {fraction}: exit {r.returncode}\n{r.stderr}")
+    if r.returncode != 0:
+        return math.nan
+    rows = rows_of(out)
+    deepest = check_kept_and_held(rows, 2001, f"dt_fraction {fraction}")
+    energy = [float(row["kinetic_translational"]) + float(row["kinetic_rotational"]) +
+              float(row["potential_elastic"]) for row in rows]
+    rise = max(b - max(energy[: k + 1]) for k, b in enumerate(energy[1:]))
+    check(rise <= 1e-9 * energy[0], f"dt_fraction {fraction}: energy rose by {rise} J")
+    check_finite_output(out, f"dt_fraction {fraction}")
+    z = projectile_z(out)
+    print(f"dt_fraction {fraction}: {len(rows)} rows, deepest overlap {deepest:.4f}, "
+          f"energy {energy[0]:.4g} -> {energy[-1]:.4g} J, projectile z {z:.6f} m")
+    return z
+
+
+def projectile(source, binary, work):
+    scene = source / "inputs" / "hard" / "projectile.toml"
+    fast = work / "fast.csv"
+    fast.write_text("x,y,z,r,vx,vy,vz\n0.015,0.015,0.036,0.0025,0,0,-7500\n")
+    r = run(binary, scene, work / "fast", f'insert.0.csv="{fast}"')
+    check(r.returncode == 2, f"7,500 m/s: exit {r.returncode}, expected 2\n{r.stderr}")
+    check("would overlap by" in r.stderr and "holds impacts up to" in r.stderr,
+          f"7,500 m/s: the refusal names no overlap or held speed:\n{r.stderr}")
+    check(not (work / "fast").exists(), "7,500 m/s: the refused run wrote its output folder")
+    z = [projectile_run(binary, scene, work, f) for f in (0.1, 0.05, 0.025)]
+    first, second = abs(z[0] - z[1]), abs(z[1] - z[2])
+    print(f"depth differences as dt halves: {first:.3g} m, {second:.3g} m")
+    check(second < first and second < 1e-4, f"the depth does not converge: {z}")
+
+
+def settle(source, binary, work, name):
+    out = work / "out"
+    r = run(binary, source / "inputs" / "hard" / name, out)
+    check(r.returncode == 0, f"{name}: exit {r.returncode}\n{r.stderr}")
+    if r.returncode != 0:
+        return
+    rows = rows_of(out)
+    deepest = check_kept_and_held(rows, int(rows[0]["particles"]), name)
+    kinetic = [float(row["kinetic_translational"]) + float(row["kinetic_rotational"])
+               for row in rows]
+    check(kinetic[-1] < 0.05 * max(kinetic),
+          f"{name}: not settled, {kinetic[-1]} of {max(kinetic)} J")
+    check_finite_output(out, name)
+    print(f"{name}: {rows[0]['particles']} particles, deepest overlap {deepest:.4f}, kinetic energy "
+          f"{kinetic[-1]:.3g} J at the end, {max(kinetic):.3g} J at its peak")
+
+
+def unstable(source, binary, work):
+    out = work / "out"
+    r = run(binary, source / "inputs" / "hard" / "unstable_dt.toml", out)
+    check(r.returncode == 3, f"unstable_dt: exit {r.returncode}, expected 3\n{r.stderr}")
+    for words in ("unstable at step", "particle id", "last state written to"):
+        check(words in r.stderr, f"unstable_dt: the stop does not say '{words}':\n{r.stderr}")
+    last = r.stderr.split("last state written to ")[-1].split(".h5")[0] + ".h5"
+    check(pathlib.Path(last).exists(), f"unstable_dt: the last state {last} is missing")
+    check_finite_output(out, "unstable_dt")
+    print(r.stderr.strip().splitlines()[-1])
+
+
+def main():
+    case, source, binary, work = sys.argv[1], pathlib.Path(sys.argv[2]), sys.argv[3], \
+        pathlib.Path(sys.argv[4])
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    if case == "projectile":
+        projectile(source, binary, work)
+    elif case == "settle":
+        settle(source, binary, work, sys.argv[5])
+    elif case == "unstable":
+        unstable(source, binary, work)
+    else:
+        sys.exit(f"unknown case {case}")
+    if FAILURES:
+        sys.exit(1)
+    print("all checks passed")
+
+
+if __name__ == "__main__":
+    main()
