@@ -202,17 +202,7 @@ def fill_defaults(args, scene_type):
 
 
 def check_axes(args, scene_type):
-    """Refuses axis values out of range (the solver checks the rest on each grid point)."""
-    if any(not 0 < f <= 1 for f in args.dt_fraction):
-        raise StudyError("--dt-fraction takes values in (0, 1]")
-    for option, values, allowed in (("--precision", args.precision, PRECISIONS),
-                                    ("--integrator", args.integrator, INTEGRATORS)):
-        for value in values:
-            if value not in allowed:
-                raise StudyError(f"{option} {value}: expected one of {', '.join(allowed)}")
-    for skin in args.skin:
-        if skin != "auto" and not is_positive_number(skin):
-            raise StudyError(f"--skin {skin}: expected a length > 0 in m, or auto")
+    """Refuses what the study itself cannot take; the solver checks each grid point's values."""
     if any(s <= 0 for s in args.scale):
         raise StudyError("--scale takes values > 0")
     if not scene_type.scales and args.scale != [1]:
@@ -222,13 +212,6 @@ def check_axes(args, scene_type):
         raise StudyError("--repeat and --np take values >= 1")
     if any(t <= 0 for t in args.tolerance):
         raise StudyError("--tolerance takes values > 0")
-
-
-def is_positive_number(text):
-    try:
-        return math.isfinite(float(text)) and float(text) > 0
-    except ValueError:
-        return False
 
 
 def check_files_and_sets(args, scene_type):
@@ -273,7 +256,8 @@ def grid(args, middle):
     else:
         points = [middle] + [dataclasses.replace(middle, **{axis: value})
                              for axis in AXES for value in values[axis]]
-    reference = dataclasses.replace(middle, dt_fraction=min(values["dt_fraction"]),
+    reference = dataclasses.replace(middle, dt_fraction=min(values["dt_fraction"] +
+                                                               [middle.dt_fraction]),
                                     precision="double", scale=1.0)
     unique = {}
     for point in [reference] + points:
@@ -656,8 +640,9 @@ def progress(done, total, run, result, ran, rows, runs_left, checks, rates):
         f", largest error {row['max_error'] * 100:.3g} %"
     work = sum(checks[r.point.name]["steps"] * checks[r.point.name]["particles"]
                for r in runs_left)
-    eta = "all done" if not runs_left else (
-        f"ETA {work / statistics.fmean(rates) / 60:.1f} min" if rates else "ETA once a run is timed")
+    eta = "all done" if not runs_left else "ETA once a run is timed"
+    if runs_left and rates:
+        eta = f"ETA {work / statistics.fmean(rates) / 60:.1f} min"
     how = "ran" if ran else "done before"
     return (f"[{done}/{total}] {run.name}: {result['wall_s']:.3g} s, "
             f"{result['particle_steps_per_s']:.3g} particle-steps/s{error} ({how}); {eta}")
