@@ -177,22 +177,25 @@ void insert_box(const Scene& scene, std::size_t i, const std::vector<Real4>& avo
 
 /// Positions in the header of the columns a particle CSV file may have.
 struct CsvColumns {
-  int x = -1, y = -1, z = -1, r = -1, material = -1, vx = -1, vy = -1, vz = -1;
+  int x = -1, y = -1, z = -1, r = -1, material = -1, vx = -1, vy = -1, vz = -1, wx = -1, wy = -1,
+      wz = -1;
 };
 
 CsvColumns csv_columns(const CsvReader& csv) {
   CsvColumns c;
   const std::pair<const char*, int*> known[] = {
-      {"x", &c.x},   {"y", &c.y},   {"z", &c.z},  {"r", &c.r}, {"material", &c.material},
-      {"vx", &c.vx}, {"vy", &c.vy}, {"vz", &c.vz}};
+      {"x", &c.x},   {"y", &c.y},   {"z", &c.z},   {"r", &c.r},   {"material", &c.material},
+      {"vx", &c.vx}, {"vy", &c.vy}, {"vz", &c.vz}, {"wx", &c.wx}, {"wy", &c.wy},
+      {"wz", &c.wz}};
   const std::vector<std::string>& header = csv.header();
   for (std::size_t k = 0; k < header.size(); ++k) {
     const auto match = std::find_if(std::begin(known), std::end(known),
                                     [&](const auto& kc) { return header[k] == kc.first; });
     if (match == std::end(known))
-      throw InputError(csv.path(), 1, header[k],
-                       "unknown column '" + header[k] +
-                           "'; expected x, y, z, r and optionally material, vx, vy, vz");
+      throw InputError(
+          csv.path(), 1, header[k],
+          "unknown column '" + header[k] +
+              "'; expected x, y, z, r and optionally material, vx, vy, vz, wx, wy, wz");
     if (*match->second >= 0)
       throw InputError(csv.path(), 1, header[k], "column '" + header[k] + "' appears twice");
     *match->second = static_cast<int>(k);
@@ -268,6 +271,8 @@ void add_csv_particle(const Scene& scene, std::size_t i, const CsvReader& csv,
   const Vec3 v{optional(col.vx, "vx", src.velocity.x), optional(col.vy, "vy", src.velocity.y),
                optional(col.vz, "vz", src.velocity.z)};
   out.add(id, centre, r, mat, v, 1.0 / sphere_mass(scene.materials[mat].density, r));
+  out.angular_velocity.back() = {optional(col.wx, "wx", 0.0), optional(col.wy, "wy", 0.0),
+                                 optional(col.wz, "wz", 0.0)};
 }
 
 /// Fails on the `bed` key of source i with `what`.

@@ -1,5 +1,5 @@
 // Oblique and spinning impacts with Hertz–Mindlin contacts against rigid-body impact theory
-// with Coulomb friction (Maw, Barber & Fawcett 1976; Chung & Ooi 2011, test 4).
+// with Coulomb friction (Maw, Barber & Fawcett 1976; Chung & Ooi 2011, tests 4, 6, 7 and 8).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -235,6 +235,98 @@ TEST_P(ObliqueImpact, SpinningDropSlidesWithCoulombImpulse) {
   expect_vec_near(a.spin, {b.spin.x, -b.spin.y, -b.spin.z}, 1e-9 * omega);
   EXPECT_GT(a.velocity.x, 0);  // ω > 0 about y: the contact point moves to −x, friction to +x
   EXPECT_LT(a.spin.y, omega);
+}
+
+/// Chung & Ooi (2011) test 6: a sphere meets the floor at a fixed normal speed v_n with spins ω
+/// about y from 0 to 800 rad/s. Its surface slips at ω r; with ω r ≥ 3.5 μ (1 + e) v_n it slides
+/// throughout, and rigid-body theory gives v_x' = μ (1 + e) v_n and ω' = ω − 2.5 μ (1 + e) v_n / r
+/// (within 2 %, and 2 % of the impulse's spin change for ω'). Every spin's rebound is recorded.
+TEST_P(ObliqueImpact, SpinSweepOnAWallMatchesRigidBodyTheory) {
+  const Material material = alumina();
+  const double r = 0.0025, vn = 1, mu = material.friction, e = material.restitution;
+  const double mass = sphere_mass(material.density, r);
+  const double slide_v = mu * (1 + e) * vn, slide_spin = 2.5 * mu * (1 + e) * vn / r;
+  for (int omega = 0; omega <= 800; omega += 100) {
+    Scene scene = mindlin_scene(material, r, mass, vn);
+    add_floor(scene, 0);
+    ParticleStore before;
+    before.add(0, {0, 0, 1.001 * r}, r, 0, {0, 0, -vn}, 1 / mass);
+    before.angular_velocity[0] = {0, double(omega), 0};
+    const Motion m = motion_of(collide(scene, before), 0);
+    const std::string key = "omega_" + std::to_string(omega) + "_";
+    if (omega * r < 3.5 * slide_v) {
+      RecordProperty(key + "tangential_velocity", significant(m.velocity.x));
+      RecordProperty(key + "spin", significant(m.spin.y));
+      continue;
+    }
+    record(key + "tangential_velocity", m.velocity.x, slide_v);
+    record(key + "spin", m.spin.y, omega - slide_spin);
+    EXPECT_NEAR(m.velocity.x, slide_v, 0.02 * slide_v) << omega << " rad/s";
+    EXPECT_NEAR(m.spin.y, omega - slide_spin, 0.02 * slide_spin) << omega << " rad/s";
+  }
+}
+
+/// Chung & Ooi (2011) test 7: two equal spheres meet head-on at ±v_n along x, both spinning at
+/// ω about y from 0 to 1000 rad/s: their surfaces slip at 2 ω r. With 2 ω r ≥ 7 μ (1 + e) v_n
+/// they slide throughout: each gains |v_z'| = μ (1 + e) v_n and spins at ω − 2.5 μ (1 + e) v_n / r
+/// (within 2 %). Every spin's rebound is recorded.
+TEST_P(ObliqueImpact, SpinSweepOfTwoEqualSpheresMatchesRigidBodyTheory) {
+  const Material material = alumina();
+  const double r = 0.0025, v = 1, mu = material.friction, e = material.restitution;
+  const double mass = sphere_mass(material.density, r);
+  const double slide_v = mu * (1 + e) * v, slide_spin = 2.5 * mu * (1 + e) * v / r;
+  const Scene scene = mindlin_scene(material, r / 2, mass / 2, 2 * v);
+  for (int omega = 0; omega <= 1000; omega += 125) {
+    const Motion m = motion_of(collide(scene, spinning_pair(material, r, v, omega, omega)), 0);
+    const std::string key = "omega_" + std::to_string(omega) + "_";
+    if (2 * omega * r < 7 * slide_v) {
+      RecordProperty(key + "tangential_velocity", significant(m.velocity.z));
+      RecordProperty(key + "spin", significant(m.spin.y));
+      continue;
+    }
+    record(key + "tangential_velocity", m.velocity.z, slide_v);
+    record(key + "spin", m.spin.y, omega - slide_spin);
+    EXPECT_NEAR(m.velocity.z, slide_v, 0.02 * slide_v) << omega << " rad/s";
+    EXPECT_NEAR(m.spin.y, omega - slide_spin, 0.02 * slide_spin) << omega << " rad/s";
+  }
+}
+
+/// Chung & Ooi (2011) test 8: a sphere of 5 mm moving along x at v_n = 1 m/s, and along z at v_t
+/// from 0 to 1 m/s, touches one of 2.5 mm at rest. J_n = m* (1 + e) v_n; with
+/// v_t ≥ 3.5 μ (1 + e) v_n they slide throughout, J_t = μ J_n: Δv_z = ∓J_t / m_i and
+/// Δω_y = r_i J_t / I_i = 2.5 J_t / (m_i r_i) for both (within 2 %). Rigid-body theory keeps the
+/// normal fixed; here the centre line turns while the spheres pass each other along z, by about
+/// v_t t_c / (r₁ + r₂), which tilts the normal impulse and shortens it: J_t was 2.3 % under
+/// μ m* (1 + e) v_n at v_t = 2.5 m/s (μ = 0.3), so the sweep stays below twice the sliding
+/// threshold. Every v_t's rebound is recorded.
+TEST_P(ObliqueImpact, TangentialSweepOfUnequalSpheresMatchesRigidBodyTheory) {
+  const Material material = alumina();
+  const double r1 = 0.005, r2 = 0.0025, vn = 1, mu = material.friction, e = material.restitution;
+  const double m1 = sphere_mass(material.density, r1), m2 = sphere_mass(material.density, r2);
+  const double m_star = m1 * m2 / (m1 + m2), j_t = mu * m_star * (1 + e) * vn;
+  const Scene scene = mindlin_scene(material, r1 * r2 / (r1 + r2), m_star, vn);
+  for (int step = 0; step <= 8; ++step) {
+    const double vt = 0.125 * step;
+    ParticleStore before;
+    before.add(0, {-r1, 0, 0}, r1, 0, {vn, 0, vt}, 1 / m1);
+    before.add(1, {r2, 0, 0}, r2, 0, {0, 0, 0}, 1 / m2);
+    const ParticleStore after = collide(scene, before);
+    const Motion a = motion_of(after, 0), b = motion_of(after, 1);
+    const std::string key = "vt_" + std::to_string(vt).substr(0, 5) + "_";
+    if (vt < 3.5 * mu * (1 + e) * vn) {
+      RecordProperty(key + "tangential_velocity_large", significant(a.velocity.z));
+      RecordProperty(key + "spin_large", significant(a.spin.y));
+      continue;
+    }
+    record(key + "tangential_velocity_large", a.velocity.z, vt - j_t / m1);
+    record(key + "tangential_velocity_small", b.velocity.z, j_t / m2);
+    record(key + "spin_large", a.spin.y, 2.5 * j_t / (m1 * r1));
+    record(key + "spin_small", b.spin.y, 2.5 * j_t / (m2 * r2));
+    EXPECT_NEAR(a.velocity.z, vt - j_t / m1, 0.02 * j_t / m1) << vt << " m/s";
+    EXPECT_NEAR(b.velocity.z, j_t / m2, 0.02 * j_t / m2) << vt << " m/s";
+    EXPECT_NEAR(a.spin.y, 2.5 * j_t / (m1 * r1), 0.02 * 2.5 * j_t / (m1 * r1)) << vt << " m/s";
+    EXPECT_NEAR(b.spin.y, 2.5 * j_t / (m2 * r2), 0.02 * 2.5 * j_t / (m2 * r2)) << vt << " m/s";
+  }
 }
 
 GPUDEM_INSTANTIATE_BACKENDS_AND_PRECISIONS(ObliqueImpact);

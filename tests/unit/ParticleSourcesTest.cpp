@@ -350,6 +350,10 @@ TEST(CsvImport, AllColumns) {
   EXPECT_DOUBLE_EQ(store.velocity_inv_mass[1].y, 2.0);
   EXPECT_DOUBLE_EQ(store.velocity_inv_mass[2].z, -1.0);
   EXPECT_NEAR(store.velocity_inv_mass[2].w * ball_volume(0.02) * 7800.0, 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(store.angular_velocity[1].x, 10.0);
+  EXPECT_DOUBLE_EQ(store.angular_velocity[1].y, -20.0);
+  EXPECT_DOUBLE_EQ(store.angular_velocity[1].z, 30.0);
+  EXPECT_DOUBLE_EQ(store.angular_velocity[2].y, 0.0);
 }
 
 TEST(CsvImport, RequiredColumnsOnlyTakeTheSourceDefaults) {
@@ -364,6 +368,7 @@ TEST(CsvImport, RequiredColumnsOnlyTakeTheSourceDefaults) {
   EXPECT_DOUBLE_EQ(store.position_radius[1].w, 0.004);
   EXPECT_EQ(store.material[0], 1u);
   EXPECT_DOUBLE_EQ(store.velocity_inv_mass[0].z, -2.0);
+  EXPECT_DOUBLE_EQ(norm(store.angular_velocity[0]), 0.0);  // no spin columns: no spin
 }
 
 TEST(CsvImport, ColumnsInAnyOrder) {
