@@ -101,25 +101,38 @@ double extent_along(Vec3 lo, Vec3 hi, Vec3 u) {
   return std::abs(l.x * u.x) + std::abs(l.y * u.y) + std::abs(l.z * u.z);
 }
 
-/// √(2 |g| H) plus the largest particle speed, H the extent of the domain along g [m/s].
-double fall_and_particle_speed(const Scene& scene, const ParticleStore& particles) {
+/// √(2 |g| H), H the extent of the domain along g: a free fall across the domain [m/s].
+double fall_speed(const Scene& scene) {
   const Vec3 g = scene.simulation.gravity;
   const double g_norm = norm(g);
   const double height =
       g_norm > 0 ? extent_along(scene.domain.min, scene.domain.max, (1 / g_norm) * g) : 0.0;
+  return std::sqrt(2 * g_norm * height);
+}
+
+/// The largest particle speed [m/s].
+double fastest_particle(const ParticleStore& particles) {
   double fastest = 0;
   for (const Real4& v : particles.velocity_inv_mass) fastest = std::max(fastest, norm(xyz(v)));
-  return std::sqrt(2 * g_norm * height) + fastest;
+  return fastest;
 }
 
 /// |v| + |ω| ρ at the mesh's fastest keyframe, ρ its farthest vertex from the rotation centre
-/// at t = 0 (a rigid motion keeps that distance) [m/s].
+/// at t = 0 (a rigid motion keeps that distance; velocities are linear between keyframes) [m/s].
 double fastest_mesh_point(const TriangleMesh& mesh, const MeshSettings& settings) {
   double reach = 0;
   for (const Vec3& v : mesh.vertices) reach = std::max(reach, norm(v - settings.centre));
   double fastest = 0;
   for (const MotionKeyframe& k : settings.keyframes)
     fastest = std::max(fastest, norm(k.velocity) + norm(k.angular_velocity) * reach);
+  return fastest;
+}
+
+/// The fastest point of any of the scene's meshes [m/s].
+double fastest_tool(const Scene& scene, const std::vector<MeshWallSetup>& meshes) {
+  double fastest = 0;
+  for (std::size_t i = 0; i < meshes.size() && i < scene.meshes.size(); ++i)
+    fastest = std::max(fastest, fastest_mesh_point(meshes[i].mesh, scene.meshes[i]));
   return fastest;
 }
 
@@ -225,24 +238,19 @@ std::vector<std::size_t> smallest_particle_per_material(const Scene& scene,
 
 double impact_speed(const Scene& scene, const ParticleStore& particles) {
   if (scene.simulation.impact_speed > 0) return scene.simulation.impact_speed;
-  const double v = fall_and_particle_speed(scene, particles);
+  const double v = fall_speed(scene) + fastest_particle(particles);
   return v > 0 ? v : 1.0;
 }
 
 double max_speed(const Scene& scene, const ParticleStore& particles,
                  const std::vector<MeshWallSetup>& meshes) {
-  double fastest_mesh = 0;
-  for (std::size_t i = 0; i < meshes.size() && i < scene.meshes.size(); ++i)
-    fastest_mesh = std::max(fastest_mesh, fastest_mesh_point(meshes[i].mesh, scene.meshes[i]));
-  return fall_and_particle_speed(scene, particles) + fastest_mesh;
+  return fall_speed(scene) + fastest_particle(particles) + fastest_tool(scene, meshes);
 }
 
 double launch_speed(const Scene& scene, const ParticleStore& particles,
                     const std::vector<MeshWallSetup>& meshes) {
   if (scene.simulation.impact_speed > 0) return scene.simulation.impact_speed;
-  Scene still = scene;
-  still.simulation.gravity = {0, 0, 0};
-  return max_speed(still, particles, meshes);
+  return fastest_particle(particles) + fastest_tool(scene, meshes);
 }
 
 PeakOverlap peak_overlap(const Scene& scene, const ParticleStore& particles, double v) {
