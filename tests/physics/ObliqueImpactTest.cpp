@@ -237,6 +237,22 @@ TEST_P(ObliqueImpact, SpinningDropSlidesWithCoulombImpulse) {
   EXPECT_LT(a.spin.y, omega);
 }
 
+/// One rebound of a spin sweep: its tangential velocity and spin (about y) are recorded under
+/// `key`; where the surfaces slide throughout (`sliding`) they are also compared with rigid-body
+/// theory's `slide_v` and ω − `slide_spin`, within 2 % (of the change, for the spin).
+void expect_sweep_rebound(const std::string& key, double tangential, double spin, double omega,
+                          bool sliding, double slide_v, double slide_spin) {
+  if (!sliding) {
+    ::testing::Test::RecordProperty(key + "tangential_velocity", significant(tangential));
+    ::testing::Test::RecordProperty(key + "spin", significant(spin));
+    return;
+  }
+  record(key + "tangential_velocity", tangential, slide_v);
+  record(key + "spin", spin, omega - slide_spin);
+  EXPECT_NEAR(tangential, slide_v, 0.02 * slide_v) << key;
+  EXPECT_NEAR(spin, omega - slide_spin, 0.02 * slide_spin) << key;
+}
+
 /// Chung & Ooi (2011) test 6: a sphere meets the floor at a fixed normal speed v_n with spins ω
 /// about y from 0 to 800 rad/s. Its surface slips at ω r; with ω r ≥ 3.5 μ (1 + e) v_n it slides
 /// throughout, and rigid-body theory gives v_x' = μ (1 + e) v_n and ω' = ω − 2.5 μ (1 + e) v_n / r
@@ -253,16 +269,8 @@ TEST_P(ObliqueImpact, SpinSweepOnAWallMatchesRigidBodyTheory) {
     before.add(0, {0, 0, 1.001 * r}, r, 0, {0, 0, -vn}, 1 / mass);
     before.angular_velocity[0] = {0, double(omega), 0};
     const Motion m = motion_of(collide(scene, before), 0);
-    const std::string key = "omega_" + std::to_string(omega) + "_";
-    if (omega * r < 3.5 * slide_v) {
-      RecordProperty(key + "tangential_velocity", significant(m.velocity.x));
-      RecordProperty(key + "spin", significant(m.spin.y));
-      continue;
-    }
-    record(key + "tangential_velocity", m.velocity.x, slide_v);
-    record(key + "spin", m.spin.y, omega - slide_spin);
-    EXPECT_NEAR(m.velocity.x, slide_v, 0.02 * slide_v) << omega << " rad/s";
-    EXPECT_NEAR(m.spin.y, omega - slide_spin, 0.02 * slide_spin) << omega << " rad/s";
+    expect_sweep_rebound("omega_" + std::to_string(omega) + "_", m.velocity.x, m.spin.y, omega,
+                         omega * r >= 3.5 * slide_v, slide_v, slide_spin);
   }
 }
 
@@ -278,16 +286,8 @@ TEST_P(ObliqueImpact, SpinSweepOfTwoEqualSpheresMatchesRigidBodyTheory) {
   const Scene scene = mindlin_scene(material, r / 2, mass / 2, 2 * v);
   for (int omega = 0; omega <= 1000; omega += 125) {
     const Motion m = motion_of(collide(scene, spinning_pair(material, r, v, omega, omega)), 0);
-    const std::string key = "omega_" + std::to_string(omega) + "_";
-    if (2 * omega * r < 7 * slide_v) {
-      RecordProperty(key + "tangential_velocity", significant(m.velocity.z));
-      RecordProperty(key + "spin", significant(m.spin.y));
-      continue;
-    }
-    record(key + "tangential_velocity", m.velocity.z, slide_v);
-    record(key + "spin", m.spin.y, omega - slide_spin);
-    EXPECT_NEAR(m.velocity.z, slide_v, 0.02 * slide_v) << omega << " rad/s";
-    EXPECT_NEAR(m.spin.y, omega - slide_spin, 0.02 * slide_spin) << omega << " rad/s";
+    expect_sweep_rebound("omega_" + std::to_string(omega) + "_", m.velocity.z, m.spin.y, omega,
+                         2 * omega * r >= 7 * slide_v, slide_v, slide_spin);
   }
 }
 
