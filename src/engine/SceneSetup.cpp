@@ -215,7 +215,8 @@ std::vector<std::string> time_step_warnings(const Scene& scene, const ParticleSt
                        " (run anyway: simulation.allow_unstable_dt)");
   else if (fallen.ratio > kUnstableOverlapRatio)
     warnings.push_back(impact_text(scene, fallen) +
-                       "; particles falling that far at once would stop the run");
+                       "; that speed is a free fall across the whole domain, an upper bound: "
+                       "particles falling that far at once would stop the run");
   const TimeStepLimits limits = time_step_limits(scene, particles, setup.meshes);
   const double r_min = smallest_radius(particles);
   const double moved = limits.max_speed * setup.dt / r_min;
