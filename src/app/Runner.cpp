@@ -322,6 +322,7 @@ struct SetUpScene {
   const ParticleStore& deciding;  ///< the particles that set the time step, from all ranks
   std::uint64_t particle_count;   ///< on all ranks
   const EngineSetup& setup;
+  std::uint64_t steps;         ///< to end_time
   const MpiDomain* domain;     ///< null on one rank
   const SettleCheck* settle;   ///< null unless the scene prepares a bed
   const ParticleStore& share;  ///< this rank's particles
@@ -332,8 +333,7 @@ struct SetUpScene {
 void check_or_preview(const Scene& scene, const RunOptions& options, const MpiContext& mpi,
                       const SetUpScene& s) {
   if (mpi.is_root()) {
-    print_summary(scene, s.deciding, s.particle_count, s.setup, nullptr, -1,
-                  step_count(scene.simulation.end_time, s.setup.dt));
+    print_summary(scene, s.deciding, s.particle_count, s.setup, nullptr, -1, s.steps);
     if (s.domain) print_decomposition(*s.domain);
     if (s.settle) print_preparation(scene, *s.settle, s.setup.dt);
   }
@@ -378,8 +378,8 @@ int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
                 checkpoint->time, static_cast<unsigned long long>(checkpoint->step));
   if (options.check_only || options.preview) {
     check_or_preview(scene, options, mpi,
-                     {deciding, particle_count, setup, domain.get(), settle ? &*settle : nullptr,
-                      share.particles()});
+                     {deciding, particle_count, setup, steps, domain.get(),
+                      settle ? &*settle : nullptr, share.particles()});
     return kExitOk;
   }
   std::unique_ptr<StepEngine> engine = make_engine(options.backend, mpi, setup);

@@ -196,8 +196,9 @@ std::string stiffness_key(const Scene& scene, const PeakOverlap& p) {
 /// it, naming the key that stiffens the contact.
 void require_holdable_impacts(const Scene& scene, const PeakOverlap& p) {
   if (!(p.ratio > kUnstableOverlapRatio) || scene.simulation.allow_unstable_dt) return;
-  throw InputError(scene.file, 0, stiffness_key(scene, p),
-                   impact_text(scene, p) + ": stiffen the contact (" + stiffness_key(scene, p) +
+  const std::string key = stiffness_key(scene, p);
+  throw InputError(scene.file, 0, key,
+                   impact_text(scene, p) + ": stiffen the contact (" + key +
                        ") or lower the speed, or set simulation.allow_unstable_dt = true to run "
                        "anyway");
 }
