@@ -4,7 +4,8 @@
 # nvcc is found (CUDA toolkit, not from Debian).
 # Usage: scripts/setup.sh [PACKAGE ...]: further Debian packages to install when missing (the
 # peer codes of the comparison scripts: liggghts, lammps).
-# Environment: BUILD_DIR (default build), GPUDEM_CMAKE_ARGS (extra cmake arguments).
+# Environment: BUILD_DIR (default build), GPUDEM_CMAKE_ARGS (extra cmake arguments),
+# GPUDEM_SETUP_TARGET (build only this target instead of all).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -12,17 +13,7 @@ packages=(build-essential cmake ninja-build pkg-config libopenmpi-dev openmpi-bi
           libhdf5-openmpi-dev hdf5-tools libmetis-dev libcli11-dev libgtest-dev libtoml11-dev
           python3 python3-h5py python3-numpy python3-scipy python3-matplotlib xz-utils "$@")
 
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "setup: installing ${missing[*]}"
-  SUDO=""
-  [[ $(id -u) -ne 0 ]] && SUDO="sudo"
-  $SUDO apt-get update
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
-fi
+scripts/install-packages.sh "${packages[@]}"
 
 BUILD_DIR=${BUILD_DIR:-build}
 # Ninja compiles a library's sources while the libraries it links are still being built, which
@@ -30,4 +21,4 @@ BUILD_DIR=${BUILD_DIR:-build}
 generator=()
 [[ -f $BUILD_DIR/CMakeCache.txt ]] || generator=(-G Ninja)
 cmake -S . -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release ${GPUDEM_CMAKE_ARGS:-}
-cmake --build "$BUILD_DIR" -j "$(nproc)"
+cmake --build "$BUILD_DIR" ${GPUDEM_SETUP_TARGET:+--target "$GPUDEM_SETUP_TARGET"} -j "$(nproc)"

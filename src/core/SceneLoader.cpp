@@ -6,7 +6,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,6 +23,7 @@
 #include "core/SceneReading.hpp"
 #include "core/SceneSources.hpp"
 #include "core/TomlReader.hpp"
+#include "core/Utf8.hpp"
 
 namespace gpudem {
 
@@ -34,14 +38,23 @@ using scene_reading::require_extent;
 
 namespace {
 
-/// The parsed tree of `path`; a syntax error keeps toml11's report of line and column.
+/// The parsed tree of `path`; a syntax error keeps toml11's report of line and column. Text
+/// that is not UTF-8 is refused with the line of its first bad byte before it is parsed.
 toml::value parse_scene_file(const std::string& path) {
   std::error_code ignored;
   std::ifstream in;
   if (std::filesystem::is_regular_file(path, ignored)) in.open(path, std::ios::binary);
   if (!in.is_open()) throw InputError(path, 0, "", "cannot open scene file");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (const std::optional<std::size_t> bad = first_invalid_utf8(text)) {
+    const auto line = 1 + std::count(text.begin(), text.begin() + *bad, '\n');
+    throw InputError(path, static_cast<int>(line), "",
+                     "byte " + std::to_string(*bad + 1) +
+                         " of the file is not UTF-8 text: a scene file must be UTF-8");
+  }
+  std::istringstream text_stream(text);
   try {
-    return toml::parse(in, path);
+    return toml::parse(text_stream, path);
   } catch (const toml::exception& e) {
     throw InputError(path, static_cast<int>(e.location().line()), "",
                      std::string("TOML syntax error:\n") + e.what());

@@ -12,6 +12,7 @@
 #include <toml.hpp>
 
 #include "core/InputError.hpp"
+#include "core/Utf8.hpp"
 
 namespace gpudem {
 
@@ -30,6 +31,7 @@ inline bool is_index(const std::string& part) {
 
 /// Parses `text` as one TOML value; the result remembers "--set" as its origin.
 inline toml::value parse_value(const std::string& key, const std::string& text) {
+  if (first_invalid_utf8(text)) throw InputError("--set", 0, key, "the value is not UTF-8 text");
   std::istringstream in("value = " + text + "\n");
   toml::value parsed;
   try {

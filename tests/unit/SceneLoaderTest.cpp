@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -18,6 +19,7 @@
 #include "core/ContactModel.hpp"
 #include "core/InputError.hpp"
 #include "core/TomlReader.hpp"
+#include "core/Utf8.hpp"
 #include "support/TestPaths.hpp"
 
 namespace gpudem {
@@ -364,6 +366,28 @@ TEST_F(SceneLoaderTest, SyntaxErrorKeepsLineAndColumnReport) {
 
   const InputError twice = load_error(base_with(kSimulationSlot, "end_time = 2.0"));
   expect_error(twice, kSimulationSlot, "", "TOML syntax error");
+}
+
+TEST(Utf8, FindsTheFirstByteOfABrokenSequence) {
+  EXPECT_EQ(first_invalid_utf8("plain ASCII\n"), std::nullopt);
+  EXPECT_EQ(first_invalid_utf8("\xC2\xB0 \xE2\x82\xAC \xF0\x9F\x8C\x8D \xF4\x8F\xBF\xBF"),
+            std::nullopt);                                // U+00B0, U+20AC, U+1F30D, U+10FFFF
+  EXPECT_EQ(first_invalid_utf8("ab\xFF"), 2u);            // never a lead byte
+  EXPECT_EQ(first_invalid_utf8("a\xC0\xAF"), 1u);         // overlong '/'
+  EXPECT_EQ(first_invalid_utf8("a\xE0\x80\xAF"), 1u);     // overlong, three bytes
+  EXPECT_EQ(first_invalid_utf8("\xED\xA0\x80"), 0u);      // a UTF-16 surrogate
+  EXPECT_EQ(first_invalid_utf8("\xF4\x90\x80\x80"), 0u);  // past U+10FFFF
+  EXPECT_EQ(first_invalid_utf8("ok \xE2\x82"), 3u);       // cut short by the end
+  EXPECT_EQ(first_invalid_utf8("\xE2\x82\x41"), 0u);      // cut short by ASCII
+}
+
+// toml11 3.7 reads past its buffer when it reports invalid UTF-8 inside a literal string (found
+// by fuzzing the scene reader): such text is refused before it is parsed.
+TEST_F(SceneLoaderTest, TextThatIsNotUtf8IsRefusedWithItsLine) {
+  const InputError e = load_error(base_with(kSimulationSlot, "integrator = 'velocity\xFF_verlet'"));
+  expect_error(e, kSimulationSlot, "", "is not UTF-8 text");
+  expect_error(load_error(kBaseScene, {"output.dir='run\xC0\xAF'"}), 0, "output.dir", "not UTF-8",
+               "--set");
 }
 
 TEST_F(SceneLoaderTest, UnknownKeySuggestsNearest) {

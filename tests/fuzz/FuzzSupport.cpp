@@ -1,0 +1,43 @@
+#include "FuzzSupport.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace gpudem::fuzz {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The scratch folder, made on first use and removed when the program exits.
+const fs::path& scratch_folder() {
+  static const fs::path folder = [] {
+    const char* tmp = std::getenv("TMPDIR");
+    std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/gpudem-fuzz-XXXXXX";
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot make " + pattern);
+    std::atexit([] {
+      std::error_code ignored;
+      fs::remove_all(scratch_folder(), ignored);
+    });
+    return fs::path(pattern);
+  }();
+  return folder;
+}
+
+}  // namespace
+
+std::string write_scratch_file(const std::string& name, const std::uint8_t* data,
+                               std::size_t size) {
+  const fs::path path = scratch_folder() / name;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  if (!out.flush()) throw std::runtime_error("cannot write " + path.string());
+  return path.string();
+}
+
+std::string write_scratch_file(const std::string& name, const std::string& text) {
+  return write_scratch_file(name, reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
+}
+
+}  // namespace gpudem::fuzz
