@@ -237,21 +237,8 @@ void write_described_file(const std::string& path, ByteSource& in) {
   H5Fclose(file);
 }
 
-const char* const kBedScene = R"([simulation]
-end_time = 1.0
-[domain]
-min = [0, 0, 0]
-max = [1, 1, 1]
-periodic = [true, false, false]
-[[material]]
-name = "soil"
-density = 1850
-young = 2e6
-[[material]]
-name = "steel"
-density = 7800
-young = 2e11
-[contact]
+/// The contact law and the source, after two_material_scene().
+const char* const kBedSceneTail = R"([contact]
 normal = "hertz"
 tangential = "mindlin"
 [[wall]]
@@ -264,7 +251,8 @@ bed = "checkpoint.h5"
 
 /// The scene whose bed source reads the scratch file checkpoint.h5.
 const Scene& bed_scene() {
-  static const Scene scene = load_scene(fuzz::write_scratch_file("bed_scene.toml", kBedScene));
+  static const Scene scene = load_scene(
+      fuzz::write_scratch_file("bed_scene.toml", fuzz::two_material_scene() + kBedSceneTail));
   return scene;
 }
 

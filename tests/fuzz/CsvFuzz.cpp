@@ -6,21 +6,8 @@
 
 namespace {
 
-const char* const kCsvScene = R"([simulation]
-end_time = 1.0
-[domain]
-min = [0, 0, 0]
-max = [1, 1, 1]
-periodic = [true, false, false]
-[[material]]
-name = "soil"
-density = 1850
-young = 2e6
-[[material]]
-name = "steel"
-density = 7800
-young = 2e11
-[contact]
+/// The contact law and the source, after two_material_scene().
+const char* const kCsvSceneTail = R"([contact]
 stiffness = 1e4
 [[insert]]
 csv = "particles.csv"
@@ -29,8 +16,8 @@ material = "soil"
 
 /// The scene whose CSV source reads the scratch file particles.csv.
 const gpudem::Scene& csv_scene() {
-  static const gpudem::Scene scene =
-      gpudem::load_scene(gpudem::fuzz::write_scratch_file("csv_scene.toml", kCsvScene));
+  static const gpudem::Scene scene = gpudem::load_scene(gpudem::fuzz::write_scratch_file(
+      "csv_scene.toml", gpudem::fuzz::two_material_scene() + kCsvSceneTail));
   return scene;
 }
 

@@ -36,6 +36,24 @@ std::string write_scratch_file(const std::string& name, const std::uint8_t* data
   return path.string();
 }
 
+std::string two_material_scene() {
+  return R"([simulation]
+end_time = 1.0
+[domain]
+min = [0, 0, 0]
+max = [1, 1, 1]
+periodic = [true, false, false]
+[[material]]
+name = "soil"
+density = 1850
+young = 2e6
+[[material]]
+name = "steel"
+density = 7800
+young = 2e11
+)";
+}
+
 std::string write_scratch_file(const std::string& name, const std::string& text) {
   return write_scratch_file(name, reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
 }

@@ -18,6 +18,10 @@ std::string write_scratch_file(const std::string& name, const std::uint8_t* data
 /// write_scratch_file of the characters of `text`.
 std::string write_scratch_file(const std::string& name, const std::string& text);
 
+/// The scene around the CSV and bed inputs: a unit box periodic along x and two materials,
+/// "soil" (0) and "steel" (1); each target appends its contact law and source.
+std::string two_material_scene();
+
 /// Runs `read` on bad input: an InputError is the answer expected of it, so it is swallowed;
 /// every other exception escapes and ends the program (a finding).
 template <class Read>
