@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """Runs one scene over a grid of solver settings (the time step's dt_fraction, the precision
-policy, the neighbour skin, the integrator and, for the settling bed, a particle-size scale),
+policy, the neighbour skin, the integrator, for the settling bed a particle-size scale, and the
+kind of step, "auto" or "adaptive"),
 measures each setting's wall time, particle-steps per second and the error of the scene's
 observables against a reference run, plots the Pareto front of error against speed and picks
 the cheapest setting within each tolerance.
 
 Usage: scripts/speed_vs_error.py SCENE_TYPE [--scene TOML] [--bed BED_H5] [--out DIR]
        [--dt-fraction F ...] [--precision P ...] [--skin M|auto ...] [--integrator I ...]
-       [--scale S ...] [--full] [--repeat N] [--tolerance T ...] [--rank-by wall|rate]
+       [--scale S ...] [--step auto|adaptive ...] [--full] [--repeat N] [--tolerance T ...]
+       [--rank-by wall|rate]
        [--set KEY=VALUE]... [--np N] [--solver PATH]
 
 SCENE_TYPE, its scene (--scene overrides it) and the observables each run yields:
@@ -32,12 +34,13 @@ SCENE_TYPE, its scene (--scene overrides it) and the observables each run yields
 
 The grid: each axis option lists its values (defaults per scene type, printed at the start).
 Its centre is the scene's own setting on each axis (dt_fraction 0.1 unless the scene gives
-one, its precision and integrator, its skin or "auto", scale 1). By default one factor at a
+one, its precision and integrator, its skin or "auto", scale 1, its step "auto" or
+"adaptive", "auto" when it gives a number). By default one factor at a
 time: the centre and each value of each axis with the other axes at the centre; --full: every
 combination. The reference is the centre at the smallest dt_fraction of the grid, in double
-precision, at scale 1; it is always run. Scale S (settling only) turns every box source
+precision, at scale 1, with step "auto"; it is always run. Scale S (settling only) turns every box source
 [[insert]] with a count into count / S³ spheres (rounded) of radius × S: the same solid volume
-in coarser grains. Every run is the scene with --set simulation.dt = "auto", the point's
+in coarser grains. Every run is the scene with --set simulation.dt = the point's step, its
 dt_fraction, precision, integrator, neighbor.skin (left to the scene when "auto" is the
 scene's), output.every = 0 (the first and last snapshot only) and each --set.
 
@@ -50,7 +53,8 @@ failed run exits 1.
 Timing: the solver's time loop, from its last line "done: N steps in X s", or, for a run short
 enough to print a single progress line (under 2 s), from that line's steps/s (4 digits
 against X's 0.01 s); particle-steps/s = the mean of the time series' particle count × N / the
-wall time. --repeat N runs each point N times, interleaved (every point once, then again), so
+wall time. With step "adaptive", N is the steps the base steps were split into ("done: B steps
+(base steps, split into N) in X s"), and the table's dt_s is the base step. --repeat N runs each point N times, interleaved (every point once, then again), so
 that the machine's slow spells spread over the grid; the table gives the median, least and
 largest wall time and the median of each observable.
 
@@ -99,10 +103,11 @@ from tillage_study import (GEOMETRY_KEYS, StudyError, bed_insert_index,  # noqa:
 from tool_travel import SceneError, find_tool, load_scene, steady_window  # noqa: E402
 
 PROJECT = pathlib.Path(__file__).resolve().parent.parent
-AXES = ("dt_fraction", "precision", "skin", "integrator", "scale")
+AXES = ("dt_fraction", "precision", "skin", "integrator", "scale", "step")
 OPTIONS = {axis: "--" + axis.replace("_", "-") for axis in AXES}
 PRECISIONS = ("double", "mixed", "float")
 INTEGRATORS = ("velocity_verlet", "symplectic_euler")
+STEPS = ("auto", "adaptive")
 SILO_WINDOW_START = 0.1  # s: the discharge rate is fitted from here to the end
 STUDY_KEYS = re.compile(r"simulation\.(dt|dt_fraction|precision|integrator)|neighbor\.skin|"
                         r"output\.every")
@@ -148,11 +153,12 @@ class Point:
     skin: str  # "auto" or metres as given
     integrator: str
     scale: float
+    step: str = "auto"
 
     @property
     def name(self):
         name = (f"dt{self.dt_fraction:g}-{self.precision}-skin{self.skin}-{self.integrator}"
-                f"-scale{self.scale:g}")
+                f"-scale{self.scale:g}" + ("-adaptive" if self.step == "adaptive" else ""))
         return re.sub(r"[^\w.+=-]", "_", name)
 
 
@@ -178,6 +184,7 @@ def parse_args():
     add("--skin", nargs="+", metavar="M|auto")
     add("--integrator", nargs="+", metavar="I")
     add("--scale", nargs="+", type=float, metavar="S", help="settling: particle-size scale")
+    add("--step", nargs="+", choices=STEPS, metavar="auto|adaptive")
     add("--full", action="store_true", help="every combination, not one factor at a time")
     add("--repeat", type=int, default=1, metavar="N")
     add("--tolerance", nargs="+", type=float, default=[0.01, 0.05], metavar="T")
@@ -199,6 +206,7 @@ def fill_defaults(args, scene_type):
     args.skin = args.skin or list(scene_type.skins)
     args.integrator = args.integrator or list(INTEGRATORS)
     args.scale = args.scale or list(scene_type.scales or (1,))
+    args.step = args.step or list(STEPS)
 
 
 def check_axes(args, scene_type):
@@ -242,9 +250,10 @@ def centre(scene):
     """The scene's own setting on each axis."""
     simulation = scene.get("simulation", {})
     skin = scene.get("neighbor", {}).get("skin", "auto")
+    step = "adaptive" if simulation.get("dt") == "adaptive" else "auto"
     return Point(float(simulation.get("dt_fraction", 0.1)),
                  simulation.get("precision", "double"), str(skin),
-                 simulation.get("integrator", "velocity_verlet"), 1.0)
+                 simulation.get("integrator", "velocity_verlet"), 1.0, step)
 
 
 def grid(args, middle):
@@ -258,7 +267,7 @@ def grid(args, middle):
                              for axis in AXES for value in values[axis]]
     reference = dataclasses.replace(middle, dt_fraction=min(values["dt_fraction"] +
                                                                [middle.dt_fraction]),
-                                    precision="double", scale=1.0)
+                                    precision="double", scale=1.0, step="auto")
     unique = {}
     for point in [reference] + points:
         unique.setdefault(point.name, point)
@@ -315,7 +324,7 @@ def scene_context(args, scene):
 
 def solver_args(args, context, point, out_dir):
     """The command-line arguments (after the executable) of a run of `point`."""
-    settings = [*context["settings"], 'simulation.dt="auto"',
+    settings = [*context["settings"], f'simulation.dt="{point.step}"',
                 f"simulation.dt_fraction={point.dt_fraction!r}",
                 f'simulation.precision="{point.precision}"',
                 f'simulation.integrator="{point.integrator}"',
@@ -370,13 +379,15 @@ def plan(args):
 
 def solver_timing(log):
     """(steps, wall seconds) of the time loop, from the solver's output `log`."""
-    done = re.search(r"^done: (\d+) steps in ([\d.]+) s", log, re.M)
+    done = re.search(r"^done: (\d+) steps(?: \(base steps, split into (\d+)\))? in ([\d.]+) s",
+                     log, re.M)
     if not done:
         raise MeasureError("the solver's output has no line 'done: N steps in X s'")
-    steps, seconds = int(done[1]), float(done[2])
+    base_steps, seconds = int(done[1]), float(done[3])
+    steps = int(done[2]) if done[2] else base_steps
     lines = re.findall(r"^t = \S+ s  step (\d+)/(\d+)  (\S+) steps/s", log, re.M)
     if len(lines) == 1 and lines[0][0] == lines[0][1] and float(lines[0][2]) > 0:
-        seconds = steps / float(lines[0][2])  # one line: the whole run's rate, 4 digits
+        seconds = base_steps / float(lines[0][2])  # one line: the whole run's rate, 4 digits
     return steps, max(seconds, 0.005)  # "0.00 s": below the line's resolution
 
 

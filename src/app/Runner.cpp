@@ -117,6 +117,12 @@ void print_mesh_summary(const Scene& scene, const EngineSetup& setup) {
   }
 }
 
+/// How the scene sets dt, for the summary.
+const char* dt_kind(const SimulationSettings& sim) {
+  if (sim.dt_adaptive) return "adaptive base step, split while particles move fast";
+  return sim.dt_auto ? "auto" : "explicit";
+}
+
 /// The start-up summary; engine_bytes < 0 when no engine was made (--check).
 /// `deciding`: the particles that set the time step (setup_deciding_particles over all ranks);
 /// `count`: the particles on all ranks.
@@ -131,9 +137,9 @@ void print_summary(const Scene& scene, const ParticleStore& deciding, std::uint6
   std::printf(
       "dt = %.4g s (%s; contact duration %.4g s, Rayleigh time %.4g s, stable limit %.4g s, "
       "displacement limit %.4g s at v_max %.4g m/s), %llu steps to t = %.4g s, skin %.4g m\n",
-      setup.dt, scene.simulation.dt_auto ? "auto" : "explicit", limits.contact_duration,
-      limits.rayleigh, limits.stable, limits.displacement, limits.max_speed,
-      static_cast<unsigned long long>(steps), scene.simulation.end_time, setup.skin);
+      setup.dt, dt_kind(scene.simulation), limits.contact_duration, limits.rayleigh, limits.stable,
+      limits.displacement, limits.max_speed, static_cast<unsigned long long>(steps),
+      scene.simulation.end_time, setup.skin);
   const PeakOverlap impact = peak_overlap(scene, deciding, impact_speed(scene, deciding));
   if (impact.ratio > 0)
     std::printf(
@@ -167,6 +173,10 @@ void adopt_checkpoint_step(EngineSetup& setup, const Scene& scene, const Checkpo
   if (sim.dt_auto && c.dt_fraction == 0)
     throw InputError(scene.file, 0, "simulation.dt",
                      written + "an explicit dt = " + exact_decimal(c.dt) + " s" + fix);
+  if (sim.dt_adaptive != c.dt_adaptive)
+    throw InputError(scene.file, 0, "simulation.dt",
+                     written + (c.dt_adaptive ? "dt = \"adaptive\"" : "a fixed dt") +
+                         "; a restart continues with the same kind of time step");
   if (sim.dt_auto && sim.dt_fraction != c.dt_fraction)
     throw InputError(scene.file, 0, "simulation.dt_fraction",
                      written + "dt_fraction = " + exact_decimal(c.dt_fraction) +
@@ -231,7 +241,8 @@ void start_engine(StepEngine& engine, StartShare& share, const std::string& path
   }
   Checkpoint& c = *share.checkpoint;
   try {
-    engine.restore_particles(c.particles, c.list_position_radius, c.removed, c.list_build_step);
+    if (!c.wall_motion.empty()) engine.set_wall_motion(c.wall_motion);
+    engine.restore_particles(c.particles, c.list_position_radius, c.removed, c.list_build);
     c.particles = ParticleStore{};
     c.list_position_radius = std::vector<Real4>{};
     engine.set_contact_history(std::move(c.history));
@@ -341,6 +352,15 @@ void check_or_preview(const Scene& scene, const RunOptions& options, const MpiCo
   if (options.check_only && mpi.is_root()) std::printf("scene is valid\n");
 }
 
+/// With dt = "adaptive", the substep policy: the reach displacement_fraction × r_min and the
+/// fastest tool point; `substeps` those of the last base step.
+std::optional<AdaptiveStep> adaptive_step(const Scene& scene, const ParticleStore& deciding,
+                                          const EngineSetup& setup, std::uint32_t substeps) {
+  if (!scene.simulation.dt_adaptive) return std::nullopt;
+  return AdaptiveStep(setup.dt, scene.simulation.displacement_fraction * smallest_radius(deciding),
+                      fastest_tool(scene, setup.meshes), substeps);
+}
+
 }  // namespace
 
 int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
@@ -398,7 +418,8 @@ int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
   if (checkpoint) start = {checkpoint->step, true, checkpoint->snapshots};
   const LoadBalance balance(scene, mpi, domain.get(), setup.dt);
   TimeLoop loop(scene, mpi, *engine, setup, balance, options.quiet, start,
-                settle ? &*settle : nullptr);
+                settle ? &*settle : nullptr,
+                adaptive_step(scene, deciding, setup, checkpoint ? checkpoint->substeps : 1));
   const int code = loop.run();
   if (code != kExitOk || !settle) return code;
   return finish_preparation(scene, mpi, *engine, loop, setup.dt);

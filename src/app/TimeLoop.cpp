@@ -40,12 +40,13 @@ std::vector<std::string> timeseries_columns(const Scene& scene) {
                                 "potential_elastic",
                                 "max_overlap_ratio",
                                 "removed",
-                                "imbalance"};
+                                "imbalance",
+                                "dt"};
   for (std::string& name : force_columns(scene)) c.push_back(std::move(name));
   return c;
 }
 
-std::vector<double> timeseries_row(double time, std::uint64_t step, const Diagnostics& d,
+std::vector<double> timeseries_row(double time, std::uint64_t step, double dt, const Diagnostics& d,
                                    std::uint64_t removed, double imbalance,
                                    const ImplementLoads& loads) {
   std::vector<double> row = {time,
@@ -58,9 +59,11 @@ std::vector<double> timeseries_row(double time, std::uint64_t step, const Diagno
                              d.potential_elastic,
                              d.max_overlap_ratio,
                              static_cast<double>(removed),
-                             imbalance};
+                             imbalance,
+                             dt};
   const auto append = [&row](Vec3 v) { row.insert(row.end(), {v.x, v.y, v.z}); };
   for (const Vec3& f : d.wall_force) append(f);
+  for (const WallMotion& m : d.piston_motion) row.insert(row.end(), {m.displacement, m.velocity});
   for (std::size_t m = 0; m < d.mesh_force.size(); ++m) {
     append(d.mesh_force[m]);
     append(d.mesh_torque[m]);
@@ -90,7 +93,8 @@ std::optional<SeriesResume> series_resume(const LoopStart& start) {
 
 TimeLoop::TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine,
                    const EngineSetup& setup, const LoadBalance& balance, bool quiet,
-                   const LoopStart& start, const SettleCheck* settle)
+                   const LoopStart& start, const SettleCheck* settle,
+                   std::optional<AdaptiveStep> adaptive)
     : scene_(scene),
       mpi_(mpi),
       engine_(engine),
@@ -114,14 +118,26 @@ TimeLoop::TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine
       progress_(!quiet && mpi.is_root(), kProgressInterval, total_steps_, start.step),
       quiet_(quiet),
       resumed_(start.resumed),
-      settle_(settle) {
+      settle_(settle),
+      adaptive_(adaptive) {
   if (resumed_) snapshots_.resume(start.snapshots);
+}
+
+void TimeLoop::advance_base_step() {
+  if (!adaptive_) {
+    engine_.step();
+    return;
+  }
+  const std::uint32_t substeps = adaptive_->next(engine_.fastest_speed());
+  engine_.set_substeps(substeps);
+  for (std::uint32_t k = 0; k < substeps; ++k) engine_.step();
+  substeps_done_ += substeps;
 }
 
 int TimeLoop::run() {
   if (!resumed_) record(first_step_, true);
   for (std::uint64_t step = first_step_ + 1; step <= total_steps_; ++step) {
-    engine_.step();
+    advance_base_step();
     HealthFailure failure;
     if (engine_.find_unhealthy(kUnstableOverlapRatio, failure)) return stop_unstable(step, failure);
     balance_.maybe_rebalance(step, engine_);
@@ -146,7 +162,9 @@ Checkpoint TimeLoop::capture(std::uint64_t step) const {
   Checkpoint c;
   engine_.get_particles(c.particles);
   engine_.get_list_positions(c.list_position_radius);
-  c.list_build_step = engine_.list_build_step();
+  c.list_build = engine_.list_build_clock();
+  c.substeps = adaptive_ ? adaptive_->substeps() : 1;
+  c.wall_motion = engine_.wall_motion();
   engine_.get_contact_history(c.history);
   c.snapshots = snapshots_.writer().table();
   c.time = step * dt_;
@@ -154,6 +172,7 @@ Checkpoint TimeLoop::capture(std::uint64_t step) const {
   c.removed = engine_.removed_count();
   c.dt = dt_;
   c.dt_fraction = scene_.simulation.dt_auto ? scene_.simulation.dt_fraction : 0.0;
+  c.dt_adaptive = scene_.simulation.dt_adaptive;
   c.skin = skin_;
   for (const Material& m : scene_.materials) c.material_names.push_back(m.name);
   return c;
@@ -162,11 +181,13 @@ Checkpoint TimeLoop::capture(std::uint64_t step) const {
 int TimeLoop::finish(std::uint64_t step) {
   wait_for_snapshots();
   report_times();
+  const std::string split =
+      adaptive_ ? " (base steps, split into " + std::to_string(substeps_done_) + ")" : "";
   if (mpi_.is_root())
     std::printf(
-        "done: %llu steps in %.2f s; %llu particles removed (left the domain); output "
+        "done: %llu steps%s in %.2f s; %llu particles removed (left the domain); output "
         "in %s (open %s in ParaView)\n",
-        static_cast<unsigned long long>(step - first_step_), progress_.elapsed(),
+        static_cast<unsigned long long>(step - first_step_), split.c_str(), progress_.elapsed(),
         static_cast<unsigned long long>(engine_.removed_count()), scene_.output.dir.c_str(),
         snapshots_.writer().xmf_path().c_str());
   return kExitOk;
@@ -220,7 +241,8 @@ std::optional<Diagnostics> TimeLoop::record_row(std::uint64_t step, bool snapsho
     removal_reported_ = removal_reported_ || removed > 0;
     row = engine_.diagnostics();
     imbalance_ = balance_.imbalance(engine_);
-    series_.append(timeseries_row(time, step, *row, removed, imbalance_, implement_loads_));
+    series_.append(
+        timeseries_row(time, step, step_dt(), *row, removed, imbalance_, implement_loads_));
   }
   if (snapshot) write_snapshot(time, step);
   return row;

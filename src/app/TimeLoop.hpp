@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/AdaptiveStep.hpp"
 #include "app/LoadBalance.hpp"
 #include "app/Progress.hpp"
 #include "app/Runner.hpp"
@@ -32,14 +33,15 @@ struct LoopStart {
   std::vector<XdmfSnapshot> snapshots;
 };
 
-/// The time loop with its output and checkpoint schedule. With a settle check (a bed
-/// preparation) it stops at the first settled time-series row, after that step's snapshot and
-/// checkpoint.
+/// The time loop with its output and checkpoint schedule, by base steps of setup.dt. With a
+/// settle check (a bed preparation) it stops at the first settled time-series row, after that
+/// step's snapshot and checkpoint. With an AdaptiveStep (dt = "adaptive") each base step is
+/// split into the substeps it chooses.
 class TimeLoop {
  public:
   TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine, const EngineSetup& setup,
            const LoadBalance& balance, bool quiet, const LoopStart& start,
-           const SettleCheck* settle);
+           const SettleCheck* settle, std::optional<AdaptiveStep> adaptive);
 
   int run();
 
@@ -51,6 +53,12 @@ class TimeLoop {
 
  private:
   int finish(std::uint64_t step);
+
+  /// One base step: its substeps chosen (dt = "adaptive"), then stepped.
+  void advance_base_step();
+
+  /// The step of the last base step: dt / substeps [s].
+  double step_dt() const { return adaptive_ ? dt_ / adaptive_->substeps() : dt_; }
 
   /// The time split of the run, slowest rank per part, and the mean halo bytes a rank sent
   /// per ghost refresh (printed by rank 0 unless quiet); the snapshot writes count in output
@@ -98,7 +106,9 @@ class TimeLoop {
   Progress progress_;
   bool quiet_;
   bool resumed_;
-  const SettleCheck* settle_;  ///< null: run to end_time
+  const SettleCheck* settle_;             ///< null: run to end_time
+  std::optional<AdaptiveStep> adaptive_;  ///< none: one step per base step
+  std::uint64_t substeps_done_ = 0;       ///< steps of the split base steps so far
   std::optional<std::uint64_t> settled_step_;
   bool removal_reported_ = false;  ///< the first removal was warned of
   double imbalance_ = 1;           ///< at the last time-series row

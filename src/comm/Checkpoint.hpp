@@ -24,10 +24,15 @@
 /// checkpoint written before they existed) no snapshot has the rank field, and each holds
 /// every field in double precision. material_names (K fixed-length strings, written by rank 0:
 /// the writing scene's materials by index; optional when read: without it, a file written
-/// before it existed, materials are taken by index).
+/// before it existed, materials are taken by index). wall_motion (W×3 f64, written by rank 0:
+/// per plane wall its displacement, velocity and the particles' push, WallMotion.hpp; optional
+/// when read: without it every wall continues from rest at its start).
 /// Attributes: format_version, history_width (u32), time, dt, dt_fraction, skin (f64), step,
-/// removed, list_build_step (u64; the step of the last neighbour-list build, optional when
-/// read: the step when missing).
+/// removed, list_build_step (u64; the base step of the last neighbour-list build, optional when
+/// read: the step when missing), list_build_substep and list_build_substeps (u32; the substeps
+/// it was into the next base step, of how many; optional when read: 0 of 1), substeps (u32;
+/// the substeps of the last base step, dt = "adaptive"; optional when read: 1), dt_adaptive
+/// (u8: 1 when the run's dt was "adaptive"; optional when read: 0).
 #include <mpi.h>
 
 #include <cstdint>
@@ -39,6 +44,8 @@
 #include "core/ParticleStore.hpp"
 #include "core/RowShare.hpp"
 #include "core/Scene.hpp"
+#include "core/StepClock.hpp"
+#include "core/WallMotion.hpp"
 
 namespace gpudem {
 
@@ -53,13 +60,16 @@ struct Checkpoint {
   /// The names of the writing scene's materials, by index (none in files written before the
   /// names were recorded): a scene that lists its materials otherwise reads them by name.
   std::vector<std::string> material_names;
-  double time = 0;  ///< [s]
+  std::vector<WallMotion> wall_motion;  ///< per plane wall (none in files written before)
+  double time = 0;                      ///< [s]
   std::uint64_t step = 0;
-  std::uint64_t list_build_step = 0;  ///< step of the last neighbour-list build
-  std::uint64_t removed = 0;          ///< particles removed so far for leaving the domain
-  double dt = 0;                      ///< [s] time step of the run
-  double dt_fraction = 0;             ///< fraction of the critical step when dt was "auto", else 0
-  double skin = 0;                    ///< [m] Verlet skin of the run
+  StepClock list_build;        ///< where the last neighbour-list build was
+  std::uint32_t substeps = 1;  ///< substeps of the last base step
+  std::uint64_t removed = 0;   ///< particles removed so far for leaving the domain
+  double dt = 0;               ///< [s] time step of the run
+  double dt_fraction = 0;      ///< fraction of the critical step when dt was "auto", else 0
+  bool dt_adaptive = false;    ///< dt was "adaptive": dt is the base step
+  double skin = 0;             ///< [m] Verlet skin of the run
 };
 
 /// `<dir>/checkpoint.h5`.
@@ -91,7 +101,8 @@ Checkpoint read_checkpoint(const std::string& path, FilePart part = {});
 void map_materials_by_name(Checkpoint& checkpoint, const std::string& path, const Scene& scene);
 
 /// map_materials_by_name, then throws InputError naming `path` when `checkpoint` refers to a
-/// material or a wall that `scene` does not define, or holds another number of history values
+/// material or a wall that `scene` does not define, holds the motion of another number of
+/// walls than the scene defines, or holds another number of history values
 /// per contact than the scene's contact law keeps (contact_history_width): it was written with
 /// another law.
 void fit_checkpoint_to_scene(Checkpoint& checkpoint, const std::string& path, const Scene& scene);

@@ -303,6 +303,39 @@ void read_snapshot_table(const Reader& r, std::vector<XdmfSnapshot>& table) {
         {files[k], times[k], counts[k], {rank_fields[k] == 1, fields[k], precisions[k] == 4}});
 }
 
+void read_wall_motion(const Reader& r, std::vector<WallMotion>& motion) {
+  motion = r.rows<WallMotion, double>("wall_motion", H5T_IEEE_F64LE);
+  for (const WallMotion& m : motion)
+    if (!(std::isfinite(m.displacement) && std::isfinite(m.velocity) && std::isfinite(m.push)))
+      r.reject("dataset 'wall_motion' holds a value that is not finite");
+}
+
+/// An optional u32 attribute, `fallback` when missing.
+std::uint32_t optional_u32(const Reader& r, const char* name, std::uint32_t fallback) {
+  return r.has_attribute(name) ? r.attribute<std::uint32_t>(name, H5T_STD_U32LE) : fallback;
+}
+
+/// Where the last list build was (the step when missing) and the last base step's substeps.
+void read_list_build(const Reader& r, Checkpoint& c) {
+  StepClock& b = c.list_build;
+  b.step = r.has_attribute("list_build_step")
+               ? r.attribute<std::uint64_t>("list_build_step", H5T_STD_U64LE)
+               : c.step;
+  b.substep = optional_u32(r, "list_build_substep", 0);
+  b.substeps = optional_u32(r, "list_build_substeps", 1);
+  c.substeps = optional_u32(r, "substeps", 1);
+  if (b.step > c.step || (b.step == c.step && b.substep > 0))
+    r.reject("attribute 'list_build_step' (" + std::to_string(b.step) + ", substep " +
+             std::to_string(b.substep) + ") is after attribute 'step' (" + std::to_string(c.step) +
+             ")");
+  if (b.substeps == 0 || b.substep >= b.substeps)
+    r.reject("attribute 'list_build_substep' (" + std::to_string(b.substep) +
+             ") is not below attribute 'list_build_substeps' (" + std::to_string(b.substeps) + ")");
+  if (c.substeps == 0 || c.substeps > kMaxSubsteps)
+    r.reject("attribute 'substeps' (" + std::to_string(c.substeps) + ") is not in 1.." +
+             std::to_string(kMaxSubsteps));
+}
+
 void read_attributes(const Reader& r, Checkpoint& c) {
   const auto version = r.attribute<std::uint32_t>("format_version", H5T_STD_U32LE);
   if (version != kCheckpointFormatVersion)
@@ -310,15 +343,12 @@ void read_attributes(const Reader& r, Checkpoint& c) {
              "; this program reads version " + std::to_string(kCheckpointFormatVersion));
   c.time = r.attribute<double>("time", H5T_IEEE_F64LE);
   c.step = r.attribute<std::uint64_t>("step", H5T_STD_U64LE);
-  c.list_build_step = r.has_attribute("list_build_step")
-                          ? r.attribute<std::uint64_t>("list_build_step", H5T_STD_U64LE)
-                          : c.step;
-  if (c.list_build_step > c.step)
-    r.reject("attribute 'list_build_step' (" + std::to_string(c.list_build_step) +
-             ") is after attribute 'step' (" + std::to_string(c.step) + ")");
+  read_list_build(r, c);
   c.removed = r.attribute<std::uint64_t>("removed", H5T_STD_U64LE);
   c.dt = r.attribute<double>("dt", H5T_IEEE_F64LE);
   c.dt_fraction = r.attribute<double>("dt_fraction", H5T_IEEE_F64LE);
+  c.dt_adaptive =
+      r.has_attribute("dt_adaptive") && r.attribute<std::uint8_t>("dt_adaptive", H5T_STD_U8LE) != 0;
   c.skin = r.attribute<double>("skin", H5T_IEEE_F64LE);
   if (!(std::isfinite(c.dt) && c.dt > 0)) r.reject("attribute 'dt' is not finite and > 0");
   if (!(std::isfinite(c.skin) && c.skin >= 0)) r.reject("attribute 'skin' is not finite and >= 0");
@@ -349,6 +379,7 @@ Checkpoint read_checkpoint(const std::string& path, FilePart part) {
   read_history(reader, part, c.history);
   read_snapshot_table(reader, c.snapshots);
   if (reader.has("material_names")) c.material_names = reader.strings("material_names");
+  if (reader.has("wall_motion")) read_wall_motion(reader, c.wall_motion);
   return c;
 }
 
@@ -389,6 +420,11 @@ void fit_checkpoint_to_scene(Checkpoint& c, const std::string& path, const Scene
                        "contact history names wall index " + std::to_string(wall) +
                            " but the scene defines " + std::to_string(scene.walls.size()) +
                            " wall(s)");
+  if (!c.wall_motion.empty() && c.wall_motion.size() != scene.walls.size())
+    throw InputError(path, 0, "",
+                     "holds the motion of " + std::to_string(c.wall_motion.size()) +
+                         " wall(s) but the scene defines " + std::to_string(scene.walls.size()) +
+                         " wall(s): a run continues with the walls it was saved with");
   if (!c.history.mesh_owner.empty() && scene.meshes.empty())
     throw InputError(path, 0, "",
                      "contact history holds particle-mesh contacts (particle id " +

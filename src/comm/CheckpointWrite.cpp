@@ -142,15 +142,29 @@ void write_snapshot_table(MPI_Comm comm, const H5Calls& h5, const ParallelFile& 
       {"snapshot_precision", precisions.data(), H5T_NATIVE_UINT8, H5T_STD_U8LE, 1, 1, 0}, slice);
 }
 
+/// The walls' motion, rank 0's rows only.
+void write_wall_motion(MPI_Comm comm, const ParallelFile& file,
+                       const std::vector<WallMotion>& motion) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const std::vector<WallMotion> rows = rank == 0 ? motion : std::vector<WallMotion>{};
+  static_assert(sizeof(WallMotion) == 3 * sizeof(double), "a row is three f64 values");
+  file.write_dataset(real_rows("wall_motion", rows.data(), 3), global_slice(comm, rows.size()));
+}
+
 void write_attributes(const ParallelFile& file, const Checkpoint& c) {
   file.write_attribute("format_version", H5T_STD_U32LE, kCheckpointFormatVersion);
   file.write_attribute("history_width", H5T_STD_U32LE, c.history.width);
   file.write_attribute("time", H5T_IEEE_F64LE, c.time);
   file.write_attribute("step", H5T_STD_U64LE, c.step);
-  file.write_attribute("list_build_step", H5T_STD_U64LE, c.list_build_step);
+  file.write_attribute("list_build_step", H5T_STD_U64LE, c.list_build.step);
+  file.write_attribute("list_build_substep", H5T_STD_U32LE, c.list_build.substep);
+  file.write_attribute("list_build_substeps", H5T_STD_U32LE, c.list_build.substeps);
+  file.write_attribute("substeps", H5T_STD_U32LE, c.substeps);
   file.write_attribute("removed", H5T_STD_U64LE, c.removed);
   file.write_attribute("dt", H5T_IEEE_F64LE, c.dt);
   file.write_attribute("dt_fraction", H5T_IEEE_F64LE, c.dt_fraction);
+  file.write_attribute("dt_adaptive", H5T_STD_U8LE, std::uint8_t(c.dt_adaptive ? 1 : 0));
   file.write_attribute("skin", H5T_IEEE_F64LE, c.skin);
 }
 
@@ -193,6 +207,7 @@ void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& c
     write_history(comm, file, checkpoint.history);
     write_snapshot_table(comm, h5, file, checkpoint.snapshots);
     write_text_rows(comm, h5, file, "material_names", checkpoint.material_names);
+    write_wall_motion(comm, file, checkpoint.wall_motion);
     write_attributes(file, checkpoint);
     file.close();
   }

@@ -63,6 +63,8 @@ hid_t native_type() {
     return H5T_NATIVE_FLOAT;
   } else if constexpr (std::is_same_v<T, std::uint32_t>) {
     return H5T_NATIVE_UINT32;
+  } else if constexpr (std::is_same_v<T, std::uint8_t>) {
+    return H5T_NATIVE_UINT8;
   } else {
     static_assert(std::is_same_v<T, std::uint64_t>, "no HDF5 type for this value type");
     return H5T_NATIVE_UINT64;
@@ -78,6 +80,8 @@ hid_t stored_type() {
     return H5T_IEEE_F32LE;
   } else if constexpr (std::is_same_v<T, std::uint32_t>) {
     return H5T_STD_U32LE;
+  } else if constexpr (std::is_same_v<T, std::uint8_t>) {
+    return H5T_STD_U8LE;
   } else {
     static_assert(std::is_same_v<T, std::uint64_t>, "no HDF5 type for this value type");
     return H5T_STD_U64LE;

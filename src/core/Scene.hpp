@@ -25,7 +25,10 @@ enum class IntegratorKind { VelocityVerlet, SymplecticEuler };
 enum class Precision { Double, Mixed, Float };
 
 struct SimulationSettings {
-  bool dt_auto = true;       ///< dt = "auto": dt_fraction of the critical time step
+  bool dt_auto = true;  ///< dt = "auto" or "adaptive": dt_fraction of the critical step
+  /// dt = "adaptive": the automatic base step without the displacement limit, split into
+  /// substeps as the particles' speed requires (AdaptiveStep.hpp)
+  bool dt_adaptive = false;
   double dt = 0;             ///< [s] explicit step (when dt_auto is false)
   int dt_line = 0;           ///< line of `dt` in the scene file (0: absent or from --set)
   double dt_fraction = 0.1;  ///< fraction of the critical step used by "auto" [-]
@@ -88,12 +91,17 @@ struct NeighborSettings {
   double skin = 0;  ///< Verlet skin [m]; 0 = "auto": half the smallest particle radius
 };
 
-/// An infinite plane; particles live on the side its normal points to.
+/// An infinite plane; particles live on the side its normal points to. A wall with a mass is a
+/// piston: it moves along its normal under its load, its weight and the particles' push.
 struct WallSettings {
   std::string name;
-  Vec3 point;   ///< [m] any point on the plane
+  Vec3 point;   ///< [m] any point on the plane at t = 0
   Vec3 normal;  ///< unit normal (normalised by the loader)
   MaterialId material = 0;
+  double mass = 0;    ///< [kg] 0: the wall stands still
+  double load = 0;    ///< [N] force on a piston along its normal, towards the particles
+  int mass_line = 0;  ///< line of `mass` (of the table when absent), for piston errors
+  bool loaded() const { return mass > 0; }
 };
 
 enum class RadiusDistributionKind { Uniform, TruncatedNormal, Discrete };

@@ -17,7 +17,7 @@ namespace {
 
 WallSettings read_wall(const TableReader& table, std::size_t index,
                        const std::vector<Material>& materials) {
-  table.allow_only({"name", "point", "normal", "material"});
+  table.allow_only({"name", "point", "normal", "material", "mass", "load"});
   WallSettings w;
   w.name = table.string("name", "wall" + std::to_string(index));
   w.point = table.vec3("point", "m");
@@ -28,6 +28,11 @@ WallSettings read_wall(const TableReader& table, std::size_t index,
   }
   w.normal = (1 / length) * normal;
   w.material = material_index(table, "material", materials);
+  w.mass = table.number("mass", positive("kg"), 0.0);
+  w.mass_line = table.line("mass");
+  if (table.has("load") && !w.loaded())
+    table.fail("load", "a load moves only a wall with a mass: give the wall `mass` too");
+  w.load = table.number("load", any_value("N"), 0.0);
   return w;
 }
 

@@ -61,14 +61,16 @@ toml::value parse_scene_file(const std::string& path) {
   }
 }
 
-/// "auto" (returned as 0) or a number > 0 in `unit`; absent means "auto".
-double auto_or_positive(const TableReader& table, const std::string& key, const std::string& unit) {
+/// "auto" (returned as 0) or a number > 0 in `unit`; absent means "auto". `words`: the strings
+/// the key takes, for the message.
+double auto_or_positive(const TableReader& table, const std::string& key, const std::string& unit,
+                        const std::string& words = "\"auto\"") {
   if (!table.has(key)) return 0;
   const toml::value& v = table.value(key);
   if (v.is_string() && v.as_string().str == "auto") return 0;
   const Range range = positive(unit);
   const std::optional<double> x = finite_number(v);
-  if (!x || !range.contains(*x)) table.fail_found(key, "\"auto\" or " + range.text("a number"));
+  if (!x || !range.contains(*x)) table.fail_found(key, words + " or " + range.text("a number"));
   return *x;
 }
 
@@ -78,7 +80,9 @@ SimulationSettings read_simulation(const TableReader& root) {
                     "precision", "seed", "gravity", "impact_speed", "allow_unstable_dt"});
   SimulationSettings s;
   s.end_time = table.number("end_time", positive("s"));
-  s.dt = auto_or_positive(table, "dt", "s");
+  s.dt_adaptive = table.has("dt") && table.value("dt").is_string() &&
+                  table.value("dt").as_string().str == "adaptive";
+  s.dt = s.dt_adaptive ? 0 : auto_or_positive(table, "dt", "s", "\"auto\", \"adaptive\"");
   s.dt_auto = s.dt == 0;
   s.dt_line = table.has("dt") ? table.line("dt") : 0;
   s.dt_fraction = table.number("dt_fraction", interval(0, true, 1, false), s.dt_fraction);

@@ -35,10 +35,11 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
   void compute(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,
                const ForceOutputs<S>& out, const std::uint32_t* subset,
                std::size_t count) const override {
-    parallel_for(Space{}, count,
-                 ComputeForces<Law, P>{view(in), scene(in), gravity, dt, records(out.history),
-                                       out.force, out.torque, out.overlap_ratio, subset},
-                 LaunchSlot::forces);
+    parallel_for(
+        Space{}, count,
+        ComputeForces<Law, P>{view(in), scene(in), gravity, dt, records(out.history), out.force,
+                              out.torque, out.overlap_ratio, out.wall_push, subset},
+        LaunchSlot::forces);
   }
 
   void contact_terms(const ContactInputs<P, S>& in, std::size_t count,

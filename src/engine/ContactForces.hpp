@@ -31,14 +31,19 @@ struct HistoryArrays {
 
 template <class Law>
 struct ForceSum {
+  using S = typename Law::Scalar;
   HistoryArrays<Law> history;
   Real dt;
-  Vec3T<typename Law::Scalar> force;
-  Vec3T<typename Law::Scalar> torque;
+  Vec3T<S> force;
+  Vec3T<S> torque;
   Real worst_overlap_ratio = 0;
+  /// Per (particle, plane wall) slot: the push −F·n_c of the particle on the wall along the
+  /// contact normal n_c (towards the wall) [N]; null: not wanted.
+  S* wall_push = nullptr;
   GPUDEM_HD void operator()(ContactSample<Law>& c) {
     const typename Law::Force f = evaluate_contact(c, c.state.value, dt);
     if constexpr (Law::history_size > 0) history.of(c)[c.slot] = c.state;
+    if (wall_push && c.wall >= 0) wall_push[c.slot] = -dot(f.force, vec_cast<S>(c.point.normal));
     force += f.force;
     if constexpr (Law::needs_spin) torque += contact_torque(c, f);
     const Real ratio = c.point.overlap / c.min_radius;
@@ -50,6 +55,7 @@ struct ForceSum {
   }
   GPUDEM_HD void separated_from_wall(std::uint32_t slot) {
     if constexpr (Law::history_size > 0) history.wall[slot] = typename Law::State{};
+    if (wall_push) wall_push[slot] = S{};
   }
   GPUDEM_HD void separated_from_mesh(std::uint32_t slot) {
     if constexpr (Law::history_size > 0) history.mesh[slot] = typename Law::State{};
@@ -70,10 +76,11 @@ struct ComputeForces {
   Vec3T<S>* force;
   Vec3T<S>* torque;
   Real* overlap_ratio;
+  S* wall_push;  ///< per (particle, plane wall) slot, or null (ForceSum)
   const std::uint32_t* subset = nullptr;
   GPUDEM_HD void operator()(std::size_t k) const {
     const std::size_t i = subset ? subset[k] : k;
-    ForceSum<Law> sum{history, dt, Vec3T<S>{}, Vec3T<S>{}, Real(0)};
+    ForceSum<Law> sum{history, dt, Vec3T<S>{}, Vec3T<S>{}, Real(0), wall_push};
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, sum);
     force[i] = sum.force + vec_cast<S>((Real(1) / particles.velocity(i).w) * gravity);
     if constexpr (Law::needs_spin) torque[i] = sum.torque;

@@ -341,7 +341,7 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
     c.point.normal = -wall.normal;
     c.point.overlap = overlap;
     c.arm = xi.w - Real(0.5) * overlap;
-    describe_wall(c, xi, vi, wi, Vec3{});
+    describe_wall(c, xi, vi, wi, wall.velocity);
     c.min_radius = xi.w;
     c.params = &s.pair_params[mi * s.material_count + wall.material];
     c.wall = static_cast<std::int32_t>(w);

@@ -43,13 +43,15 @@ struct ContactInputs {
 };
 
 /// Where a force evaluation writes, per owned particle: force and torque in the law's scalar,
-/// the worst overlap ratio (health check), and the advanced contact history.
+/// the worst overlap ratio (health check), and the advanced contact history; with pistons
+/// (WallPistons.hpp), each particle's push on each plane wall, per slot i·wall_count + w.
 template <class S>
 struct ForceOutputs {
   Vec3T<S>* force;
   Vec3T<S>* torque;
   Real* overlap_ratio;
   HistoryPointers<S> history;
+  S* wall_push = nullptr;  ///< [N] null: not wanted
 };
 
 /// Per-particle contact terms of the diagnostics (ContactTerms in Diagnostics.hpp).

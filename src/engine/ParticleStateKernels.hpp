@@ -40,6 +40,16 @@ struct Radius {
   GPUDEM_HD Real operator()(std::size_t i) const { return position_radius[i].w; }
 };
 
+/// |v|² of particle i [m²/s²].
+template <class P>
+struct SquaredSpeed {
+  const Vec4T<P>* velocity_inv_mass;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    const Vec4T<P> v = velocity_inv_mass[i];
+    return Real(v.x) * Real(v.x) + Real(v.y) * Real(v.y) + Real(v.z) * Real(v.z);
+  }
+};
+
 /// slot_of[i] = the cell-order slot of owned particle i (index_of_slot[slot] = i).
 struct SlotOfOwned {
   const std::uint32_t* index_of_slot;

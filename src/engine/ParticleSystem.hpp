@@ -14,6 +14,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "core/StepClock.hpp"
 #include "core/Stopwatch.hpp"
 #include "engine/ArrayKernels.hpp"
 #include "engine/CellList.hpp"
@@ -37,6 +38,7 @@
 #include "engine/RankCells.hpp"
 #include "engine/ShareRouting.hpp"
 #include "engine/StepEngine.hpp"
+#include "engine/WallPistons.hpp"
 
 namespace gpudem {
 
@@ -59,18 +61,19 @@ class ParticleSystem final : public StepEngine {
         width_(law_->history_width()),
         one_rank_(setup.box),
         domain_(setup.domain ? *setup.domain : one_rank_),
+        pistons_(setup.walls, setup.pistons, setup.gravity),
         carried_pairs_(width_),
         meshes_(setup.meshes, setup.box, width_),
         ghosts_(law_->needs_spin()),
-        steps_(setup.start_step) {
-    walls_.upload(setup.walls);
-    if (!meshes_.empty()) meshes_.set_time(steps_ * setup.dt);
+        clock_{setup.start_step} {
+    walls_.upload(pistons_.walls());
+    if (!meshes_.empty()) meshes_.set_time(clock_.time(setup.dt));
   }
 
   void set_particles(const ParticleStore& share) override;
 
   void restore_particles(const ParticleStore& share, const std::vector<Real4>& list_positions,
-                         std::uint64_t removed, std::uint64_t list_build_step) override;
+                         std::uint64_t removed, StepClock list_build) override;
 
   void get_particles(ParticleStore& p) const override { read_owned_particles(owned_arrays(), p); }
 
@@ -78,10 +81,21 @@ class ParticleSystem final : public StepEngine {
 
   void set_contact_history(ContactHistory share) override;
 
+  std::vector<WallMotion> wall_motion() const override { return pistons_.motion(); }
+
+  void set_wall_motion(const std::vector<WallMotion>& motion) override {
+    if (motion.size() != setup_.walls.size())
+      throw std::invalid_argument("set_wall_motion: " + std::to_string(motion.size()) +
+                                  " walls given, the scene has " +
+                                  std::to_string(setup_.walls.size()));
+    pistons_.set_motion(motion);
+    walls_.upload(pistons_.walls());
+  }
+
   void get_list_positions(std::vector<Real4>& position_radius) const override {
     position_radius = download_in_real(position_at_build_);
   }
-  std::uint64_t list_build_step() const override { return list_build_step_; }
+  StepClock list_build_clock() const override { return list_build_clock_; }
 
   std::size_t particle_count() const override { return global_count_; }
   std::size_t owned_count() const override { return owned_; }
@@ -94,34 +108,16 @@ class ParticleSystem final : public StepEngine {
     return staging_;
   }
 
-  void step() override {
-    Stopwatch watch;
-    const Real dt = setup_.dt;
-    const bool verlet = setup_.integrator == IntegratorKind::VelocityVerlet;
-    kick(verlet ? Real(0.5) * dt : dt);
-    drift(dt);
-    ++steps_;
-    if (!meshes_.empty()) meshes_.set_time(steps_ * dt);
-    times_.integrate += lap(watch);
-    const bool rebuild_now = needs_rebuild();
-    times_.neighbors += lap(watch);
-    if (rebuild_now) {
-      rebuild();  // charges its own parts
-      lap(watch);
-      compute_forces();
-    } else if (domain_.ranks() > 1) {
-      refresh_ghosts_computing_interior(watch);
-    } else {
-      compute_forces();
-    }
-    times_.forces += lap(watch);
-    if (verlet) kick(Real(0.5) * dt);
-    times_.integrate += lap(watch);
-  }
+  void set_substeps(std::uint32_t substeps) override;
+
+  double fastest_speed() const override;
+
+  void step() override;
 
   void rebuild_neighbors() override {
     rebuild();
     compute_forces();
+    measure_pistons();
   }
 
   bool find_unhealthy(double limit, HealthFailure& failure) const override;
@@ -230,25 +226,18 @@ class ParticleSystem final : public StepEngine {
                                      history_pointers()};
   }
 
-  void kick(Real h) {
-    if (law_->needs_spin())
-      kick_with<true>(h);
-    else
-      kick_with<false>(h);
-  }
+  /// Velocities (and spins) by h times the accelerations, the pistons' too.
+  void kick(Real h);
 
   template <bool kRotate>
-  void kick_with(Real h) {
-    parallel_for(Space{}, owned_,
-                 Kick<kRotate, S, P>{velocity_inv_mass_.data(), angular_velocity_.data(),
-                                     force_.data(), torque_.data(), position_radius_.data(), h},
-                 LaunchSlot::integrate);
-  }
+  void kick_with(Real h);
 
-  void drift(Real dt) {
-    parallel_for(Space{}, owned_, Drift<P>{position_radius_.data(), velocity_inv_mass_.data(), dt},
-                 LaunchSlot::integrate);
-  }
+  /// Positions by dt times the velocities, the pistons' too.
+  void drift(Real dt);
+
+  /// Each piston's push, summed in its units over the owned particles of all ranks
+  /// (WallPistons.hpp). Collective.
+  void measure_pistons();
 
   /// Outputs and history of a force evaluation whose results are thrown away (launch tuning).
   struct ForceScratch {
@@ -281,10 +270,18 @@ class ParticleSystem final : public StepEngine {
   void compute_forces() { compute_forces(nullptr, owned_); }
 
   /// The forces of the owned particles list[0, count) (all of 0..count when list is null).
+  /// The step of the base step in progress: dt / substeps.
+  Real step_dt() const { return setup_.dt / clock_.substeps; }
+
   void compute_forces(const std::uint32_t* list, std::size_t count) {
-    law_->compute(contact_inputs(), setup_.gravity, setup_.dt,
-                  {force_.data(), torque_.data(), overlap_ratio_.data(), history_pointers()}, list,
-                  count);
+    S* push = nullptr;
+    if (!pistons_.empty()) {
+      if (wall_push_.size() != owned_ * wall_count()) wall_push_.resize(owned_ * wall_count());
+      push = wall_push_.data();
+    }
+    law_->compute(contact_inputs(), setup_.gravity, step_dt(),
+                  {force_.data(), torque_.data(), overlap_ratio_.data(), history_pointers(), push},
+                  list, count);
   }
 
   /// The forces of the current state written to `scratch`, the engine's state untouched.
@@ -438,8 +435,11 @@ class ParticleSystem final : public StepEngine {
   std::unique_ptr<ForceCompute<Space, LawView, S>> law_;  ///< the contact law
   std::uint32_t width_;  ///< history values per contact (the law's)
   OneRankDomain one_rank_;
-  DomainLink& domain_;  ///< setup.domain, or one_rank_ when there is none
-  DeviceArray<PlaneWall, Space> walls_;
+  DomainLink& domain_;                   ///< setup.domain, or one_rank_ when there is none
+  DeviceArray<PlaneWall, Space> walls_;  ///< at their current positions
+  WallPistons pistons_;
+  /// With pistons, each owned particle's push on each wall, per slot i·wall_count + w [N].
+  DeviceArray<S, Space> wall_push_;
   /// Per particle, every field of the table: the owned_ owned particles, then, in the fields
   /// ghosts hold, the ghosts. The members below name the columns the engine's kernels read.
   ParticleColumns<Space, P, S> columns_;
@@ -468,8 +468,8 @@ class ParticleSystem final : public StepEngine {
   std::size_t owned_ = 0;
   std::uint64_t global_count_ = 0;     ///< particles on all ranks
   std::uint64_t expected_id_sum_ = 0;  ///< id_checksum of the particles on all ranks
-  std::uint64_t steps_ = 0;            ///< the run's step count (the meshes' clock)
-  std::uint64_t list_build_step_ = 0;  ///< steps_ at the last neighbour-list build
+  StepClock clock_;                    ///< where the run is (the meshes' clock)
+  StepClock list_build_clock_;         ///< clock_ at the last neighbour-list build
   bool has_list_ = false;
   std::uint64_t removed_ = 0;  ///< on all ranks
   std::uint64_t rebuilds_ = 0;
@@ -481,3 +481,4 @@ class ParticleSystem final : public StepEngine {
 #include "engine/ParticleSystemRebuild.hpp"
 #include "engine/ParticleSystemReport.hpp"
 #include "engine/ParticleSystemRestore.hpp"
+#include "engine/ParticleSystemStep.hpp"

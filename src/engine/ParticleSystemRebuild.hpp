@@ -37,7 +37,7 @@ void ParticleSystem<Space, P, S>::rebuild() {
   split_ghost_rows();
   rebuild_mesh_candidates(has_list_);
   remap_pair_history();
-  list_build_step_ = steps_;
+  list_build_clock_ = clock_;
   position_at_build_.resize(owned_);
   parallel_for(Space{}, owned_,
                CopyArray<State4>{position_radius_.data(), position_at_build_.data()});

@@ -30,6 +30,8 @@ Diagnostics ParticleSystem<Space, P, S>::diagnostics() const {
   Diagnostics d = local_diagnostics(contact_share);
   if (domain_.ranks() > 1) sum_over_ranks(d, contact_share);
   d.particle_count = global_count_;
+  for (std::size_t k = 0; k < pistons_.count(); ++k)
+    d.piston_motion.push_back(pistons_.motion()[pistons_.piston(k).wall]);
   return d;
 }
 

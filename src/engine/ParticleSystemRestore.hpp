@@ -13,18 +13,18 @@ void ParticleSystem<Space, P, S>::set_particles(const ParticleStore& share) {
   has_list_ = false;
   rebuild();
   compute_forces();
+  measure_pistons();
 }
 
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::restore_particles(const ParticleStore& share,
                                                     const std::vector<Real4>& list_positions,
-                                                    std::uint64_t removed,
-                                                    std::uint64_t list_build_step) {
+                                                    std::uint64_t removed, StepClock list_build) {
   if (list_positions.size() != share.size() || share.force.size() != share.size() ||
       share.torque.size() != share.size())
     throw std::invalid_argument("restore_particles: arrays differ in length");
   count_particles(share.id);
-  list_build_step_ = list_build_step;
+  list_build_clock_ = list_build;
   if (domain_.ranks() == 1) {
     restore_owned(share, list_positions);
   } else {
@@ -135,9 +135,9 @@ void ParticleSystem<Space, P, S>::build_list_at_saved_positions(
   permute_array(cells_.order(), owned_, torque);
   build_list(receive_ghosts());
   split_ghost_rows();
-  if (!meshes_.empty()) meshes_.set_time(list_build_step_ * setup_.dt);
+  if (!meshes_.empty()) meshes_.set_time(list_build_clock_.time(setup_.dt));
   rebuild_mesh_candidates(false);
-  if (!meshes_.empty()) meshes_.set_time(steps_ * setup_.dt);
+  if (!meshes_.empty()) meshes_.set_time(clock_.time(setup_.dt));
   parallel_for(Space{}, owned_,
                SwapValues<State4>{position_radius_.data(), position_at_build_.data()});
   if (domain_.ranks() > 1) ghosts_.update(domain_, arrays(), owned_);

@@ -156,6 +156,46 @@ void require_meshes_fit_periodic_axes(const Scene& scene, const std::vector<Mesh
   }
 }
 
+/// The area of the domain box's cross-section by a plane of unit normal n, at most: for each
+/// axis k with n_k ≠ 0, the box's face across k over |n_k| (the section's projection on that
+/// face is within the face) [m²].
+double largest_section(const Scene& scene, Vec3 n) {
+  const Vec3 L = scene.domain.max - scene.domain.min;
+  double area = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k)
+    if (axis(n, k) != 0)
+      area = std::min(area, axis(L, (k + 1) % 3) * axis(L, (k + 2) % 3) / std::fabs(axis(n, k)));
+  return area;
+}
+
+/// Refuses a piston lighter than a close-packed layer of the heaviest particles against it:
+/// N = A / (2√3 r²) spheres of radius r (the largest) on its section A, each of the heaviest
+/// mass m. A piston of mass M pressed by N contacts of stiffness k oscillates at
+/// ω² ≈ k/m + N k/M; with M ≥ N m that stays within √2 of a particle's own contact frequency,
+/// which the time step resolves, and the contact law may treat the piston as a fixed wall.
+void require_pistons_outweigh_a_layer(const Scene& scene, const ParticleStore& particles) {
+  double r_max = 0, m_max = 0;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    r_max = std::max(r_max, particles.position_radius[i].w);
+    m_max = std::max(m_max, 1 / particles.velocity_inv_mass[i].w);
+  }
+  for (std::size_t k = 0; k < scene.walls.size(); ++k) {
+    const WallSettings& w = scene.walls[k];
+    if (!w.loaded() || r_max == 0) continue;
+    const double layer = largest_section(scene, w.normal) / (2 * std::sqrt(3.0) * r_max * r_max);
+    const double least = layer * m_max;
+    if (w.mass >= least) continue;
+    throw InputError(scene.file, w.mass_line, "wall[" + std::to_string(k) + "].mass",
+                     "piston '" + w.name + "' of " + short_number(w.mass) +
+                         " kg is lighter than a close-packed layer of the heaviest particles "
+                         "against it (" +
+                         short_number(layer) + " particles of " + short_number(m_max) + " kg, " +
+                         short_number(least) +
+                         " kg), which the time step would not resolve; give it at least that "
+                         "mass");
+  }
+}
+
 /// Refuses an explicit dt above the stable limit unless the scene allows it.
 void require_stable_dt(const Scene& scene, const TimeStepLimits& limits) {
   const SimulationSettings& sim = scene.simulation;
@@ -242,8 +282,12 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   s.contact_model = scene.contact.model;
   s.material_count = static_cast<std::uint32_t>(scene.materials.size());
   s.pair_params = pair_table(scene);
-  for (const WallSettings& w : scene.walls)
-    s.walls.push_back(PlaneWall{w.point, w.normal, w.material});
+  for (std::uint32_t k = 0; k < scene.walls.size(); ++k) {
+    const WallSettings& w = scene.walls[k];
+    s.walls.push_back(PlaneWall{w.point, w.normal, w.material, Vec3{}});
+    if (w.loaded()) s.pistons.push_back(PistonSetup{k, w.mass, w.load});
+  }
+  require_pistons_outweigh_a_layer(scene, particles);
   s.meshes = mesh_walls(scene);
   const double r_min = smallest_radius(particles);
   s.skin =
@@ -255,7 +299,9 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   require_holdable_impacts(
       scene, peak_overlap(scene, particles, launch_speed(scene, particles, s.meshes)));
   if (scene.simulation.dt_auto) {
-    const double step = limits.automatic(scene.simulation.dt_fraction);
+    const double fraction = scene.simulation.dt_fraction;
+    const double step =
+        scene.simulation.dt_adaptive ? fraction * limits.critical() : limits.automatic(fraction);
     s.dt = std::isfinite(step) ? step : scene.simulation.end_time;
   } else {
     s.dt = scene.simulation.dt;
@@ -266,16 +312,17 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
 ParticleStore setup_deciding_particles(const Scene& scene, const ParticleStore& particles) {
   const std::size_t n = particles.size();
   std::vector<std::size_t> chosen = smallest_particle_per_material(scene, particles);
-  std::size_t largest = n, lightest = n, fastest = n;
+  std::size_t largest = n, lightest = n, heaviest = n, fastest = n;
   const auto radius = [&](std::size_t i) { return particles.position_radius[i].w; };
   const auto inv_mass = [&](std::size_t i) { return particles.velocity_inv_mass[i].w; };
   const auto speed2 = [&](std::size_t i) { return norm2(xyz(particles.velocity_inv_mass[i])); };
   for (std::size_t i = 0; i < n; ++i) {
     if (largest == n || radius(i) > radius(largest)) largest = i;
     if (lightest == n || inv_mass(i) > inv_mass(lightest)) lightest = i;
+    if (heaviest == n || inv_mass(i) < inv_mass(heaviest)) heaviest = i;
     if (fastest == n || speed2(i) > speed2(fastest)) fastest = i;
   }
-  chosen.insert(chosen.end(), {largest, lightest, fastest});
+  chosen.insert(chosen.end(), {largest, lightest, heaviest, fastest});
   std::sort(chosen.begin(), chosen.end());
   chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
   ParticleStore out;

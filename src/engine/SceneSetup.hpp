@@ -15,23 +15,26 @@ std::vector<std::string> time_step_warnings(const Scene& scene, const ParticleSt
                                             const EngineSetup& setup);
 
 /// The engine setup: contact model, pair table (material_count² entries, row-major,
-/// symmetric), walls, skin and dt (TimeStepLimits::automatic when the scene says "auto",
-/// end_time when there are no particles). Throws InputError naming simulation.dt when an
-/// explicit dt exceeds the stable limit and simulation.allow_unstable_dt is false; naming the
-/// key that stiffens the contact (contact.stiffness, or material[i].young of its softer
-/// material) when an impact's peak overlap (peak_overlap) would pass kUnstableOverlapRatio and
-/// simulation.allow_unstable_dt is false; naming
-/// mesh[i].file when a mesh spans 2 h_k >= L_k - 2 (r_max + 2 skin) along a periodic axis k
-/// (h_k: half its extent, or for a mesh that ever rotates the largest distance from its
-/// bounding-box centre to a vertex), and as require_meshes_meet_the_domain (MeshReach.hpp)
-/// when a mesh never meets the domain or is smaller than the smallest particle.
+/// symmetric), walls and pistons, skin and dt (TimeStepLimits::automatic when the scene says
+/// "auto"; dt_fraction × TimeStepLimits::critical, the base step, when it says "adaptive";
+/// end_time when there are no particles). Throws InputError naming wall[i].mass for a piston
+/// lighter than a close-packed layer of the heaviest particles against it. Throws InputError naming
+/// simulation.dt when an explicit dt exceeds the stable limit and simulation.allow_unstable_dt is
+/// false; naming the key that stiffens the contact (contact.stiffness, or material[i].young of its
+/// softer material) when an impact's peak overlap (peak_overlap) would pass kUnstableOverlapRatio
+/// and simulation.allow_unstable_dt is false; naming mesh[i].file when a mesh spans 2 h_k >= L_k -
+/// 2 (r_max + 2 skin) along a periodic axis k (h_k: half its extent, or for a mesh that ever
+/// rotates the largest distance from its bounding-box centre to a vertex), and as
+/// require_meshes_meet_the_domain (MeshReach.hpp) when a mesh never meets the domain or is smaller
+/// than the smallest particle.
 EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles);
 
 /// The particles of `particles` that decide time_step_limits and make_engine_setup: of each
-/// material the first of smallest radius, and the first of largest radius, of largest inverse
-/// mass and of highest speed, in store order. Both functions give the same for them as for all
-/// the particles; and the selections of consecutive shares of a store, concatenated in order,
-/// give the same as the store's, so each rank selects from its share and the ranks gather.
+/// material the first of smallest radius, and the first of largest radius, of largest and of
+/// smallest inverse mass and of highest speed, in store order. Both functions give the same for
+/// them as for all the particles; and the selections of consecutive shares of a store, concatenated
+/// in order, give the same as the store's, so each rank selects from its share and the ranks
+/// gather.
 ParticleStore setup_deciding_particles(const Scene& scene, const ParticleStore& particles);
 
 }  // namespace gpudem

@@ -16,10 +16,12 @@
 #include "core/ParticleStore.hpp"
 #include "core/ParticleTally.hpp"
 #include "core/Scene.hpp"
+#include "core/StepClock.hpp"
 #include "engine/DomainLink.hpp"
 #include "engine/MeshWallSetup.hpp"
 #include "engine/PeriodicBox.hpp"
 #include "engine/PlaneWall.hpp"
+#include "engine/WallPistons.hpp"
 
 namespace gpudem {
 
@@ -35,8 +37,9 @@ struct EngineSetup {
   std::uint32_t material_count = 0;
   std::vector<ContactPairParams> pair_params;  ///< material_count² entries, row-major
   std::vector<PlaneWall> walls;
+  std::vector<PistonSetup> pistons;   ///< the walls that slide (WallPistons.hpp)
   std::vector<MeshWallSetup> meshes;  ///< triangle-mesh walls (tools)
-  std::uint64_t start_step = 0;       ///< step the run starts at (a restart's): the meshes' clock
+  std::uint64_t start_step = 0;       ///< base step the run starts at (a restart's): the clock
   /// This rank's part of the decomposed domain; null: a run on one rank. Must outlive the
   /// engine.
   DomainLink* domain = nullptr;
@@ -56,8 +59,9 @@ struct Diagnostics {
   double potential_elastic = 0;      ///< Σ contact spring energy [J]
   double max_overlap_ratio = 0;      ///< max over contacts of δ / min(r_i, r_j)
   std::vector<Vec3> wall_force;
-  std::vector<Vec3> mesh_force;   ///< force the particles exert on each mesh [N]
-  std::vector<Vec3> mesh_torque;  ///< their torque on each mesh about its centre [N m]
+  std::vector<Vec3> mesh_force;           ///< force the particles exert on each mesh [N]
+  std::vector<Vec3> mesh_torque;          ///< their torque on each mesh about its centre [N m]
+  std::vector<WallMotion> piston_motion;  ///< per piston (EngineSetup::pistons)
 };
 
 /// One mesh wall at the current time: its surface and the force the particles exert on each
@@ -166,10 +170,15 @@ class EngineIo : public SnapshotSource {
   /// `share` by value: a caller that moves it in lets the records be freed as they are sent.
   virtual void set_contact_history(ContactHistory share) = 0;
 
+  /// Every plane wall's motion (zero for the walls that stand still).
+  virtual std::vector<WallMotion> wall_motion() const = 0;
+  /// Continues the pistons from a saved motion of every wall: call before restore_particles.
+  virtual void set_wall_motion(const std::vector<WallMotion>& motion) = 0;
+
   /// Positions and radii at the last neighbour-list build, in the order of get_particles.
   virtual void get_list_positions(std::vector<Real4>& position_radius) const = 0;
-  /// The step of the last neighbour-list build (the meshes' pose it was built with).
-  virtual std::uint64_t list_build_step() const = 0;
+  /// Where the run was at the last neighbour-list build (the meshes' pose it was built with).
+  virtual StepClock list_build_clock() const = 0;
   /// Replaces the particles to continue a saved run bit-for-bit, on any number of ranks:
   /// `share` and `list_positions` a share (as for set_particles) of what get_particles and
   /// get_list_positions gave on all ranks of the saved run; each particle goes to the rank
@@ -178,11 +187,11 @@ class EngineIo : public SnapshotSource {
   /// velocities that the saved state no longer holds) and builds the neighbour list at the
   /// positions of the saved engine's last build, so that the list and the next rebuild follow
   /// the saved run (every sum runs in partner-id order, whatever the particle order), with the
-  /// meshes at their pose of step `list_build_step`. Springs are zero until
-  /// set_contact_history; removed_count() continues from `removed`.
+  /// meshes at their pose of `list_build`. Springs are zero until set_contact_history;
+  /// removed_count() continues from `removed`.
   virtual void restore_particles(const ParticleStore& share,
                                  const std::vector<Real4>& list_positions, std::uint64_t removed,
-                                 std::uint64_t list_build_step) = 0;
+                                 StepClock list_build) = 0;
   /// Particles on all ranks.
   virtual std::size_t particle_count() const = 0;
   /// Particles this rank owns.
@@ -238,8 +247,13 @@ class EngineTuning {
 /// that serves.
 class StepEngine : public EngineIo, public EngineDiagnostics, public EngineTuning {
  public:
-  /// Advances one time step dt.
+  /// Advances one step: dt / substeps of the base step in progress.
   virtual void step() = 0;
+  /// Splits the next base steps into `substeps` steps each (dt = "adaptive"; 1 otherwise). Only
+  /// between base steps; throws std::logic_error otherwise or for 0.
+  virtual void set_substeps(std::uint32_t substeps) = 0;
+  /// The largest speed of a particle on any rank and of a piston [m/s]. Collective.
+  virtual double fastest_speed() const = 0;
 
   /// Rebuilds the neighbour list now (re-sorting particles by cell and carrying contact
   /// history over) and re-evaluates the forces, without advancing time.

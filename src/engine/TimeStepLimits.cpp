@@ -128,11 +128,16 @@ double fastest_mesh_point(const TriangleMesh& mesh, const MeshSettings& settings
   return fastest;
 }
 
-/// The fastest point of any of the scene's meshes [m/s].
-double fastest_tool(const Scene& scene, const std::vector<MeshWallSetup>& meshes) {
+/// √(2 a L) of the fastest piston: a = |P + M g·n| / M its acceleration under its drive alone,
+/// L the domain's extent along its normal (from rest across the whole box) [m/s].
+double fastest_piston(const Scene& scene) {
   double fastest = 0;
-  for (std::size_t i = 0; i < meshes.size() && i < scene.meshes.size(); ++i)
-    fastest = std::max(fastest, fastest_mesh_point(meshes[i].mesh, scene.meshes[i]));
+  for (const WallSettings& w : scene.walls) {
+    if (!w.loaded()) continue;
+    const double drive = std::fabs(w.load + w.mass * dot(scene.simulation.gravity, w.normal));
+    const double run = extent_along(scene.domain.min, scene.domain.max, w.normal);
+    fastest = std::max(fastest, std::sqrt(2 * drive / w.mass * run));
+  }
   return fastest;
 }
 
@@ -224,6 +229,13 @@ double smallest_radius(const ParticleStore& particles) {
   return r;
 }
 
+double fastest_tool(const Scene& scene, const std::vector<MeshWallSetup>& meshes) {
+  double fastest = 0;
+  for (std::size_t i = 0; i < meshes.size() && i < scene.meshes.size(); ++i)
+    fastest = std::max(fastest, fastest_mesh_point(meshes[i].mesh, scene.meshes[i]));
+  return fastest;
+}
+
 /// Index of the smallest particle of each material; particles.size() for an absent material.
 std::vector<std::size_t> smallest_particle_per_material(const Scene& scene,
                                                         const ParticleStore& particles) {
@@ -244,7 +256,8 @@ double impact_speed(const Scene& scene, const ParticleStore& particles) {
 
 double max_speed(const Scene& scene, const ParticleStore& particles,
                  const std::vector<MeshWallSetup>& meshes) {
-  return fall_speed(scene) + fastest_particle(particles) + fastest_tool(scene, meshes);
+  return fall_speed(scene) + fastest_particle(particles) + fastest_tool(scene, meshes) +
+         fastest_piston(scene);
 }
 
 double launch_speed(const Scene& scene, const ParticleStore& particles,

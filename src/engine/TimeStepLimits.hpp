@@ -45,9 +45,14 @@ double impact_speed(const Scene& scene, const ParticleStore& particles);
 
 /// v_max [m/s]: √(2 |g| H) plus the largest particle speed (as impact_speed "auto") plus the
 /// fastest point of any mesh, |v| + |ω| ρ over its keyframes, ρ its farthest vertex from its
-/// rotation centre; 0 when all of these are 0.
+/// rotation centre, plus the fastest piston, √(2 |P + M g·n| L / M) with L the domain's extent
+/// along its normal; 0 when all of these are 0.
 double max_speed(const Scene& scene, const ParticleStore& particles,
                  const std::vector<MeshWallSetup>& meshes);
+
+/// The fastest point of any mesh over the run, |v| + |ω| ρ at its fastest keyframe, ρ its
+/// farthest vertex from its rotation centre [m/s]; 0 without meshes.
+double fastest_tool(const Scene& scene, const std::vector<MeshWallSetup>& meshes);
 
 /// Limits for the particles present; `meshes` as the scene's (for v_max).
 TimeStepLimits time_step_limits(const Scene& scene, const ParticleStore& particles,

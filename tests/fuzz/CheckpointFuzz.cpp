@@ -184,8 +184,9 @@ constexpr DatasetSpec kDatasets[] = {
     {"snapshot_fields", Kind::U32, 1, 4},
     {"snapshot_precision", Kind::U8, 1, 4},
     {"material_names", Kind::Text, 1, 5},
+    {"wall_motion", Kind::F64, 3, 6},
 };
-constexpr int kGroups = 6;
+constexpr int kGroups = 7;
 
 struct AttributeSpec {
   const char* name;
@@ -200,6 +201,10 @@ constexpr AttributeSpec kAttributes[] = {
     {"step", Kind::U64},
     {"removed", Kind::U64},
     {"list_build_step", Kind::U64},
+    {"list_build_substep", Kind::U32},
+    {"list_build_substeps", Kind::U32},
+    {"substeps", Kind::U32},
+    {"dt_adaptive", Kind::U8},
 };
 
 void write_u32_attribute(hid_t file, const char* name, std::uint32_t value) {

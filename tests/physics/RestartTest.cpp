@@ -56,7 +56,7 @@ Checkpoint capture(const StepEngine& engine, std::uint64_t step, const EngineSet
   Checkpoint c;
   engine.get_particles(c.particles);
   engine.get_list_positions(c.list_position_radius);
-  c.list_build_step = engine.list_build_step();
+  c.list_build = engine.list_build_clock();
   engine.get_contact_history(c.history);
   c.step = step;
   c.time = step * setup.dt;
@@ -112,7 +112,7 @@ class Restart : public BackendTest {
   /// A fresh engine restored from the checkpoint file, with or without its contact history.
   std::unique_ptr<StepEngine> restored(const Checkpoint& c, bool with_history) const {
     auto engine = make_engine(setup_);
-    engine->restore_particles(c.particles, c.list_position_radius, c.removed, c.list_build_step);
+    engine->restore_particles(c.particles, c.list_position_radius, c.removed, c.list_build);
     engine->set_contact_history(with_history ? c.history : ContactHistory{});
     return engine;
   }

@@ -1,8 +1,8 @@
 # The hard cases of inputs/hard/ (tests/scripts/check_hard_cases.py): a projectile refused ten
 # times faster and stable at its speed; a plate at 5 m/s that no grain passes through; two beds
-# that settle (radii 10:1, stiffness 100:1); and a step past the stable limit that stops with
-# its reason.
-foreach(case projectile unstable tool settle:polydisperse_bed.toml settle:stiffness_contrast_bed.toml)
+# that settle (radii 10:1, stiffness 100:1); stiff grains under a loaded piston for 10^6 steps;
+# and a step past the stable limit that stops with its reason.
+foreach(case projectile unstable tool piston settle:polydisperse_bed.toml settle:stiffness_contrast_bed.toml)
   string(REPLACE ":" ";" parts ${case})
   list(POP_FRONT parts kind)
   string(REGEX REPLACE "[:.]" "_" name ${case})

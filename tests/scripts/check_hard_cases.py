@@ -18,6 +18,15 @@ must do there (docs/validation.md, "Hard cases").
   half its radius, and none leaves the domain.
 - unstable: dt about eight times the stable limit, allowed (unstable_dt.toml): the run stops
   with exit 3, names the step and particle, and writes its last state.
+- piston: first one glass sphere between the floor and a piston pressed by 10 N, no gravity:
+  at rest the piston has come down by the two Hertz overlaps of that force,
+  2 (3P / (4 E* sqrt(R)))^(2/3), within 0.1 %, and the sphere's push equals the load (within
+  10^-6); then
+  loaded_piston.toml, stiff grains (E = 70 GPa, R = 1 mm) under a loaded piston for over 10^6
+  steps: every grain kept, no overlap of half a radius, the piston's push balances its load and
+  weight at the end (within 0.1 %), the packing holds its height over the last 60 % of the run
+  (the piston moves by less than 0.2 % of a radius, 2 µm), and the kinetic energy, once down to
+  10^-8 of its peak, never climbs back above 10^-7 of it and ends below 10^-10 of it.
 
 Every run's time series and snapshots hold no NaN or infinity.
 Usage: check_hard_cases.py CASE SOURCE_DIR GPUDEM_BINARY WORK_DIR [SCENE]
@@ -184,6 +193,108 @@ def unstable(source, binary, work):
     print(r.stderr.strip().splitlines()[-1])
 
 
+SPHERE_UNDER_PISTON = """
+[simulation]
+end_time = 0.05
+gravity = [0.0, 0.0, 0.0]
+dt = "auto"
+[domain]
+min = [0.0, 0.0, 0.0]
+max = [0.004, 0.004, 0.004]
+[[material]]
+name = "glass"
+density = 2500.0
+young = 7.0e10
+poisson = 0.22
+restitution = 0.5
+friction = 0.3
+[contact]
+normal = "hertz"
+damping = "restitution"
+tangential = "mindlin"
+[[wall]]
+name = "floor"
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 1.0]
+material = "glass"
+[[wall]]
+name = "piston"
+point = [0.0, 0.0, 0.002]
+normal = [0.0, 0.0, -1.0]
+material = "glass"
+mass = 0.001
+load = 10.0
+[[insert]]
+csv = "sphere.csv"
+material = "glass"
+[output]
+every = 0.05
+timeseries_every = 0.0005
+"""
+
+
+def sphere_under_piston(work):
+    """A sphere of R = 1 mm touching the floor and the piston at t = 0."""
+    (work / "sphere.csv").write_text("x,y,z,r\n0.002,0.002,0.001,0.001\n")
+    scene = work / "sphere_under_piston.toml"
+    scene.write_text(SPHERE_UNDER_PISTON)
+    return scene
+
+
+def piston(source, binary, work):
+    out = work / "sphere"
+    r = run(binary, sphere_under_piston(work), out)
+    check(r.returncode == 0, f"sphere under a piston: exit {r.returncode}\n{r.stderr}")
+    if r.returncode == 0:
+        last = rows_of(out)[-1]
+        load, young, poisson, radius = 10.0, 7.0e10, 0.22, 0.001
+        e_star = young / (2 * (1 - poisson ** 2))
+        overlap = (3 * load / (4 * e_star * math.sqrt(radius))) ** (2 / 3)
+        moved = float(last["piston_displacement"])
+        check(abs(moved - 2 * overlap) < 1e-3 * 2 * overlap,
+              f"sphere under a piston: it came down by {moved} m, Hertz gives {2 * overlap} m")
+        push = float(last["piston_fz"])
+        check(abs(push - load) < 1e-6 * load, f"sphere under a piston: push {push} N, load {load} N")
+        print(f"sphere under a piston: down by {moved:.6e} m (Hertz {2 * overlap:.6e} m), "
+              f"push {push:.6f} N")
+    bed(source, binary, work)
+
+
+def bed(source, binary, work):
+    out = work / "bed"
+    r = run(binary, source / "inputs" / "hard" / "loaded_piston.toml", out)
+    check(r.returncode == 0, f"loaded_piston: exit {r.returncode}\n{r.stderr}")
+    if r.returncode != 0:
+        return
+    rows = rows_of(out)
+    steps = int(float(rows[-1]["step"]))
+    check(steps > 1_000_000, f"loaded_piston: {steps} steps, expected over 10^6")
+    deepest = check_kept_and_held(rows, 200, "loaded_piston")
+    check_finite_output(out, "loaded_piston")
+    drive = 10.0 + 0.01 * 9.81
+    push = float(rows[-1]["piston_fz"])
+    check(abs(push - drive) < 1e-3 * drive, f"loaded_piston: push {push} N against {drive} N")
+    late = [row for row in rows if float(row["time"]) >= 0.1]
+    heights = [float(row["piston_displacement"]) for row in late]
+    drift = max(heights) - min(heights)
+    check(drift < 2e-6, f"loaded_piston: the piston moved {drift} m after t = 0.1 s")
+    kinetic = [float(row["kinetic_translational"]) + float(row["kinetic_rotational"])
+               for row in rows]
+    peak = max(kinetic)
+    down = next((k for k in range(kinetic.index(peak), len(kinetic))
+                 if kinetic[k] < 1e-8 * peak), None)
+    check(down is not None, f"loaded_piston: kinetic energy never fell to 1e-8 of {peak} J")
+    check(kinetic[-1] < 1e-10 * peak, f"loaded_piston: {kinetic[-1]} J at the end (peak {peak} J)")
+    if down is not None:
+        after = max(kinetic[down:])
+        check(after < 1e-7 * peak,
+              f"loaded_piston: kinetic energy rose back to {after} J (peak {peak} J)")
+        print(f"loaded_piston: {steps} steps, deepest overlap {deepest:.5f}, push {push:.6f} N "
+              f"(load and weight {drive} N), piston moved {drift:.3g} m after 0.1 s, kinetic "
+              f"energy {peak:.3g} J at its peak, under 1e-8 of it from t = "
+              f"{rows[down]['time']} s, at most {after:.3g} J after, {kinetic[-1]:.3g} J at the end")
+
+
 def main():
     case, source, binary, work = sys.argv[1], pathlib.Path(sys.argv[2]), sys.argv[3], \
         pathlib.Path(sys.argv[4])
@@ -197,6 +308,8 @@ def main():
         unstable(source, binary, work)
     elif case == "tool":
         tool(source, binary, work)
+    elif case == "piston":
+        piston(source, binary, work)
     else:
         sys.exit(f"unknown case {case}")
     if FAILURES:

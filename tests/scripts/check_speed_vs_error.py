@@ -6,7 +6,8 @@ each row's restitution within 2 % of the scene's 0.5 and its contact duration be
 1.2 times the elastic Hertz duration of a sphere on the floor, 2.868 (m² / (r E*² v))^{1/5}
 (the damped contact lasts a little longer). The recommendation for each tolerance must be the
 row of least wall time among those within it, as found here from the table.
-The pure functions on synthetic rows: recommend() and pareto_front() with known answers.
+The pure functions on synthetic rows: recommend() and pareto_front() with known answers, and
+solver_timing() on the last line of a fixed and of an adaptive run.
 Resuming: a sweep with --repeat 2 is killed (SIGKILL, it and the solver) once two runs are done,
 and run again: the runs done are kept (their result.json untouched), the others run, and the
 table's points and observables equal those of an uninterrupted sweep.
@@ -33,7 +34,7 @@ shutil.rmtree(work, ignore_errors=True)
 work.mkdir(parents=True)
 failures = []
 GRID = ["--dt-fraction", "0.05", "0.2", "--precision", "double", "--skin", "auto",
-        "--integrator", "velocity_verlet", "--set", "insert.0.count=200"]
+        "--integrator", "velocity_verlet", "--step", "auto", "--set", "insert.0.count=200"]
 POINTS = [f"dt{f}-double-skinauto-velocity_verlet-scale1" for f in ("0.05", "0.1", "0.2")]
 ENV = dict(os.environ, OMP_NUM_THREADS="1")
 
@@ -82,12 +83,16 @@ def check_pure_functions():
     front = speed_vs_error.pareto_front(speeds, errors)
     if front != [0, 2, 5, 3]:  # 1 and 4 are beaten by 2; 2 and 5 are equal
         failures.append(f"pareto_front: {front}, wanted [0, 2, 5, 3]")
+    split = speed_vs_error.solver_timing("done: 10 steps (base steps, split into 40) in 2.00 s; 0")
+    fixed = speed_vs_error.solver_timing("done: 10 steps in 2.00 s; 0 particles removed")
+    if split != (40, 2.0) or fixed != (10, 2.0):
+        failures.append(f"solver_timing: {split} and {fixed}, wanted (40, 2.0) and (10, 2.0)")
 
 
 def check_table(out):
     rows = read_table(out)
     columns = ["point", "reference", "dt_fraction", "precision", "skin", "integrator", "scale",
-               "dt_s", "particles", "steps", "repeats", "wall_s", "wall_s_min", "wall_s_max",
+               "step", "dt_s", "particles", "steps", "repeats", "wall_s", "wall_s_min", "wall_s_max",
                "particle_steps_per_s", "restitution", "contact_duration_s",
                "restitution_error", "contact_duration_s_error", "max_error"]
     if not rows or list(rows[0]) != columns:

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -76,9 +77,13 @@ Checkpoint random_part(int rank, std::uint32_t width = kSpringWidth) {
   }
   c.snapshots = {{"particles_000000.h5", 0.0, 123, {true, kAllSnapshotFields, false}},
                  {"particles_000001.h5", 1.0 / 3.0, 120, {false, 0b100010, true}}};
+  for (int w = 0; w < 5; ++w)
+    c.wall_motion.push_back({w / 3.0 * 1e-3, -w / 7.0, w == 4 ? 1e3 / 9.0 : 0.0});
   c.time = 0.1 + 1e-17;
   c.step = (std::uint64_t(1) << 35) + 5;
-  c.list_build_step = c.step - 3;
+  c.list_build = {c.step - 3, 5, 8};
+  c.substeps = 16;
+  c.dt_adaptive = true;
   c.removed = 3;
   c.dt = 2.0 / 3.0 * 1e-5;
   c.dt_fraction = 0.1;
@@ -166,9 +171,19 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
     EXPECT_EQ(a.snapshots[k].layout.single_precision, b.snapshots[k].layout.single_precision)
         << a.snapshots[k].h5_file;
   }
+  ASSERT_EQ(a.wall_motion.size(), b.wall_motion.size());
+  for (std::size_t k = 0; k < a.wall_motion.size(); ++k) {
+    EXPECT_EQ(a.wall_motion[k].displacement, b.wall_motion[k].displacement) << "wall " << k;
+    EXPECT_EQ(a.wall_motion[k].velocity, b.wall_motion[k].velocity) << "wall " << k;
+    EXPECT_EQ(a.wall_motion[k].push, b.wall_motion[k].push) << "wall " << k;
+  }
   EXPECT_EQ(a.time, b.time);
   EXPECT_EQ(a.step, b.step);
-  EXPECT_EQ(a.list_build_step, b.list_build_step);
+  EXPECT_EQ(a.list_build.step, b.list_build.step);
+  EXPECT_EQ(a.list_build.substep, b.list_build.substep);
+  EXPECT_EQ(a.list_build.substeps, b.list_build.substeps);
+  EXPECT_EQ(a.substeps, b.substeps);
+  EXPECT_EQ(a.dt_adaptive, b.dt_adaptive);
   EXPECT_EQ(a.removed, b.removed);
   EXPECT_EQ(a.dt, b.dt);
   EXPECT_EQ(a.dt_fraction, b.dt_fraction);
@@ -391,18 +406,32 @@ TEST_F(DamagedCheckpoint, RankFieldFlagsAreStoredAsOneByteEach) {
             (std::vector<unsigned char>{1, 0}));  // random_part's table: with, without
 }
 
-/// A checkpoint written before mesh springs and the list-build step were stored: no mesh
-/// records, and the list built at the checkpoint's step.
+/// A checkpoint written before mesh springs, the list-build step and adaptive steps were
+/// stored: no mesh records, the list built at the checkpoint's step, one step per base step.
 TEST_F(DamagedCheckpoint, CheckpointWithoutMeshRecordsOrBuildStepReadsAsNoneAndTheStep) {
   for (const char* name : {"mesh_owner", "mesh_triangle", "mesh_history"})
     test::remove_dataset(path(), name);
-  test::remove_attribute(path(), "list_build_step");
+  for (const char* name :
+       {"list_build_step", "list_build_substep", "list_build_substeps", "substeps", "dt_adaptive"})
+    test::remove_attribute(path(), name);
   Checkpoint expected = random_part(0);
   expected.history.mesh_owner.clear();
   expected.history.mesh_triangle.clear();
   expected.history.mesh_values.clear();
-  expected.list_build_step = expected.step;
+  expected.list_build = {expected.step, 0, 1};
+  expected.substeps = 1;
+  expected.dt_adaptive = false;
   expect_identical(read_checkpoint(path()), expected);
+}
+
+TEST_F(DamagedCheckpoint, SubstepsOutsideTheirRangeAreRejected) {
+  test::set_u32_attribute(path(), "list_build_substep", 8);
+  expect_rejected(
+      "attribute 'list_build_substep' (8) is not below attribute "
+      "'list_build_substeps' (8)");
+  test::set_u32_attribute(path(), "list_build_substep", 5);
+  test::set_u32_attribute(path(), "substeps", kMaxSubsteps + 1);
+  expect_rejected("attribute 'substeps' (1025) is not in 1..1024");
 }
 
 TEST_F(DamagedCheckpoint, MeshRecordsOfDifferentLengthsAreRejected) {
@@ -445,6 +474,33 @@ TEST_F(DamagedCheckpoint, FieldSetsBeyondTheFieldsAndOtherPrecisionsAreRejected)
   test::replace_u32_dataset(path(), "snapshot_fields", {63, 34});
   test::replace_u8_dataset(path(), "snapshot_precision", {8, 2});
   expect_rejected("dataset 'snapshot_precision' holds 2; expected 4 or 8");
+}
+
+/// A file from before the walls' motion was kept reads with none; a value that is not finite
+/// is refused; a scene with another number of walls cannot continue the motion.
+TEST_F(DamagedCheckpoint, WallMotionIsOptionalFiniteAndOfTheScenesWalls) {
+  Checkpoint c = read_checkpoint(path());
+  ASSERT_EQ(c.wall_motion.size(), 5u);
+  Scene scene;
+  scene.materials.resize(3);
+  scene.meshes.resize(1);
+  scene.walls.resize(6);
+  try {
+    fit_checkpoint_to_scene(c, path(), scene);
+    ADD_FAILURE() << "the motion of 5 walls was accepted by a scene of 6";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds the motion of 5 wall(s) but the scene defines 6"),
+              std::string::npos)
+        << e.what();
+  }
+  std::vector<double> motion(15, 0.0);
+  motion[7] = std::numeric_limits<double>::quiet_NaN();
+  test::replace_f64_dataset(path(), "wall_motion", 5, 3, motion);
+  expect_rejected("dataset 'wall_motion' holds a value that is not finite");
+  test::remove_dataset(path(), "wall_motion");
+  c = read_checkpoint(path());
+  EXPECT_TRUE(c.wall_motion.empty());
+  EXPECT_NO_THROW(fit_checkpoint_to_scene(c, path(), scene));
 }
 
 TEST_F(DamagedCheckpoint, MaterialWallOrMeshBeyondTheSceneIsRejected) {

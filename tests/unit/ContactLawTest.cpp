@@ -122,7 +122,8 @@ TEST(ContactLawCost, HookeOnlyKernelReadsNoSpinTorqueOrHistory) {
                                               {nullptr, nullptr, nullptr},
                                               force.data(),
                                               nullptr,
-                                              ratio.data()});
+                                              ratio.data(),
+                                              nullptr});
   const double expected = params.hooke_stiffness * 0.001;
   EXPECT_NEAR(force[0].x, -expected, 1e-9 * expected);
   EXPECT_NEAR(force[1].x, expected, 1e-9 * expected);

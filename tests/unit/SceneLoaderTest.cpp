@@ -430,7 +430,7 @@ TEST_F(SceneLoaderTest, WrongTypeNamesExpectedType) {
                "simulation.precision",
                "expected one of \"double\", \"mixed\", \"float\", got the string \"half\"");
   expect_error(load_error(base_with(kSimulationSlot, "dt = \"fast\"")), kSimulationSlot,
-               "simulation.dt", "expected \"auto\" or a number > 0 [s]");
+               "simulation.dt", "expected \"auto\", \"adaptive\" or a number > 0 [s]");
   expect_error(load_error(base_with(kContactSlot, "normal = \"hertzian\"")), kContactSlot,
                "contact.normal", "expected one of \"hooke\", \"hertz\", got the string");
   expect_error(load_error(base_with(kSimulationSlot, "allow_unstable_dt = 1")), kSimulationSlot,
@@ -577,6 +577,36 @@ TEST_F(SceneLoaderTest, WallNormalMustBeNonZero) {
   const std::string wall = "[[wall]]\npoint = [0, 0, 0]\nnormal = [0, 0, 0]\nmaterial = \"soil\"";
   expect_error(load_error(base_with(kContactSlot, wall)), kContactSlot + 2, "wall[0].normal",
                "expected a normal vector of non-zero, finite length, got [0, 0, 0]");
+}
+
+TEST_F(SceneLoaderTest, AdaptiveStepIsAnAutomaticStep) {
+  const Scene s = load_text(base_with(kSimulationSlot, "dt = \"adaptive\""));
+  EXPECT_TRUE(s.simulation.dt_auto);
+  EXPECT_TRUE(s.simulation.dt_adaptive);
+  EXPECT_FALSE(load_text(base_with(kSimulationSlot, "dt = \"auto\"")).simulation.dt_adaptive);
+}
+
+TEST_F(SceneLoaderTest, AWallWithAMassIsAPiston) {
+  const std::string wall =
+      "[[wall]]\npoint = [0, 0, 1]\nnormal = [0, 0, -1]\nmaterial = \"soil\"\nmass = 2\n"
+      "load = 30";
+  const Scene s = load_text(base_with(kContactSlot, wall));
+  ASSERT_EQ(s.walls.size(), 1u);
+  EXPECT_TRUE(s.walls[0].loaded());
+  EXPECT_EQ(s.walls[0].mass, 2);
+  EXPECT_EQ(s.walls[0].load, 30);
+  EXPECT_EQ(s.walls[0].mass_line, kContactSlot + 4);
+  const std::string fixed = "[[wall]]\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nmaterial = \"soil\"";
+  EXPECT_FALSE(load_text(base_with(kContactSlot, fixed)).walls[0].loaded());
+}
+
+TEST_F(SceneLoaderTest, AWallLoadNeedsAMass) {
+  const std::string wall =
+      "[[wall]]\npoint = [0, 0, 1]\nnormal = [0, 0, -1]\nmaterial = \"soil\"\n";
+  expect_error(load_error(base_with(kContactSlot, wall + "load = 30")), kContactSlot + 4,
+               "wall[0].load", "a load moves only a wall with a mass");
+  expect_error(load_error(base_with(kContactSlot, wall + "mass = 0")), kContactSlot + 4,
+               "wall[0].mass", "expected a number > 0");
 }
 
 TEST_F(SceneLoaderTest, OverridesChangeValues) {

@@ -383,7 +383,7 @@ TEST(TimeStep, DecidingParticlesGiveTheLimitsOfAllAndOfConcatenatedShares) {
     s.contact.model.normal = law;
     const ParticleStore all = with_heavier_twins(s, varied_particles(s));
     const ParticleStore deciding = setup_deciding_particles(s, all);
-    EXPECT_LE(deciding.size(), s.materials.size() + 3);
+    EXPECT_LE(deciding.size(), s.materials.size() + 4);
     const TimeStepLimits expected = time_step_limits(s, all, {}),
                          got = time_step_limits(s, deciding, {});
     EXPECT_EQ(got.rayleigh, expected.rayleigh);
@@ -398,6 +398,12 @@ TEST(TimeStep, DecidingParticlesGiveTheLimitsOfAllAndOfConcatenatedShares) {
     for (const Real4& q : all.position_radius) r_max = std::max(r_max, q.w);
     for (const Real4& q : deciding.position_radius) r_max_deciding = std::max(r_max_deciding, q.w);
     EXPECT_EQ(r_max_deciding, r_max);
+    double least_inverse_mass = 1e300, least_inverse_mass_deciding = 1e300;
+    for (const Real4& v : all.velocity_inv_mass)
+      least_inverse_mass = std::min(least_inverse_mass, v.w);
+    for (const Real4& v : deciding.velocity_inv_mass)
+      least_inverse_mass_deciding = std::min(least_inverse_mass_deciding, v.w);
+    EXPECT_EQ(least_inverse_mass_deciding, least_inverse_mass);  // the heaviest: pistons' mass
     for (const int ranks : {2, 3, 7}) {
       ParticleStore gathered;
       for (int r = 0; r < ranks; ++r) {
@@ -546,6 +552,54 @@ TEST_F(SceneFile, CommandLineExitsWithInputErrorBeforeWriting) {
                                                    " --set simulation.allow_unstable_dt=true");
   EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
   EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+/// A piston (a wall with a mass) of the given mass on top of the unit box, facing down.
+WallSettings piston_wall(double mass) {
+  WallSettings wall;
+  wall.name = "piston";
+  wall.point = {0, 0, 1};
+  wall.normal = {0, 0, -1};
+  wall.mass = mass;
+  wall.load = 5;
+  wall.mass_line = 9;
+  return wall;
+}
+
+TEST(Pistons, APistonSlidesWithItsMassAndLoad) {
+  Scene s = two_material_scene();
+  s.walls = {piston_wall(1e3)};
+  WallSettings fixed = piston_wall(0);
+  fixed.name = "floor";
+  s.walls.push_back(fixed);
+  const EngineSetup setup = make_engine_setup(s, ParticleStore{});
+  ASSERT_EQ(setup.pistons.size(), 1u);
+  EXPECT_EQ(setup.pistons[0].wall, 0u);
+  EXPECT_EQ(setup.pistons[0].mass, 1e3);
+  EXPECT_EQ(setup.pistons[0].load, 5);
+}
+
+// The least mass: a close-packed layer, A / (2√3 r²) spheres of the largest radius on the unit
+// box's section A = 1 m², each of the heaviest particle's mass.
+TEST(Pistons, APistonLighterThanALayerOfParticlesIsRefused) {
+  Scene s = two_material_scene();
+  ParticleStore p;
+  add_particle(p, s, 0, 0.01);   // the largest radius
+  add_particle(p, s, 1, 0.008);  // the heaviest: steel
+  const double layer = 1 / (2 * std::sqrt(3.0) * 0.01 * 0.01);
+  const double least = layer * sphere_mass_of(7800, 0.008);
+  s.walls = {piston_wall(1.01 * least)};
+  EXPECT_EQ(make_engine_setup(s, p).pistons.size(), 1u);
+  s.walls = {piston_wall(0.99 * least)};
+  try {
+    make_engine_setup(s, p);
+    ADD_FAILURE() << "a piston of 0.99 the least mass accepted";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(e.line(), 9);
+    EXPECT_EQ(e.key(), "wall[0].mass");
+    EXPECT_NE(message.find(four_digits(least) + " kg"), std::string::npos) << message;
+  }
 }
 
 }  // namespace

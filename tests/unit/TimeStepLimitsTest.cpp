@@ -152,8 +152,9 @@ TEST(PeakOverlap, FreeFallPastTheLimitIsWarnedOfNotRefused) {
   EXPECT_THROW(make_engine_setup(s, p), InputError);
 }
 
-/// v_max = √(2 |g| H) + the fastest particle + the fastest mesh point |v| + |ω| ρ.
-TEST(DisplacementLimit, MaxSpeedAddsFallParticleAndToolSpeeds) {
+/// v_max = √(2 |g| H) + the fastest particle + the fastest mesh point |v| + |ω| ρ + the
+/// fastest piston √(2 a L).
+TEST(DisplacementLimit, MaxSpeedAddsFallParticleToolAndPistonSpeeds) {
   Scene s = grain_scene();
   s.simulation.gravity = {0, 0, -9.81};
   ParticleStore p;
@@ -168,6 +169,16 @@ TEST(DisplacementLimit, MaxSpeedAddsFallParticleAndToolSpeeds) {
   mesh.mesh.vertices = {{0.5, 0.5, 0.5}, {0.7, 0.5, 0.5}, {0.5, 0.65, 0.5}};
   // keyframe 2: 0.5 + 10 × 0.2 beats keyframe 1's 1 m/s
   EXPECT_NEAR(max_speed(s, p, {mesh}), std::sqrt(2 * 9.81 * 1.0) + 5 + 2.5, 1e-12);
+  // A piston of 2 kg pressed down with 30 N across the unit box: a = (30 + 2 × 9.81) / 2.
+  WallSettings piston;
+  piston.point = {0, 0, 1};
+  piston.normal = {0, 0, -1};
+  piston.mass = 2;
+  piston.load = 30;
+  s.walls = {piston};
+  EXPECT_NEAR(max_speed(s, p, {mesh}),
+              std::sqrt(2 * 9.81 * 1.0) + 5 + 2.5 + std::sqrt(2 * (30 + 2 * 9.81) / 2 * 1.0),
+              1e-12);
 }
 
 /// dt = "auto" is dt_fraction × the critical step, at most displacement_fraction × r_min / v_max.

@@ -58,6 +58,19 @@ CASE is one of:
                 ranks, mid-cut, holds mesh contact springs, and continued on 2 ranks it ends
                 equal bit for bit to the straight run; continued without those springs it
                 does not.
+  piston        tests/mpi/scenes/piston.toml (1000 grains poured under a loaded piston) at
+                N = 1 and at N = 2 and 3 slabs across the piston's travel and 2 x 2 blocks:
+                final states equal bit for bit and the piston's displacement and velocity
+                series equal digit for digit. A run checkpointed at t = 0.06 s on 3 ranks,
+                continued on 2, ends equal bit for bit to the straight run; continued from
+                the checkpoint without the walls' motion it does not.
+  adaptive      tests/mpi/scenes/tool.toml with dt = "adaptive" (the sweep cutting the bed,
+                each base step split while the grains move fast) at N = 1 and at N = 2 slabs
+                and 2 x 2 blocks: the step takes at least two values over the run, the final
+                states equal bit for bit and the dt column digit for digit. A run
+                checkpointed on 3 ranks at a base step split in substeps, after a list build
+                inside a base step, continued on 2 ends equal bit for bit to the straight
+                run; continuing it with dt = "auto" is refused (exit 2, simulation.dt).
   bed           tests/mpi/scenes/settle.toml as a bed preparation (settle, trim at 0.03 m, save)
                 at N = 1 and 3: the two bed files hold the same particles and the same pair and
                 wall springs (also of pairs split between ranks) bit for bit, and both runs
@@ -127,6 +140,11 @@ class Runner:
             sys.exit(f"{name}: exit {result.returncode}\n{result.stdout}{result.stderr}")
         self.banner = result.stdout
         return self.work / name
+
+    def run_raw(self, name, scene, ranks, *settings, restart=None):
+        """Runs `scene` as run() does and returns the finished process, whatever its exit."""
+        command = self.command(name, scene, ranks, settings, restart)
+        return subprocess.run(command, capture_output=True, text=True)
 
     def fail(self, line):
         self.failures.append(line)
@@ -596,6 +614,91 @@ def tool(runner):
                     "cannot see them")
 
 
+# ---- piston -------------------------------------------------------------------------------------
+
+PISTON_COLUMNS = ("piston_displacement", "piston_velocity")
+
+
+def compare_piston_path(runner, label, reference, candidate):
+    a, b = series(reference), series(candidate)
+    path_a = [tuple(row[key] for key in PISTON_COLUMNS) for row in a]
+    path_b = [tuple(row[key] for key in PISTON_COLUMNS) for row in b]
+    if path_a != path_b:
+        first = next((k for k, (x, y) in enumerate(zip(path_a, path_b)) if x != y), len(path_a))
+        runner.fail(f"{label}: the piston's path differs from row {first}")
+
+
+def without_wall_motion(checkpoint, copy):
+    """A copy of `checkpoint` without the walls' motion (as written before it was kept)."""
+    shutil.copy(checkpoint, copy)
+    with h5py.File(copy, "r+") as f:
+        del f["wall_motion"]
+
+
+def piston(runner):
+    scene = SCENES / "piston.toml"
+    reference = runner.run("piston_n1", scene, 1)
+    travel = float(series(reference)[-1]["piston_displacement"])
+    print(f"piston_n1: the piston came down by {travel:.4f} m")
+    if not travel > 0.03:
+        runner.fail(f"piston_n1: the piston came down by {travel} m only")
+    for name, ranks, dims in (("slabs_z_n2", 2, "[1,1,2]"), ("slabs_z_n3", 3, "[1,1,3]"),
+                              ("blocks_2x2", 4, "[2,2,1]")):
+        out = runner.run(f"piston_{name}", scene, ranks, f"decomposition.dims={dims}")
+        compare_states(runner, name, reference, out)
+        compare_piston_path(runner, name, reference, out)
+    half = ["simulation.end_time=0.06", "checkpoint.every=0.06"]
+    out = runner.run("piston_restart", scene, 3, *half)
+    checkpoint = out / "checkpoint.h5"
+    stripped = runner.work / "without_wall_motion.h5"
+    without_wall_motion(checkpoint, stripped)
+    runner.run("piston_restart", scene, 2, restart=checkpoint)
+    compare_states(runner, "piston_restart", reference, out)
+    compare_piston_path(runner, "piston_restart", reference, out)
+    stripped_out = runner.run("piston_stripped", scene, 2, restart=stripped)
+    if not snapshot_differences(last_snapshot(reference), last_snapshot(stripped_out)):
+        runner.fail("piston_stripped: dropping the walls' motion changes nothing; the restart "
+                    "test cannot see it")
+
+
+# ---- adaptive -----------------------------------------------------------------------------------
+
+ADAPTIVE = ('simulation.dt="adaptive"', "simulation.displacement_fraction=0.01")
+
+
+def step_column(out):
+    return [row["dt"] for row in series(out)]
+
+
+def adaptive(runner):
+    scene = SCENES / "tool.toml"
+    reference = runner.run("adaptive_n1", scene, 1, *ADAPTIVE)
+    steps = sorted({float(dt) for dt in step_column(reference)})
+    print(f"adaptive_n1: steps {steps}")
+    if len(steps) < 2:
+        runner.fail(f"adaptive_n1: the step never changed ({steps})")
+    for name, ranks, dims in (("slabs_n2", 2, "[2,1,1]"), ("blocks_2x2", 4, "[2,2,1]")):
+        out = runner.run(f"adaptive_{name}", scene, ranks, f"decomposition.dims={dims}", *ADAPTIVE)
+        compare_states(runner, name, reference, out)
+        if step_column(out) != step_column(reference):
+            runner.fail(f"adaptive_{name}: the dt column differs")
+    half = ["simulation.end_time=0.09", "checkpoint.every=0.09", *ADAPTIVE]
+    out = runner.run("adaptive_restart", scene, 3, *half)
+    checkpoint = out / "checkpoint.h5"
+    with h5py.File(checkpoint, "r") as f:
+        saved = {key: int(f.attrs[key]) for key in ("substeps", "list_build_substep",
+                                                      "list_build_substeps")}
+    print(f"adaptive_restart: the checkpoint holds {saved}")
+    if saved["substeps"] < 2 or saved["list_build_substep"] == 0:
+        runner.fail(f"adaptive_restart: the checkpoint is not inside split steps: {saved}")
+    runner.run("adaptive_restart", scene, 2, *ADAPTIVE, restart=checkpoint)
+    compare_states(runner, "adaptive_restart", reference, out)
+    refused = runner.run_raw("adaptive_as_auto", scene, 2, restart=checkpoint)
+    if refused.returncode != 2 or "simulation.dt" not in refused.stderr:
+        runner.fail(f"adaptive_as_auto: exit {refused.returncode}, expected 2 naming "
+                    f"simulation.dt:\n{refused.stderr}")
+
+
 # ---- bed ----------------------------------------------------------------------------------------
 
 BED_SETTINGS = ("simulation.end_time=0.8", "preparation.kinetic_energy=1e-7",
@@ -723,7 +826,7 @@ def main():
     parser.add_argument("--work", required=True)
     parser.add_argument("case", choices=["same-physics", "restart", "balance", "momentum",
                                          "leaving", "tiled", "sliding-pair", "killed-checkpoint",
-                                         "tool", "bed", "cuda"])
+                                         "tool", "piston", "adaptive", "bed", "cuda"])
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
@@ -731,7 +834,8 @@ def main():
     cases = {"same-physics": same_physics, "restart": restart, "balance": balance,
              "momentum": momentum, "leaving": leaving, "tiled": tiled,
              "sliding-pair": sliding_pair,
-             "killed-checkpoint": killed_checkpoint, "tool": tool, "bed": bed, "cuda": cuda}
+             "killed-checkpoint": killed_checkpoint, "tool": tool, "piston": piston,
+             "adaptive": adaptive, "bed": bed, "cuda": cuda}
     if cases[args.case](runner) == SKIPPED:
         return SKIPPED
     for line in runner.failures:
