@@ -62,6 +62,14 @@ def rows_of(out):
     return list(csv.DictReader(open(out / "timeseries.csv")))
 
 
+def finished_rows(binary, scene, out, label):
+    """Runs `scene` into `out`: its time-series rows, or None (a failure) when it did not
+    exit 0."""
+    r = run(binary, scene, out)
+    check(r.returncode == 0, f"{label}: exit {r.returncode}\n{r.stderr}")
+    return rows_of(out) if r.returncode == 0 else None
+
+
 def check_finite_output(out, label):
     """No NaN or infinity in the time series or any snapshot dataset."""
     values = [float(v) for row in rows_of(out) for v in row.values()]
@@ -123,11 +131,9 @@ def projectile(source, binary, work):
 
 def settle(source, binary, work, name):
     out = work / "out"
-    r = run(binary, source / "inputs" / "hard" / name, out)
-    check(r.returncode == 0, f"{name}: exit {r.returncode}\n{r.stderr}")
-    if r.returncode != 0:
+    rows = finished_rows(binary, source / "inputs" / "hard" / name, out, name)
+    if rows is None:
         return
-    rows = rows_of(out)
     deepest = check_kept_and_held(rows, int(rows[0]["particles"]), name)
     kinetic = [float(row["kinetic_translational"]) + float(row["kinetic_rotational"])
                for row in rows]
@@ -154,11 +160,9 @@ def on_plate(position):
 
 def tool(source, binary, work):
     out = work / "out"
-    r = run(binary, source / "inputs" / "hard" / "fast_tool.toml", out)
-    check(r.returncode == 0, f"fast_tool: exit {r.returncode}\n{r.stderr}")
-    if r.returncode != 0:
+    rows = finished_rows(binary, source / "inputs" / "hard" / "fast_tool.toml", out, "fast_tool")
+    if rows is None:
         return
-    rows = rows_of(out)
     check_kept_and_held(rows, int(rows[0]["particles"]), "fast_tool")
     check_finite_output(out, "fast_tool")
     names = sorted(glob.glob(str(out / "particles_*.h5")))
@@ -242,11 +246,10 @@ def sphere_under_piston(work):
 
 
 def piston(source, binary, work):
-    out = work / "sphere"
-    r = run(binary, sphere_under_piston(work), out)
-    check(r.returncode == 0, f"sphere under a piston: exit {r.returncode}\n{r.stderr}")
-    if r.returncode == 0:
-        last = rows_of(out)[-1]
+    rows = finished_rows(binary, sphere_under_piston(work), work / "sphere",
+                         "sphere under a piston")
+    if rows is not None:
+        last = rows[-1]
         load, young, poisson, radius = 10.0, 7.0e10, 0.22, 0.001
         e_star = young / (2 * (1 - poisson ** 2))
         overlap = (3 * load / (4 * e_star * math.sqrt(radius))) ** (2 / 3)
@@ -262,11 +265,10 @@ def piston(source, binary, work):
 
 def bed(source, binary, work):
     out = work / "bed"
-    r = run(binary, source / "inputs" / "hard" / "loaded_piston.toml", out)
-    check(r.returncode == 0, f"loaded_piston: exit {r.returncode}\n{r.stderr}")
-    if r.returncode != 0:
+    rows = finished_rows(binary, source / "inputs" / "hard" / "loaded_piston.toml", out,
+                         "loaded_piston")
+    if rows is None:
         return
-    rows = rows_of(out)
     steps = int(float(rows[-1]["step"]))
     check(steps > 1_000_000, f"loaded_piston: {steps} steps, expected over 10^6")
     deepest = check_kept_and_held(rows, 200, "loaded_piston")

@@ -584,6 +584,18 @@ def without_mesh_springs(checkpoint, copy):
             del f[name]
 
 
+def continue_on_two_ranks(runner, label, scene, reference, checkpoint, stripped, what):
+    """Continues `checkpoint` (of run LABEL_restart) on 2 ranks, which must end equal to
+    `reference` bit for bit, and its `stripped` copy (without `what`), which must not: the
+    restart test sees `what`."""
+    out = runner.run(f"{label}_restart", scene, 2, restart=checkpoint)
+    compare_states(runner, f"{label}_restart", reference, out)
+    stripped_out = runner.run(f"{label}_stripped", scene, 2, restart=stripped)
+    if not snapshot_differences(last_snapshot(reference), last_snapshot(stripped_out)):
+        runner.fail(f"{label}_stripped: dropping {what} changes nothing; the restart test "
+                    "cannot see it")
+
+
 def tool(runner):
     scene = SCENES / "tool.toml"
     reference = runner.run("tool_n1", scene, 1)
@@ -606,12 +618,8 @@ def tool(runner):
         runner.fail("tool_restart: the checkpoint holds no mesh contact springs")
     stripped = runner.work / "without_mesh_springs.h5"
     without_mesh_springs(checkpoint, stripped)
-    runner.run("tool_restart", scene, 2, restart=checkpoint)
-    compare_states(runner, "tool_restart", reference, out)
-    stripped_out = runner.run("tool_stripped", scene, 2, restart=stripped)
-    if not snapshot_differences(last_snapshot(reference), last_snapshot(stripped_out)):
-        runner.fail("tool_stripped: dropping the mesh springs changes nothing; the restart test "
-                    "cannot see them")
+    continue_on_two_ranks(runner, "tool", scene, reference, checkpoint, stripped,
+                          "the mesh springs")
 
 
 # ---- piston -------------------------------------------------------------------------------------
@@ -652,13 +660,9 @@ def piston(runner):
     checkpoint = out / "checkpoint.h5"
     stripped = runner.work / "without_wall_motion.h5"
     without_wall_motion(checkpoint, stripped)
-    runner.run("piston_restart", scene, 2, restart=checkpoint)
-    compare_states(runner, "piston_restart", reference, out)
+    continue_on_two_ranks(runner, "piston", scene, reference, checkpoint, stripped,
+                          "the walls' motion")
     compare_piston_path(runner, "piston_restart", reference, out)
-    stripped_out = runner.run("piston_stripped", scene, 2, restart=stripped)
-    if not snapshot_differences(last_snapshot(reference), last_snapshot(stripped_out)):
-        runner.fail("piston_stripped: dropping the walls' motion changes nothing; the restart "
-                    "test cannot see it")
 
 
 # ---- adaptive -----------------------------------------------------------------------------------
