@@ -32,7 +32,8 @@ struct SimulationSettings {
   double dt = 0;             ///< [s] explicit step (when dt_auto is false)
   int dt_line = 0;           ///< line of `dt` in the scene file (0: absent or from --set)
   double dt_fraction = 0.1;  ///< fraction of the critical step used by "auto" [-]
-  /// "auto" also keeps v_max dt within this fraction of the smallest radius [-]
+  /// "auto" also keeps v_max dt within this fraction of the smallest radius, and "adaptive"
+  /// splits its base steps to keep within it [-]
   double displacement_fraction = 0.1;
   double end_time = 0;  ///< [s] simulated time to reach (required)
   IntegratorKind integrator = IntegratorKind::VelocityVerlet;
