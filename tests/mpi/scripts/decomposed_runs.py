@@ -584,6 +584,16 @@ def without_mesh_springs(checkpoint, copy):
             del f[name]
 
 
+def compare_layouts(runner, label, scene, reference, compare_series_of, layouts, *settings):
+    """Runs `scene` (with `settings`) on each (name, ranks, dims) of `layouts` into
+    LABEL_NAME: the final state must equal `reference` bit for bit, and the time series as
+    compare_series_of(runner, name, reference, out) asks."""
+    for name, ranks, dims in layouts:
+        out = runner.run(f"{label}_{name}", scene, ranks, f"decomposition.dims={dims}", *settings)
+        compare_states(runner, name, reference, out)
+        compare_series_of(runner, name, reference, out)
+
+
 def continue_on_two_ranks(runner, label, scene, reference, checkpoint, stripped, what):
     """Continues `checkpoint` (of run LABEL_restart) on 2 ranks, which must end equal to
     `reference` bit for bit, and its `stripped` copy (without `what`), which must not: the
@@ -603,11 +613,9 @@ def tool(runner):
     print(f"tool_n1: largest |sweep_fx| {draft:.3f} N")
     if not draft > TOOL_LEAST_DRAFT:
         runner.fail(f"tool_n1: largest |sweep_fx| {draft:.3f} N, not above {TOOL_LEAST_DRAFT} N")
-    for name, ranks, dims in (("slabs_n2", 2, "[2,1,1]"), ("slabs_n4", 4, "[4,1,1]"),
-                              ("blocks_2x2", 4, "[2,2,1]")):
-        out = runner.run(f"tool_{name}", scene, ranks, f"decomposition.dims={dims}")
-        compare_states(runner, name, reference, out)
-        compare_tool_series(runner, name, reference, out)
+    compare_layouts(runner, "tool", scene, reference, compare_tool_series,
+                    (("slabs_n2", 2, "[2,1,1]"), ("slabs_n4", 4, "[4,1,1]"),
+                     ("blocks_2x2", 4, "[2,2,1]")))
     half = ["simulation.end_time=0.09", "checkpoint.every=0.09"]
     out = runner.run("tool_restart", scene, 3, *half)
     checkpoint = out / "checkpoint.h5"
@@ -650,11 +658,9 @@ def piston(runner):
     print(f"piston_n1: the piston came down by {travel:.4f} m")
     if not travel > 0.03:
         runner.fail(f"piston_n1: the piston came down by {travel} m only")
-    for name, ranks, dims in (("slabs_z_n2", 2, "[1,1,2]"), ("slabs_z_n3", 3, "[1,1,3]"),
-                              ("blocks_2x2", 4, "[2,2,1]")):
-        out = runner.run(f"piston_{name}", scene, ranks, f"decomposition.dims={dims}")
-        compare_states(runner, name, reference, out)
-        compare_piston_path(runner, name, reference, out)
+    compare_layouts(runner, "piston", scene, reference, compare_piston_path,
+                    (("slabs_z_n2", 2, "[1,1,2]"), ("slabs_z_n3", 3, "[1,1,3]"),
+                     ("blocks_2x2", 4, "[2,2,1]")))
     half = ["simulation.end_time=0.06", "checkpoint.every=0.06"]
     out = runner.run("piston_restart", scene, 3, *half)
     checkpoint = out / "checkpoint.h5"
@@ -674,6 +680,11 @@ def step_column(out):
     return [row["dt"] for row in series(out)]
 
 
+def compare_step_column(runner, label, reference, candidate):
+    if step_column(candidate) != step_column(reference):
+        runner.fail(f"adaptive_{label}: the dt column differs")
+
+
 def adaptive(runner):
     scene = SCENES / "tool.toml"
     reference = runner.run("adaptive_n1", scene, 1, *ADAPTIVE)
@@ -681,11 +692,8 @@ def adaptive(runner):
     print(f"adaptive_n1: steps {steps}")
     if len(steps) < 2:
         runner.fail(f"adaptive_n1: the step never changed ({steps})")
-    for name, ranks, dims in (("slabs_n2", 2, "[2,1,1]"), ("blocks_2x2", 4, "[2,2,1]")):
-        out = runner.run(f"adaptive_{name}", scene, ranks, f"decomposition.dims={dims}", *ADAPTIVE)
-        compare_states(runner, name, reference, out)
-        if step_column(out) != step_column(reference):
-            runner.fail(f"adaptive_{name}: the dt column differs")
+    compare_layouts(runner, "adaptive", scene, reference, compare_step_column,
+                    (("slabs_n2", 2, "[2,1,1]"), ("blocks_2x2", 4, "[2,2,1]")), *ADAPTIVE)
     half = ["simulation.end_time=0.09", "checkpoint.every=0.09", *ADAPTIVE]
     out = runner.run("adaptive_restart", scene, 3, *half)
     checkpoint = out / "checkpoint.h5"
