@@ -174,11 +174,9 @@ double largest_section(const Scene& scene, Vec3 n) {
 /// ω² ≈ k/m + N k/M; with M ≥ N m that stays within √2 of a particle's own contact frequency,
 /// which the time step resolves, and the contact law may treat the piston as a fixed wall.
 void require_pistons_outweigh_a_layer(const Scene& scene, const ParticleStore& particles) {
-  double r_max = 0, m_max = 0;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    r_max = std::max(r_max, particles.position_radius[i].w);
-    m_max = std::max(m_max, 1 / particles.velocity_inv_mass[i].w);
-  }
+  const double r_max = largest_radius(particles);
+  double m_max = 0;
+  for (const Real4& v : particles.velocity_inv_mass) m_max = std::max(m_max, 1 / v.w);
   for (std::size_t k = 0; k < scene.walls.size(); ++k) {
     const WallSettings& w = scene.walls[k];
     if (!w.loaded() || r_max == 0) continue;
