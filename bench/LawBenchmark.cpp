@@ -32,6 +32,8 @@ std::vector<ContactModel> laws_to_time() {
       {N::Hertz, D::Restitution, T::Mindlin, R::ConstantTorque, C::None},
       {N::Hertz, D::Restitution, T::Mindlin, R::Epsd, C::None},
       {N::Hertz, D::Restitution, T::Mindlin, R::Epsd, C::Sjkr},
+      {N::Hertz, D::Restitution, T::Mindlin, R::None, C::Jkr},
+      {N::Hertz, D::Restitution, T::Mindlin, R::Epsd, C::Jkr},
   };
 }
 
@@ -52,6 +54,7 @@ void time_law(const ParticleStore& bed, const ContactModel& model, double dt) {
   scene.materials[0].viscoelastic_time = 1e-4;
   scene.materials[0].rolling_friction = 0.1;
   scene.materials[0].cohesion_energy_density = 1e3;
+  scene.materials[0].surface_energy = 0.01;
   scene.simulation.dt_auto = false;
   scene.simulation.dt = dt;
   scene.simulation.allow_unstable_dt = true;  // the same dt for every law, for a fair cost

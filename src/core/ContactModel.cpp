@@ -14,16 +14,19 @@ std::string alternatives(const std::vector<std::string>& names, const std::set<i
   return text;
 }
 
-/// The damping and tangential choices that go with `normal`, as "damping a|b, tangential c|d".
+/// The damping, tangential and cohesion choices that go with `normal`, as "damping a|b,
+/// tangential c|d, cohesion e|f".
 std::string choices_with(NormalLaw normal) {
-  std::set<int> damping, tangential;
+  std::set<int> damping, tangential, cohesion;
   for (const ContactModel& m : valid_contact_models()) {
     if (m.normal != normal) continue;
     damping.insert(static_cast<int>(m.damping));
     tangential.insert(static_cast<int>(m.tangential));
+    cohesion.insert(static_cast<int>(m.cohesion));
   }
   return "damping " + alternatives(damping_law_names(), damping) + ", tangential " +
-         alternatives(tangential_law_names(), tangential);
+         alternatives(tangential_law_names(), tangential) + ", cohesion " +
+         alternatives(cohesion_law_names(), cohesion);
 }
 
 }  // namespace
@@ -131,17 +134,13 @@ std::vector<IgnoredLawKey> ignored_law_keys(const ContactModel& m) {
 }
 
 std::string valid_contact_models_text() {
-  std::set<int> rolling, cohesion;
-  for (const ContactModel& m : valid_contact_models()) {
-    rolling.insert(static_cast<int>(m.rolling));
-    cohesion.insert(static_cast<int>(m.cohesion));
-  }
+  std::set<int> rolling;
+  for (const ContactModel& m : valid_contact_models()) rolling.insert(static_cast<int>(m.rolling));
   std::string text;
   for (std::size_t n = 0; n < normal_law_names().size(); ++n) {
     text += normal_law_names()[n] + ": " + choices_with(static_cast<NormalLaw>(n)) + "; ";
   }
-  return text + "rolling " + alternatives(rolling_law_names(), rolling) + " and cohesion " +
-         alternatives(cohesion_law_names(), cohesion) + " with either";
+  return text + "rolling " + alternatives(rolling_law_names(), rolling) + " with either";
 }
 
 }  // namespace gpudem

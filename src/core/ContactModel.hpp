@@ -17,7 +17,7 @@ enum class NormalLaw : std::uint8_t { Hooke, Hertz };
 enum class DampingLaw : std::uint8_t { None, Restitution, Viscoelastic };
 enum class TangentialLaw : std::uint8_t { None, LinearHistory, Mindlin };
 enum class RollingLaw : std::uint8_t { None, ConstantTorque, Epsd };
-enum class CohesionLaw : std::uint8_t { None, Sjkr };
+enum class CohesionLaw : std::uint8_t { None, Sjkr, Jkr };
 
 struct ContactModel {
   NormalLaw normal = NormalLaw::Hooke;
@@ -43,12 +43,14 @@ const std::vector<std::string>& cohesion_law_names();
 /// "normal/damping/tangential/rolling/cohesion", e.g. "hertz/restitution/mindlin/none/none".
 std::string contact_model_name(const ContactModel& model);
 
-/// The combinations the engine is built for: hooke pairs with damping none|restitution and
-/// tangential none|linear_history; hertz with damping none|restitution|viscoelastic and
-/// tangential none|mindlin; rolling and cohesion are free with either.
+/// The combinations the engine is built for: hooke pairs with damping none|restitution,
+/// tangential none|linear_history and cohesion none|sjkr; hertz with damping
+/// none|restitution|viscoelastic, tangential none|mindlin and cohesion none|sjkr|jkr (JKR is a
+/// Hertz theory); rolling is free with either.
 constexpr bool is_valid_contact_model(const ContactModel& m) {
   return m.normal == NormalLaw::Hooke
-             ? m.damping != DampingLaw::Viscoelastic && m.tangential != TangentialLaw::Mindlin
+             ? m.damping != DampingLaw::Viscoelastic && m.tangential != TangentialLaw::Mindlin &&
+                   m.cohesion != CohesionLaw::Jkr
              : m.tangential != TangentialLaw::LinearHistory;
 }
 std::vector<ContactModel> valid_contact_models();
@@ -83,11 +85,12 @@ constexpr bool is_compiled_contact_model(const ContactModel& m) {
 std::string compiled_contact_models_text();
 
 /// History values per contact that the law keeps (ContactLaw::history_size, docs/architecture.md,
-/// "Contact law"): its tangential and rolling slots' history sizes.
+/// "Contact law"): its tangential, rolling and cohesion slots' history sizes.
 constexpr std::uint32_t contact_history_width(const ContactModel& m) {
   return static_cast<std::uint32_t>(
       history_size_of(TangentialSlots{}, static_cast<std::size_t>(m.tangential)) +
-      history_size_of(RollingSlots{}, static_cast<std::size_t>(m.rolling)));
+      history_size_of(RollingSlots{}, static_cast<std::size_t>(m.rolling)) +
+      history_size_of(CohesionSlots{}, static_cast<std::size_t>(m.cohesion)));
 }
 
 /// A [[material]] or [[pair]] key that a contact law does not read, though another choice of
@@ -103,8 +106,8 @@ struct IgnoredLawKey {
 std::vector<IgnoredLawKey> ignored_law_keys(const ContactModel& model);
 
 /// valid_contact_models() in a few words, for error messages: "hooke: damping
-/// none|restitution, tangential none|linear_history; hertz: ...; rolling none|...|epsd and
-/// cohesion none|sjkr with either".
+/// none|restitution, tangential none|linear_history, cohesion none|sjkr; hertz: ...; rolling
+/// none|...|epsd with either".
 std::string valid_contact_models_text();
 
 }  // namespace gpudem

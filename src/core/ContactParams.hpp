@@ -20,6 +20,7 @@ struct ContactPairParamsT {
   S rolling_friction = 0;         ///< μ_r [-]
   S rolling_damping = 0;          ///< η_r, EPSD rolling dashpot ratio [-]
   S cohesion_energy_density = 0;  ///< k_c of simplified JKR [J/m³]
+  S surface_energy = 0;           ///< γ of JKR, the pair's work of adhesion [J/m²]
 };
 
 using ContactPairParams = ContactPairParamsT<Real>;
@@ -27,12 +28,13 @@ using ContactPairParams = ContactPairParamsT<Real>;
 /// One contact that bounds the time step, as the host sees it: the laws' host functions
 /// (contact_duration, stable_step, peak_frequency_squared) take it.
 struct ImpactPair {
-  double radius = 0;     ///< R* [m]
-  double mass = 0;       ///< m* [kg]
-  double young = 0;      ///< E* [Pa]
-  double shear = 0;      ///< G* [Pa]
-  double stiffness = 0;  ///< k_n of the Hooke law [N/m]
-  double speed = 0;      ///< impact speed v [m/s]
+  double radius = 0;          ///< R* [m]
+  double mass = 0;            ///< m* [kg]
+  double young = 0;           ///< E* [Pa]
+  double shear = 0;           ///< G* [Pa]
+  double stiffness = 0;       ///< k_n of the Hooke law [N/m]
+  double speed = 0;           ///< impact speed v [m/s]
+  double surface_energy = 0;  ///< γ of JKR adhesion, 0 without [J/m²]
 };
 
 /// G = E / (2(1 + ν)) [Pa] of a material of Young's modulus E and Poisson ratio ν.
@@ -53,6 +55,7 @@ ContactPairParamsT<To> params_cast(const ContactPairParams& p) {
   out.rolling_friction = static_cast<To>(p.rolling_friction);
   out.rolling_damping = static_cast<To>(p.rolling_damping);
   out.cohesion_energy_density = static_cast<To>(p.cohesion_energy_density);
+  out.surface_energy = static_cast<To>(p.surface_energy);
   return out;
 }
 

@@ -66,6 +66,7 @@ struct Material {
   double rolling_damping = 0.3;  ///< EPSD rolling dashpot ratio η_r [-], >= 0
   double viscoelastic_time = 0;  ///< A of the viscoelastic damping law [s], >= 0
   double cohesion_energy_density = 0;  ///< k_c of simplified JKR [J/m^3], >= 0
+  double surface_energy = 0;  ///< γ of JKR, work of adhesion per contact area [J/m^2], >= 0
 };
 
 /// An explicit [[pair]] entry: values that replace the mixing rule for one material pair (in
@@ -77,6 +78,7 @@ struct PairOverride {
   double friction_dynamic = -1;
   double rolling_friction = -1;
   double cohesion_energy_density = -1;
+  double surface_energy = -1;
 };
 
 /// Contact law selection: one choice per slot, validated against valid_contact_models().

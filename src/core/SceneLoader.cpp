@@ -127,7 +127,7 @@ double dynamic_friction(const TableReader& table, const std::string& key, double
 Material read_material(const TableReader& table) {
   table.allow_only({"name", "density", "young", "poisson", "restitution", "friction",
                     "friction_dynamic", "rolling_friction", "rolling_damping", "viscoelastic_time",
-                    "cohesion_energy_density"});
+                    "cohesion_energy_density", "surface_energy"});
   Material m;
   m.name = table.string("name");
   m.density = table.number("density", positive("kg/m^3"));
@@ -141,6 +141,7 @@ Material read_material(const TableReader& table) {
   m.viscoelastic_time = table.number("viscoelastic_time", non_negative("s"), m.viscoelastic_time);
   m.cohesion_energy_density =
       table.number("cohesion_energy_density", non_negative("J/m^3"), m.cohesion_energy_density);
+  m.surface_energy = table.number("surface_energy", non_negative("J/m^2"), m.surface_energy);
   return m;
 }
 
@@ -175,17 +176,25 @@ ContactModel read_contact_model(const TableReader& table) {
   return m;
 }
 
+/// The slot of `m` that does not go with its normal law, as (key, choice): damping, else
+/// tangential, else cohesion (every normal law takes tangential and cohesion "none").
+std::pair<std::string, std::string> misfit_slot(const ContactModel& m) {
+  ContactModel bare = m;
+  bare.tangential = TangentialLaw::None;
+  bare.cohesion = CohesionLaw::None;
+  if (!is_valid_contact_model(bare))
+    return {"damping", damping_law_names()[static_cast<std::size_t>(m.damping)]};
+  bare.tangential = m.tangential;
+  if (!is_valid_contact_model(bare))
+    return {"tangential", tangential_law_names()[static_cast<std::size_t>(m.tangential)]};
+  return {"cohesion", cohesion_law_names()[static_cast<std::size_t>(m.cohesion)]};
+}
+
 /// Fails unless `m` is one of valid_contact_models(), naming the slot that does not go with
-/// the normal law (damping or tangential; every normal law takes tangential = "none").
+/// the normal law.
 void require_valid_model(const TableReader& table, const ContactModel& m) {
   if (is_valid_contact_model(m)) return;
-  ContactModel without_tangential = m;
-  without_tangential.tangential = TangentialLaw::None;
-  const bool damping_wrong = !is_valid_contact_model(without_tangential);
-  const std::string key = damping_wrong ? "damping" : "tangential";
-  const std::string choice = damping_wrong
-                                 ? damping_law_names()[static_cast<std::size_t>(m.damping)]
-                                 : tangential_law_names()[static_cast<std::size_t>(m.tangential)];
+  const auto [key, choice] = misfit_slot(m);
   const std::string normal = normal_law_names()[static_cast<std::size_t>(m.normal)];
   table.fail(key, "normal = \"" + normal + "\" does not go with " + key + " = \"" + choice + "\"" +
                       (table.has(key) ? "" : " (the default)") + "; valid combinations are " +
@@ -255,13 +264,14 @@ void read_pair_friction(const TableReader& table, const std::vector<Material>& m
 PairOverride read_pair(const TableReader& table, const std::vector<Material>& materials,
                        MixingRule mixing) {
   table.allow_only({"materials", "restitution", "friction", "friction_dynamic", "rolling_friction",
-                    "cohesion_energy_density"});
+                    "cohesion_energy_density", "surface_energy"});
   PairOverride p = read_pair_materials(table, materials);
   p.restitution = table.number("restitution", interval(0, true, 1, false), p.restitution);
   read_pair_friction(table, materials, mixing, p);
   p.rolling_friction = table.number("rolling_friction", non_negative(), p.rolling_friction);
   p.cohesion_energy_density =
       table.number("cohesion_energy_density", non_negative("J/m^3"), p.cohesion_energy_density);
+  p.surface_energy = table.number("surface_energy", non_negative("J/m^2"), p.surface_energy);
   return p;
 }
 

@@ -201,6 +201,19 @@ GPUDEM_HD void describe_wall(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi,
     k.contact_radius_sq = wall_contact_radius_sq(xi.w, k.overlap);
 }
 
+/// How far past touch a contact of effective radius R* holds, given its stored history: the
+/// cohesion's pull-off gap once the contact has formed, else 0 (contacts start at touch) [m].
+template <class Law>
+GPUDEM_HD Real holding_gap(const typename Law::Params& p, Real effective_radius,
+                           const typename Law::State& state) {
+  if constexpr (Law::Cohesion::history_size > 0) {
+    if (Law::has_formed(state.value))
+      return static_cast<Real>(
+          Law::Cohesion::pull_off_gap(p, static_cast<typename Law::Scalar>(effective_radius)));
+  }
+  return 0;
+}
+
 /// True when every history value of `state` is zero (a contact that has none yet).
 template <class State>
 GPUDEM_HD bool is_blank(const State& state, int width) {
@@ -234,24 +247,47 @@ GPUDEM_HD typename Law::State mesh_contact_state(const ContactScene<Law>& s,
   return state;
 }
 
-/// The listed triangles of particle i (centre and radius xi) within contact, reduced to the
-/// contacts that count once where triangles meet (select_mesh_contacts): fills the particle's
-/// candidates (MeshView::candidates_of, one per list entry, contacts marked) and returns the
-/// number of contacts. Each mesh meets the periodic image of i's centre nearest its image centre
+/// The listed triangles of particle i (centre xi) within `reach` of its centre (its radius, or
+/// more for a cohesion that holds contacts past touch), reduced to the contacts that count once
+/// where triangles meet (select_mesh_contacts): fills the particle's candidates
+/// (MeshView::candidates_of, one per list entry, contacts marked) and returns the number of
+/// contacts. Each mesh meets the periodic image of i's centre nearest its image centre
 /// (MeshView::image_for). The same for every law, so called, not inlined, by the device code
 /// (GPUDEM_HD_CALLED).
-GPUDEM_HD_CALLED inline int find_mesh_contacts(std::uint32_t i, Real4 xi, const MeshView& m,
-                                               const PeriodicBox& box) {
+GPUDEM_HD_CALLED inline int find_mesh_contacts(std::uint32_t i, Real4 xi, Real reach,
+                                               const MeshView& m, const PeriodicBox& box) {
   const MeshCandidateSpan set = m.candidates_of(i);
   const std::uint32_t begin = m.offsets[i];
   for (std::uint32_t k = 0; k < set.count; ++k) {
     const std::uint32_t triangle = m.triangles[begin + k];
     const TriangleCorners t = m.corners[triangle];
     evaluate_mesh_candidate(set.items[k], m.image_for(box, xyz(xi), m.triangle_mesh[triangle]),
-                            xi.w, m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]],
+                            reach, m.vertices[t.v[0]], m.vertices[t.v[1]], m.vertices[t.v[2]],
                             m.ids[triangle]);
   }
-  return select_mesh_contacts(set, xi.w);
+  return select_mesh_contacts(set, reach);
+}
+
+/// How far past touch the mesh contacts of particle i (radius r, material mi) may hold: the
+/// largest pull-off gap over the meshes when one of its list entries has formed, else 0 [m].
+template <class Law>
+GPUDEM_HD Real mesh_holding_gap(std::uint32_t i, Real radius, MaterialId mi,
+                                const ContactScene<Law>& s) {
+  Real gap = 0;
+  if constexpr (Law::Cohesion::history_size > 0) {
+    const MeshView& m = s.mesh;
+    bool formed = false;
+    for (std::uint32_t e = m.offsets[i]; e < m.offsets[i + 1]; ++e)
+      formed = formed || Law::has_formed(s.mesh_history[e].value);
+    if (!formed) return 0;
+    for (std::uint32_t k = 0; k < m.mesh_count; ++k) {
+      const Real g = static_cast<Real>(
+          Law::Cohesion::pull_off_gap(s.pair_params[mi * s.material_count + m.material[k]],
+                                      static_cast<typename Law::Scalar>(radius)));
+      gap = g > gap ? g : gap;
+    }
+  }
+  return gap;
 }
 
 /// The contact of particle i with the candidate on list entry e, its history not yet set.
@@ -277,25 +313,35 @@ GPUDEM_HD ContactSample<Law> mesh_contact_sample(Real4 xi, Real4 vi, Vec3 wi, Ma
 /// The mesh contacts of particle i (find_mesh_contacts) in list order, each visited with the
 /// history of its list entry (mesh_contact_state); then the entries with no contact are
 /// separated. A contact writes only its own entry and reads only its own or one not in contact,
-/// so every history is read before it is written.
+/// so every history is read before it is written. With a cohesion that holds contacts past
+/// touch, a particle with a formed mesh contact looks for contacts within its pull-off gap; one
+/// found there that has not formed (nor carried over a formed history) is no contact.
 template <class Law, class Visitor>
 GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi, MaterialId mi,
                                    const ContactScene<Law>& s, Visitor& visit) {
   const MeshView& m = s.mesh;
-  find_mesh_contacts(i, xi, m, s.box);
+  const Real gap = mesh_holding_gap(i, xi.w, mi, s);
+  find_mesh_contacts(i, xi, xi.w + gap, m, s.box);
   const MeshCandidateSpan set = m.candidates_of(i);
   const std::uint32_t begin = m.offsets[i];
   for (std::uint32_t k = 0; k < set.count; ++k) {
     if (!set.is_contact(k)) continue;
     ContactSample<Law> c = mesh_contact_sample(xi, vi, wi, mi, s, set.items[k], begin + k);
     if constexpr (Law::history_size > 0) c.state = mesh_contact_state(s, set, begin, begin + k);
+    if constexpr (Law::Cohesion::history_size > 0) {
+      if (c.point.overlap <= -holding_gap<Law>(*c.params, xi.w, c.state)) {
+        set.items[k].status = CandidateStatus::kInReach;
+        continue;
+      }
+    }
     visit(c);
   }
   for (std::uint32_t k = 0; k < set.count; ++k)
     if (!set.is_contact(k)) visit.separated_from_mesh(begin + k);
 }
 
-/// Calls visit(sample) for each contact of particle i with positive overlap.
+/// Calls visit(sample) for each contact of particle i: positive overlap, or, for a cohesion
+/// that holds contacts past touch (JKR), a formed contact within its pull-off gap.
 template <class Law, class P, class Visitor>
 GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
                                 const ContactScene<Law>& s, Visitor& visit) {
@@ -310,7 +356,11 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
     const Vec3 d = s.box.minimum_image(xyz(xj) - xyz(xi));
     const Real dist2 = norm2(d);
     const Real reach = xi.w + xj.w;
-    if (dist2 >= reach * reach || dist2 == 0) {
+    Real limit = reach;
+    if constexpr (Law::Cohesion::history_size > 0)
+      limit += holding_gap<Law>(s.pair_params[mi * s.material_count + p.material[j]],
+                                xi.w * xj.w / reach, s.pair_history[k]);
+    if (dist2 >= limit * limit || dist2 == 0) {
       visit.separated(k);
       continue;
     }
@@ -333,7 +383,11 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
     const PlaneWall& wall = s.walls[w];
     const Real overlap = wall_overlap(wall, xyz(xi), xi.w);
     const std::uint32_t slot = i * s.wall_count + w;
-    if (overlap <= 0) {
+    Real gap = 0;
+    if constexpr (Law::Cohesion::history_size > 0)
+      gap = holding_gap<Law>(s.pair_params[mi * s.material_count + wall.material], xi.w,
+                             s.wall_history[slot]);
+    if (overlap <= -gap) {
       visit.separated_from_wall(slot);
       continue;
     }

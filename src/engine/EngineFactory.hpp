@@ -34,6 +34,8 @@ LawForceCompute<Space, S> make(const EngineSetup& setup) {
       return make<Space, S, N, D, T, R, CohesionLaw::None>(setup);
     case CohesionLaw::Sjkr:
       return make<Space, S, N, D, T, R, CohesionLaw::Sjkr>(setup);
+    case CohesionLaw::Jkr:
+      return make<Space, S, N, D, T, R, CohesionLaw::Jkr>(setup);
   }
   throw std::invalid_argument("unknown cohesion law");
 }

@@ -59,19 +59,14 @@ void set_mixed_values(ContactPairParams& p, MixingRule rule, const Material& a, 
   p.viscoelastic_time = mix(rule, a.viscoelastic_time, b.viscoelastic_time);
   p.cohesion_energy_density =
       value(given.cohesion_energy_density, a.cohesion_energy_density, b.cohesion_energy_density);
+  p.surface_energy = value(given.surface_energy, a.surface_energy, b.surface_energy);
 }
 
 std::vector<ContactPairParams> pair_table(const Scene& scene) {
   const std::size_t m = scene.materials.size();
   std::vector<ContactPairParams> table(m * m);
   for (MaterialId a = 0; a < m; ++a)
-    for (MaterialId b = 0; b < m; ++b) {
-      const Material& ma = scene.materials[a];
-      const Material& mb = scene.materials[b];
-      set_elastic_constants(table[a * m + b], scene.contact, ma, mb);
-      set_mixed_values(table[a * m + b], scene.contact.mixing, ma, mb,
-                       pair_override(scene.contact, a, b));
-    }
+    for (MaterialId b = 0; b < m; ++b) table[a * m + b] = pair_params(scene, a, b);
   return table;
 }
 
@@ -106,6 +101,29 @@ double largest_radius(const ParticleStore& particles) {
   double r = 0;
   for (const Real4& p : particles.position_radius) r = std::max(r, p.w);
   return r;
+}
+
+/// The largest gap at which JKR adhesion still holds a contact: |δ_c| over every material pair
+/// at R* = r_max (a wall's; δ_c grows as R*^{1/3}) [m]; 0 for other cohesion laws.
+double largest_pull_off_gap(const Scene& scene, const std::vector<ContactPairParams>& table,
+                            double r_max) {
+  if (scene.contact.model.cohesion != CohesionLaw::Jkr || !(r_max > 0)) return 0;
+  double gap = 0;
+  for (const ContactPairParams& p : table) gap = std::max(gap, JkrCohesion::pull_off_gap(p, r_max));
+  return gap;
+}
+
+/// Refuses a skin that JKR's held contacts outgrow: a contact parts at δ_c, and the neighbour
+/// list keeps a pair only while its gap stays under the skin at each build.
+void require_skin_covers_pull_off(const Scene& scene, double skin, double gap) {
+  if (!(gap > 0) || skin > gap) return;
+  throw InputError(scene.file, 0, "neighbor.skin",
+                   (scene.neighbor.skin > 0 ? "skin "
+                                            : "the automatic skin (half the smallest "
+                                              "radius) ") +
+                       short_number(skin) + " m does not cover the JKR pull-off gap " +
+                       short_number(gap) + " m at which adhesion parts a contact: set a skin > " +
+                       short_number(gap) + " m");
 }
 
 /// True when some keyframe of the mesh's motion has a non-zero angular velocity.
@@ -243,6 +261,15 @@ void require_holdable_impacts(const Scene& scene, const PeakOverlap& p) {
 
 }  // namespace
 
+ContactPairParams pair_params(const Scene& scene, MaterialId a, MaterialId b) {
+  ContactPairParams p;
+  const Material& ma = scene.materials[a];
+  const Material& mb = scene.materials[b];
+  set_elastic_constants(p, scene.contact, ma, mb);
+  set_mixed_values(p, scene.contact.mixing, ma, mb, pair_override(scene.contact, a, b));
+  return p;
+}
+
 std::vector<std::string> time_step_warnings(const Scene& scene, const ParticleStore& particles,
                                             const EngineSetup& setup) {
   std::vector<std::string> warnings;
@@ -291,6 +318,8 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   s.skin =
       scene.neighbor.skin > 0 ? scene.neighbor.skin : (std::isfinite(r_min) ? 0.5 * r_min : 0.0);
   require_meshes_fit_periodic_axes(scene, s.meshes, largest_radius(particles), s.skin);
+  require_skin_covers_pull_off(
+      scene, s.skin, largest_pull_off_gap(scene, s.pair_params, largest_radius(particles)));
   require_meshes_meet_the_domain(scene, s.meshes, std::isfinite(r_min) ? 2 * r_min : 0.0);
   const TimeStepLimits limits = time_step_limits(scene, particles, s.meshes);
   require_stable_dt(scene, limits);

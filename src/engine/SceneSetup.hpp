@@ -14,6 +14,11 @@ namespace gpudem {
 std::vector<std::string> time_step_warnings(const Scene& scene, const ParticleStore& particles,
                                             const EngineSetup& setup);
 
+/// The contact constants of materials a and b (one entry of EngineSetup::pair_params): elastic
+/// constants from the materials, the other values from their [[pair]] entry where it gives one,
+/// else the mixing rule.
+ContactPairParams pair_params(const Scene& scene, MaterialId a, MaterialId b);
+
 /// The engine setup: contact model, pair table (material_count² entries, row-major,
 /// symmetric), walls and pistons, skin and dt (TimeStepLimits::automatic when the scene says
 /// "auto"; dt_fraction × TimeStepLimits::critical, the base step, when it says "adaptive";
@@ -26,7 +31,8 @@ std::vector<std::string> time_step_warnings(const Scene& scene, const ParticleSt
 /// 2 (r_max + 2 skin) along a periodic axis k (h_k: half its extent, or for a mesh that ever
 /// rotates the largest distance from its bounding-box centre to a vertex), and as
 /// require_meshes_meet_the_domain (MeshReach.hpp) when a mesh never meets the domain or is smaller
-/// than the smallest particle.
+/// than the smallest particle; naming neighbor.skin when JKR adhesion holds a contact further
+/// past touch than the skin (the neighbour list would lose it).
 EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles);
 
 /// The particles of `particles` that decide time_step_limits and make_engine_setup: of each

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/contact/ContactSlots.hpp"
+#include "engine/SceneSetup.hpp"
 
 namespace gpudem {
 
@@ -38,6 +39,12 @@ std::vector<MaterialId> wall_materials(const Scene& scene) {
   return ids;
 }
 
+/// γ of materials a and b when the law adheres by JKR, else 0 [J/m²].
+double adhesion(const Scene& scene, std::size_t a, std::size_t b) {
+  if (scene.contact.model.cohesion != CohesionLaw::Jkr) return 0;
+  return pair_params(scene, static_cast<MaterialId>(a), static_cast<MaterialId>(b)).surface_energy;
+}
+
 /// The contacts that bound the step of a law whose stiffness depends on the contact's size
 /// (Normal::needs_effective_radius): the smallest particles of every two materials present (a
 /// material with itself included), and of every material present with each wall, at impact
@@ -57,12 +64,13 @@ std::vector<ImpactPair> extreme_pairs(const Scene& scene, const ParticleStore& p
       const double mb = 1 / particles.velocity_inv_mass[smallest[b]].w;
       const Material& mat_b = scene.materials[b];
       pairs.push_back({ra * rb / (ra + rb), ma * mb / (ma + mb), pair_young_modulus(mat_a, mat_b),
-                       pair_shear_modulus(mat_a, mat_b), scene.contact.stiffness, v});
+                       pair_shear_modulus(mat_a, mat_b), scene.contact.stiffness, v,
+                       adhesion(scene, a, b)});
     }
     for (const MaterialId id : wall_materials(scene)) {
       const Material& wall = scene.materials[id];
       pairs.push_back({ra, ma, pair_young_modulus(mat_a, wall), pair_shear_modulus(mat_a, wall),
-                       scene.contact.stiffness, v});
+                       scene.contact.stiffness, v, adhesion(scene, a, id)});
     }
   }
   return pairs;

@@ -218,7 +218,7 @@ GPUDEM_INSTANTIATE_BACKENDS(ContactHistory);
 // ---- history width of each contact law ------------------------------------------------------
 
 constexpr std::size_t kNormalLaws = 2, kDampingLaws = 3, kTangentialLaws = 3, kRollingLaws = 3,
-                      kCohesionLaws = 2;
+                      kCohesionLaws = 3;
 constexpr std::size_t kSlotCombinations =
     kNormalLaws * kDampingLaws * kTangentialLaws * kRollingLaws * kCohesionLaws;
 
@@ -260,7 +260,7 @@ TEST(ContactHistoryWidth, IsTheKernelLawsHistorySizeForEveryValidModel) {
         << contact_model_name(m);
 }
 
-TEST(ContactHistoryWidth, CountsTheTangentialSpringAndFlagAndTheRollingSpring) {
+TEST(ContactHistoryWidth, CountsTheTangentialSpringAndFlagTheRollingSpringAndJkrsFlag) {
   ContactModel m;  // hooke/restitution/linear_history/none/none
   EXPECT_EQ(contact_history_width(m), 4u);
   m.rolling = RollingLaw::ConstantTorque;
@@ -275,6 +275,8 @@ TEST(ContactHistoryWidth, CountsTheTangentialSpringAndFlagAndTheRollingSpring) {
   m = {NormalLaw::Hertz, DampingLaw::Viscoelastic, TangentialLaw::Mindlin, RollingLaw::Epsd,
        CohesionLaw::Sjkr};
   EXPECT_EQ(contact_history_width(m), 7u);
+  m.cohesion = CohesionLaw::Jkr;  // the flag of a contact that has formed
+  EXPECT_EQ(contact_history_width(m), 8u);
 }
 
 }  // namespace

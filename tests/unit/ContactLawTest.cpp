@@ -37,6 +37,7 @@ ContactPairParams all_fields() {
   p.rolling_friction = 0.1;
   p.rolling_damping = 0.3;
   p.cohesion_energy_density = 1e3;
+  p.surface_energy = 0.05;
   return p;
 }
 
@@ -221,7 +222,7 @@ TEST(CompiledContactLaws, TheDefaultBuildCompilesEveryValidLawAndNoOther) {
     for (int d = 0; d < 3; ++d)
       for (int t = 0; t < 3; ++t)
         for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 2; ++c) {
+          for (int c = 0; c < 3; ++c) {
             const ContactModel m{static_cast<NormalLaw>(n), static_cast<DampingLaw>(d),
                                  static_cast<TangentialLaw>(t), static_cast<RollingLaw>(r),
                                  static_cast<CohesionLaw>(c)};
@@ -229,7 +230,7 @@ TEST(CompiledContactLaws, TheDefaultBuildCompilesEveryValidLawAndNoOther) {
                 << contact_model_name(m);
             compiled += is_compiled_contact_model(m) ? 1 : 0;
           }
-  EXPECT_EQ(compiled, 60u);
+  EXPECT_EQ(compiled, 78u);
   EXPECT_EQ(compiled_contact_models_text(), "every valid law");
 }
 
@@ -245,6 +246,11 @@ TEST(ContactSlots, KeywordsAndHistorySizesComeFromTheSlotTypes) {
       contact_history_width(ContactModel{NormalLaw::Hooke, DampingLaw::None, TangentialLaw::None,
                                          RollingLaw::ConstantTorque, CohesionLaw::Sjkr}),
       0u);
+  // ξ (3), sliding flag, rolling spring (3), JKR's formed flag
+  EXPECT_EQ(
+      contact_history_width(ContactModel{NormalLaw::Hertz, DampingLaw::None, TangentialLaw::Mindlin,
+                                         RollingLaw::Epsd, CohesionLaw::Jkr}),
+      8u);
   // The CMake option GPUDEM_CONTACT_LAWS names the same choices in the same order.
   std::string slots;
   for (const auto* names : {&normal_law_names(), &damping_law_names(), &tangential_law_names(),

@@ -703,18 +703,20 @@ std::string contact_lines(const ContactModel& m) {
 }
 
 /// The rule of docs/input.md, written out independently of is_valid_contact_model: hooke takes
-/// damping none|restitution and tangential none|linear_history, hertz tangential none|mindlin.
+/// damping none|restitution, tangential none|linear_history and cohesion none|sjkr, hertz
+/// tangential none|mindlin.
 bool documented_valid(const ContactModel& m) {
   if (m.normal == NormalLaw::Hooke) {
-    return m.damping != DampingLaw::Viscoelastic && m.tangential != TangentialLaw::Mindlin;
+    return m.damping != DampingLaw::Viscoelastic && m.tangential != TangentialLaw::Mindlin &&
+           m.cohesion != CohesionLaw::Jkr;
   }
   return m.tangential != TangentialLaw::LinearHistory;
 }
 
 const char* const kValidCombinations =
-    "hooke: damping none|restitution, tangential none|linear_history; hertz: damping "
-    "none|restitution|viscoelastic, tangential none|mindlin; rolling none|constant_torque|epsd "
-    "and cohesion none|sjkr with either";
+    "hooke: damping none|restitution, tangential none|linear_history, cohesion none|sjkr; hertz: "
+    "damping none|restitution|viscoelastic, tangential none|mindlin, cohesion none|sjkr|jkr; "
+    "rolling none|constant_torque|epsd with either";
 
 TEST_F(SceneLoaderTest, EveryValidCombinationLoadsAndEveryOtherIsRefused) {
   int valid = 0, refused = 0;
@@ -722,7 +724,7 @@ TEST_F(SceneLoaderTest, EveryValidCombinationLoadsAndEveryOtherIsRefused) {
     for (int d = 0; d < 3; ++d)
       for (int t = 0; t < 3; ++t)
         for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 2; ++c) {
+          for (int c = 0; c < 3; ++c) {
             const ContactModel m{static_cast<NormalLaw>(n), static_cast<DampingLaw>(d),
                                  static_cast<TangentialLaw>(t), static_cast<RollingLaw>(r),
                                  static_cast<CohesionLaw>(c)};
@@ -739,8 +741,8 @@ TEST_F(SceneLoaderTest, EveryValidCombinationLoadsAndEveryOtherIsRefused) {
               ++refused;
             }
           }
-  EXPECT_EQ(valid, 60);
-  EXPECT_EQ(refused, 48);
+  EXPECT_EQ(valid, 78);
+  EXPECT_EQ(refused, 84);
 }
 
 TEST_F(SceneLoaderTest, InvalidCombinationNamesTheSlotThatDoesNotFit) {
@@ -756,6 +758,8 @@ TEST_F(SceneLoaderTest, InvalidCombinationNamesTheSlotThatDoesNotFit) {
                                     "tangential = \"linear_history\"")),
                kStiffnessLine + 2, "contact.tangential",
                "normal = \"hertz\" does not go with tangential = \"linear_history\"");
+  expect_error(load_error(base_with(kContactSlot, "cohesion = \"jkr\"")), kContactSlot,
+               "contact.cohesion", "normal = \"hooke\" does not go with cohesion = \"jkr\"");
 }
 
 /// Without a tangential key the normal law brings its own spring.

@@ -10,3 +10,8 @@ gpudem_add_test(test_mesh_start_overlap
   LIBS gpudem_sim
   LABELS unit
   TIMEOUT 60)
+# What JKR adhesion asks of the setup: pair values, the skin and the stable step.
+gpudem_add_test(test_jkr_setup
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/JkrSetupTest.cpp
+  LIBS gpudem_sim
+  LABELS unit)

@@ -1,11 +1,42 @@
 #pragma once
-/// Cohesion slot: an attractive normal force added to the contact (moist soil).
+/// Cohesion slot: the pull that holds a contact together (moist soil). Each choice gives
+///   elastic_point  the contact as the elastic slots see it (the same, or JKR's Hertz-equivalent);
+///   force          its pull F_c ≥ 0 at that point, subtracted from the normal force;
+///   friction_load  the load that sets the Coulomb and rolling limits;
+///   energy         the energy its pull stores (the part not in Normal::energy);
+///   pull_off_gap   how far past touch a formed contact holds (0: it parts at touch).
+/// A choice with a gap keeps one history value per contact, 1 once the contact has formed.
 #include "core/ContactParams.hpp"
 #include "core/contact/ContactPoint.hpp"
+#include "core/contact/JkrRelation.hpp"
 
 namespace gpudem {
 
-struct NoCohesion {
+/// The members shared by the choices that act only while the particles overlap.
+struct TouchingCohesion {
+  static constexpr int history_size = 0;
+  static constexpr bool needs_effective_radius = false;
+  template <class S>
+  GPUDEM_HD static ContactPointT<S> elastic_point(const ContactPairParamsT<S>&,
+                                                  const ContactPointT<S>& c) {
+    return c;
+  }
+  template <class S>
+  GPUDEM_HD static S friction_load(const ContactPairParamsT<S>&, const ContactPointT<S>&,
+                                   S elastic_force, S) {
+    return elastic_force;
+  }
+  template <class S>
+  GPUDEM_HD static S energy(const ContactPairParamsT<S>&, const ContactPointT<S>&) {
+    return 0;
+  }
+  template <class S>
+  GPUDEM_HD static S pull_off_gap(const ContactPairParamsT<S>&, S) {
+    return 0;
+  }
+};
+
+struct NoCohesion : TouchingCohesion {
   static constexpr const char* keyword = "none";
   static constexpr const char* material_keys = "";
   static constexpr bool needs_contact_area = false;
@@ -17,14 +48,67 @@ struct NoCohesion {
 
 /// Simplified JKR of LIGGGHTS `cohesion sjkr`: F_c = k_c · A with A = π a² the contact-circle
 /// area and k_c the cohesion energy density [J/m³]; it pulls the pair together and does not
-/// enter the Coulomb limit. Acts only while the particles overlap.
-struct SjkrCohesion {
+/// enter the Coulomb limit. Acts only while the particles overlap; its energy is not counted.
+struct SjkrCohesion : TouchingCohesion {
   static constexpr const char* keyword = "sjkr";
   static constexpr const char* material_keys = "cohesion_energy_density";
   static constexpr bool needs_contact_area = true;
   template <class S>
   GPUDEM_HD static S force(const ContactPairParamsT<S>& p, const ContactPointT<S>& c) {
     return p.cohesion_energy_density * S(3.14159265358979323846) * c.contact_radius_sq;
+  }
+};
+
+/// JKR adhesion (Johnson, Kendall & Roberts 1971; JkrRelation.hpp) on the Hertz law: at overlap
+/// δ the contact radius a follows the JKR relation, the elastic slots see the Hertz contact of
+/// that radius (overlap a²/R*: force 4E* a³/(3R*), stiffness 2E* a, Mindlin 8G* a) and the pull
+/// √(8π γ E* a³) is subtracted, so the normal force is JKR's. A contact forms at touch and holds
+/// in tension until δ_c = −3 a_c²/R*, where it parts; the largest pull on the way is the
+/// pull-off force 3/2 π γ R*. The Coulomb and rolling limits scale with F_JKR + 2·(3/2 π γ R*),
+/// which stays positive while the contact holds (Thornton & Yin 1991, Powder Technol. 65:153).
+/// γ: the pair's work of adhesion [J/m²].
+struct JkrCohesion {
+  static constexpr const char* keyword = "jkr";
+  static constexpr const char* material_keys = "surface_energy";
+  static constexpr bool needs_contact_area = false;
+  static constexpr bool needs_effective_radius = true;
+  static constexpr int history_size = 1;
+  template <class S>
+  GPUDEM_HD static ContactPointT<S> elastic_point(const ContactPairParamsT<S>& p,
+                                                  const ContactPointT<S>& c) {
+    const S a =
+        jkr_contact_radius(p.surface_energy, p.effective_young, c.effective_radius, c.overlap);
+    ContactPointT<S> e = c;
+    e.overlap = a * a / c.effective_radius;
+    return e;
+  }
+  template <class S>
+  GPUDEM_HD static S force(const ContactPairParamsT<S>& p, const ContactPointT<S>& e) {
+    return jkr_adhesive_force(p.surface_energy, p.effective_young, contact_radius(e));
+  }
+  template <class S>
+  GPUDEM_HD static S friction_load(const ContactPairParamsT<S>& p, const ContactPointT<S>& e,
+                                   S elastic_force, S pull) {
+    return elastic_force - pull +
+           S(3) * S(3.14159265358979323846) * p.surface_energy * e.effective_radius;
+  }
+  template <class S>
+  GPUDEM_HD static S energy(const ContactPairParamsT<S>& p, const ContactPointT<S>& e) {
+    return jkr_adhesive_energy(p.surface_energy, p.effective_young, e.effective_radius,
+                               contact_radius(e));
+  }
+  template <class S>
+  GPUDEM_HD static S pull_off_gap(const ContactPairParamsT<S>& p, S effective_radius) {
+    return p.surface_energy > 0
+               ? jkr_pull_off_gap(p.surface_energy, p.effective_young, effective_radius)
+               : S(0);
+  }
+
+ private:
+  /// a of the Hertz-equivalent point e: √(R* δ_e).
+  template <class S>
+  GPUDEM_HD static S contact_radius(const ContactPointT<S>& e) {
+    return square_root(e.effective_radius * e.overlap);
   }
 };
 

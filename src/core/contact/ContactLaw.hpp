@@ -42,12 +42,15 @@ struct ContactLaw {
   using Rolling = RollingSlot;
   using Cohesion = CohesionSlot;
 
-  static constexpr int history_size = Tangential::history_size + Rolling::history_size;
+  static constexpr int history_size =
+      Tangential::history_size + Rolling::history_size + Cohesion::history_size;
   static constexpr int rolling_offset = Tangential::history_size;
+  /// Where the cohesion's history value (1 once the contact has formed) is, when it keeps one.
+  static constexpr int formed_offset = Tangential::history_size + Rolling::history_size;
   static constexpr bool needs_spin = Tangential::needs_spin || Rolling::needs_spin;
-  static constexpr bool needs_effective_radius = Normal::needs_effective_radius ||
-                                                 Tangential::needs_effective_radius ||
-                                                 Rolling::needs_effective_radius;
+  static constexpr bool needs_effective_radius =
+      Normal::needs_effective_radius || Tangential::needs_effective_radius ||
+      Rolling::needs_effective_radius || Cohesion::needs_effective_radius;
   static constexpr bool needs_inertia = Rolling::needs_inertia;
   static constexpr bool needs_contact_area = Cohesion::needs_contact_area;
   static constexpr bool has_tangential_force = Tangential::history_size > 0;
@@ -57,24 +60,39 @@ struct ContactLaw {
   using Force = ContactForce<Scalar>;
 
   /// Force and rolling torque on i; advances `history` by dt (dt = 0: reads the stored state).
-  /// Normal: F_n = F_e + F_d (clamped at 0 if the damping law says so) minus cohesion; the
-  /// Coulomb and rolling limits scale with the elastic force F_e (TangentialLaws.hpp).
+  /// The elastic, damping, tangential and rolling slots see the cohesion's elastic point e.
+  /// Normal: F_n = F_e + F_d (clamped at 0 if the damping law says so) minus the cohesion's
+  /// pull; the Coulomb and rolling limits scale with the cohesion's friction load (F_e, or
+  /// JKR's F_e − pull + 2 F_pull-off; TangentialLaws.hpp).
   GPUDEM_HD static Force evaluate(const Params& p, const Point& c, Scalar* history, Scalar dt) {
-    const NormalResponse<Scalar> n = Normal::respond(p, c);
-    Scalar fn = n.force + Damping::template normal_force<Normal>(p, c, n);
+    const Point e = Cohesion::elastic_point(p, c);
+    const NormalResponse<Scalar> n = Normal::respond(p, e);
+    Scalar fn = n.force + Damping::template normal_force<Normal>(p, e, n);
     if (Damping::clamps_attraction && fn < 0) fn = 0;
+    const Scalar pull = Cohesion::force(p, e);
+    const Scalar load = Cohesion::friction_load(p, e, n.force, pull);
     Force out;
-    out.tangential = Tangential::template force<Damping, Normal>(p, c, n.force, history, dt);
-    out.force = out.tangential - (fn - Cohesion::force(p, c)) * c.normal;
-    out.rolling_torque = Rolling::torque(p, c, n, n.force, history + rolling_offset, dt);
+    out.tangential = Tangential::template force<Damping, Normal>(p, e, load, history, dt);
+    out.force = out.tangential - (fn - pull) * c.normal;
+    out.rolling_torque = Rolling::torque(p, e, n, load, history + rolling_offset, dt);
+    if constexpr (Cohesion::history_size > 0)
+      if (dt > 0) history[formed_offset] = 1;
     return out;
   }
 
-  /// Elastic energy stored in the contact's springs (cohesion not included) [J].
+  /// True when the stored history says the contact has formed (a cohesion that holds contacts
+  /// past touch keeps it; false for the others).
+  GPUDEM_HD static bool has_formed(const Scalar* history) {
+    if constexpr (Cohesion::history_size > 0) return history[formed_offset] != 0;
+    return false;
+  }
+
+  /// Energy stored in the contact's springs and its adhesion (sjkr's not counted) [J].
   GPUDEM_HD static Scalar energy(const Params& p, const Point& c, const Scalar* history) {
-    const NormalResponse<Scalar> n = Normal::respond(p, c);
-    return Normal::energy(p, c) + Tangential::energy(p, c, history) +
-           Rolling::energy(p, c, n, history + rolling_offset);
+    const Point e = Cohesion::elastic_point(p, c);
+    const NormalResponse<Scalar> n = Normal::respond(p, e);
+    return Normal::energy(p, e) + Tangential::energy(p, e, history) +
+           Rolling::energy(p, e, n, history + rolling_offset) + Cohesion::energy(p, e);
   }
 
   /// Bytes one contact evaluation reads beyond the partner's position, radius, velocity and

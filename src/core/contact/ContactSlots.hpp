@@ -35,10 +35,10 @@ using NormalSlots = SlotList<HookeNormal, HertzNormal>;
 using DampingSlots = SlotList<NoDamping, RestitutionDamping, ViscoelasticDamping>;
 using TangentialSlots = SlotList<NoTangential, LinearHistoryTangential, MindlinTangential>;
 using RollingSlots = SlotList<NoRolling, ConstantTorqueRolling, EpsdRolling>;
-using CohesionSlots = SlotList<NoCohesion, SjkrCohesion>;
+using CohesionSlots = SlotList<NoCohesion, SjkrCohesion, JkrCohesion>;
 
 /// History values per contact of choice `index` of a slot that keeps history (tangential,
-/// rolling).
+/// rolling, cohesion).
 template <class... Slots>
 constexpr int history_size_of(SlotList<Slots...>, std::size_t index) {
   constexpr int sizes[] = {Slots::history_size...};

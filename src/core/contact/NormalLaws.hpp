@@ -7,6 +7,7 @@
 
 #include "core/ContactParams.hpp"
 #include "core/contact/ContactPoint.hpp"
+#include "core/contact/JkrRelation.hpp"
 
 namespace gpudem {
 
@@ -55,8 +56,9 @@ struct HookeNormal {
 /// Host: the pair modulus 1/E* = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂; for an impact at v the contact
 /// duration t_c = 2.87 (m*² / (R* E*² v))^{1/5} and the peak overlap
 /// δ_max = (15 m* v² / (16 E* √R*))^{2/5} (Johnson 1985, ch. 11); the stable step 2/ω of the
-/// stiffest moment, ω² the larger of S_n/m* (S_n = 2 E* √(R* δ_max)) and the tangential slot's
-/// peak_frequency_squared.
+/// stiffest moment, ω² the larger of S_n/m* (S_n = 2 E* a, a = √(R* δ_max), or with JKR
+/// adhesion the larger JKR contact radius at δ_max, which stays a₀ > 0 as δ_max → 0) and the
+/// tangential slot's peak_frequency_squared at that a.
 struct HertzNormal {
   static constexpr const char* keyword = "hertz";
   static constexpr const char* material_keys = "";
@@ -86,7 +88,8 @@ struct HertzNormal {
   }
   template <class Tangential>
   static double stable_step(const ImpactPair& p) {
-    const double root = std::sqrt(p.radius * peak_overlap(p));  // √(R* δ_max)
+    const double root =  // a: √(R* δ_max) without adhesion
+        jkr_contact_radius(p.surface_energy, p.young, p.radius, peak_overlap(p));
     const double omega2 =
         std::max(2 * p.young * root / p.mass, Tangential::peak_frequency_squared(p, root));
     return 2 / std::sqrt(omega2);

@@ -124,7 +124,7 @@ struct MindlinTangential {
     return 1 / ((2 - poisson_a) / shear_modulus(young_a, poisson_a) +
                 (2 - poisson_b) / shear_modulus(young_b, poisson_b));
   }
-  /// `root`: √(R* δ_max).
+  /// `root`: the contact radius at the peak, √(R* δ_max) without adhesion.
   static double peak_frequency_squared(const ImpactPair& p, double root) {
     return 8 * p.shear * root / (2.0 / 7.0 * p.mass);
   }

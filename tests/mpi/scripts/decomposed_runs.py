@@ -671,6 +671,38 @@ def piston(runner):
     compare_piston_path(runner, "piston_restart", reference, out)
 
 
+# ---- sticky -------------------------------------------------------------------------------------
+
+
+def without_formed_flags(checkpoint, copy):
+    """A copy of `checkpoint` whose contacts have all forgotten that they formed (JKR's last
+    history value zeroed): those held in tension past touch let go."""
+    shutil.copy(checkpoint, copy)
+    with h5py.File(copy, "r+") as f:
+        for name in ("pair_history", "wall_history"):
+            values = f[name][...]
+            values[:, -1] = 0
+            f[name][...] = values
+
+
+def sticky(runner):
+    scene = SCENES / "sticky.toml"
+    reference = runner.run("sticky_n1", scene, 1)
+    compare_layouts(runner, "sticky", scene, reference, compare_series,
+                    (("slabs_n2", 2, "[2,1,1]"), ("slabs_n3", 3, "[3,1,1]"),
+                     ("blocks_2x2", 4, "[2,2,1]")))
+    half = ["simulation.end_time=0.05", "checkpoint.every=0.05"]
+    out = runner.run("sticky_restart", scene, 3, *half)
+    checkpoint = out / "checkpoint.h5"
+    with h5py.File(checkpoint, "r") as f:
+        formed = int(np.count_nonzero(f["pair_history"][:, -1]))
+    print(f"sticky_restart: {formed} formed pair contacts in the checkpoint")
+    stripped = runner.work / "without_formed_flags.h5"
+    without_formed_flags(checkpoint, stripped)
+    continue_on_two_ranks(runner, "sticky", scene, reference, checkpoint, stripped,
+                          "the contacts' formed flags")
+
+
 # ---- adaptive -----------------------------------------------------------------------------------
 
 ADAPTIVE = ('simulation.dt="adaptive"', "simulation.displacement_fraction=0.01")
@@ -838,7 +870,8 @@ def main():
     parser.add_argument("--work", required=True)
     parser.add_argument("case", choices=["same-physics", "restart", "balance", "momentum",
                                          "leaving", "tiled", "sliding-pair", "killed-checkpoint",
-                                         "tool", "piston", "adaptive", "bed", "cuda"])
+                                         "tool", "piston", "sticky", "adaptive", "bed",
+                                         "cuda"])
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
@@ -847,7 +880,7 @@ def main():
              "momentum": momentum, "leaving": leaving, "tiled": tiled,
              "sliding-pair": sliding_pair,
              "killed-checkpoint": killed_checkpoint, "tool": tool, "piston": piston,
-             "adaptive": adaptive, "bed": bed, "cuda": cuda}
+             "sticky": sticky, "adaptive": adaptive, "bed": bed, "cuda": cuda}
     if cases[args.case](runner) == SKIPPED:
         return SKIPPED
     for line in runner.failures:
