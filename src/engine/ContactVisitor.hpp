@@ -358,8 +358,9 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
     const Real reach = xi.w + xj.w;
     Real limit = reach;
     if constexpr (Law::Cohesion::history_size > 0)
-      limit += holding_gap<Law>(s.pair_params[mi * s.material_count + p.material[j]],
-                                xi.w * xj.w / reach, s.pair_history[k]);
+      if (dist2 >= reach * reach)
+        limit += holding_gap<Law>(s.pair_params[mi * s.material_count + p.material[j]],
+                                  xi.w * xj.w / reach, s.pair_history[k]);
     if (dist2 >= limit * limit || dist2 == 0) {
       visit.separated(k);
       continue;
@@ -385,8 +386,9 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
     const std::uint32_t slot = i * s.wall_count + w;
     Real gap = 0;
     if constexpr (Law::Cohesion::history_size > 0)
-      gap = holding_gap<Law>(s.pair_params[mi * s.material_count + wall.material], xi.w,
-                             s.wall_history[slot]);
+      if (overlap <= 0)
+        gap = holding_gap<Law>(s.pair_params[mi * s.material_count + wall.material], xi.w,
+                               s.wall_history[slot]);
     if (overlap <= -gap) {
       visit.separated_from_wall(slot);
       continue;

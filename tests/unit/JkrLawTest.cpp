@@ -73,21 +73,25 @@ std::vector<double> unloading_path(int n) {
   return path;
 }
 
-TEST(JkrRelation, ScaledRadiusSolvesTheQuarticFromPartingToDeepOverlap) {
-  for (const double d :
-       {-3.0, -2.9999, -2.5, -1.443, -0.5, 0.0, 0.3, 1.0, 7.0, 1e3, 1e5, 2e6, 1e9}) {
-    const double a = jkr_scaled_radius(d);
-    EXPECT_GE(a, 1.0) << d;
-    EXPECT_NEAR(a * a - 4 * std::sqrt(a), d, 1e-12 * std::max(1.0, std::abs(d))) << d;
-    // In float: a small backward error everywhere; near the fold δ̂ = −3, where â − 1 grows
-    // as √(δ̂ + 3), the forward error is that backward error over dδ̂/dâ → 0.
-    const double af = jkr_scaled_radius(static_cast<float>(d));
-    const double df = static_cast<float>(d);
-    EXPECT_NEAR(af * af - 4 * std::sqrt(af), df, 32 * 1.2e-7 * std::max(1.0, std::abs(d))) << d;
-    if (d >= -2.5) EXPECT_NEAR(af, a, 2e-6 * a) << "float at " << d;
+/// With k = 1 (a_c = R*) the relative radius solves â² − 4√â = δ̂ in the JKR paper's scaling;
+/// with the k of a soil grain it does the same in lengths of a_c.
+TEST(JkrRelation, RelativeRadiusSolvesTheQuarticFromPartingToDeepOverlap) {
+  for (const double k : {1.0, 1e-9}) {
+    const double scale = std::cbrt(k);  // a_c / R*
+    for (const double d :
+         {-3.0, -2.9999, -2.5, -1.443, -0.5, 0.0, 0.3, 1.0, 7.0, 1e3, 1e5, 2e6, 1e9}) {
+      const double a = jkr_relative_radius(k, d * scale * scale) / scale;  // â
+      EXPECT_GE(a, 1.0 - 1e-12) << d;
+      EXPECT_NEAR(a * a - 4 * std::sqrt(a), d, 1e-11 * std::max(1.0, std::abs(d))) << d;
+      // In float: a small backward error everywhere; near the fold δ̂ = −3, where â − 1 grows
+      // as √(δ̂ + 3), the forward error is that backward error over dδ̂/dâ → 0.
+      const float kf = static_cast<float>(k), df = static_cast<float>(d * scale * scale);
+      const double af = jkr_relative_radius(kf, df) / scale;
+      EXPECT_NEAR(af * af - 4 * std::sqrt(af), d, 32 * 1.2e-7 * std::max(1.0, std::abs(d))) << d;
+      if (d >= -2.5) EXPECT_NEAR(af, a, 2e-6 * a) << "float at " << d;
+    }
   }
-  EXPECT_NEAR(jkr_scaled_radius(0.0), std::cbrt(16.0), 1e-14);  // a₀ at touch
-  EXPECT_EQ(jkr_scaled_radius(-3.5), 1.0);                      // clamped at the parting point
+  EXPECT_NEAR(jkr_relative_radius(1.0, 0.0), std::cbrt(16.0), 1e-14);  // â₀ at touch
 }
 
 TEST(JkrLaw, ForceOverlapCurveFollowsTheForceSideRelationOnBothBranches) {

@@ -1,7 +1,7 @@
 #pragma once
 /// Cohesion slot: the pull that holds a contact together (moist soil). Each choice gives
-///   elastic_point  the contact as the elastic slots see it (the same, or JKR's Hertz-equivalent);
-///   force          its pull F_c ≥ 0 at that point, subtracted from the normal force;
+///   adhere         the contact as the elastic slots see it (the same, or JKR's Hertz-equivalent)
+///                  and its pull F_c ≥ 0 there, subtracted from the normal force;
 ///   friction_load  the load that sets the Coulomb and rolling limits;
 ///   energy         the energy its pull stores (the part not in Normal::energy);
 ///   pull_off_gap   how far past touch a formed contact holds (0: it parts at touch).
@@ -12,15 +12,17 @@
 
 namespace gpudem {
 
+/// A contact as the elastic slots see it, and the cohesion's pull there.
+template <class S>
+struct Adhesion {
+  ContactPointT<S> point;
+  S pull = 0;  ///< F_c ≥ 0, towards the partner [N]
+};
+
 /// The members shared by the choices that act only while the particles overlap.
 struct TouchingCohesion {
   static constexpr int history_size = 0;
   static constexpr bool needs_effective_radius = false;
-  template <class S>
-  GPUDEM_HD static ContactPointT<S> elastic_point(const ContactPairParamsT<S>&,
-                                                  const ContactPointT<S>& c) {
-    return c;
-  }
   template <class S>
   GPUDEM_HD static S friction_load(const ContactPairParamsT<S>&, const ContactPointT<S>&,
                                    S elastic_force, S) {
@@ -41,8 +43,8 @@ struct NoCohesion : TouchingCohesion {
   static constexpr const char* material_keys = "";
   static constexpr bool needs_contact_area = false;
   template <class S>
-  GPUDEM_HD static S force(const ContactPairParamsT<S>&, const ContactPointT<S>&) {
-    return 0;
+  GPUDEM_HD static Adhesion<S> adhere(const ContactPairParamsT<S>&, const ContactPointT<S>& c) {
+    return {c, S(0)};
   }
 };
 
@@ -54,8 +56,8 @@ struct SjkrCohesion : TouchingCohesion {
   static constexpr const char* material_keys = "cohesion_energy_density";
   static constexpr bool needs_contact_area = true;
   template <class S>
-  GPUDEM_HD static S force(const ContactPairParamsT<S>& p, const ContactPointT<S>& c) {
-    return p.cohesion_energy_density * S(3.14159265358979323846) * c.contact_radius_sq;
+  GPUDEM_HD static Adhesion<S> adhere(const ContactPairParamsT<S>& p, const ContactPointT<S>& c) {
+    return {c, p.cohesion_energy_density * S(3.14159265358979323846) * c.contact_radius_sq};
   }
 };
 
@@ -73,18 +75,22 @@ struct JkrCohesion {
   static constexpr bool needs_contact_area = false;
   static constexpr bool needs_effective_radius = true;
   static constexpr int history_size = 1;
+  /// With x = √(a/R*) and k = π γ/(8E* R*) (jkr_relative_radius): overlap a²/R* = R* x⁴ and
+  /// pull √(8π γ E* a³) = 8 E* R*² √k x³, no root beyond those of the solve.
   template <class S>
-  GPUDEM_HD static ContactPointT<S> elastic_point(const ContactPairParamsT<S>& p,
-                                                  const ContactPointT<S>& c) {
-    const S a =
-        jkr_contact_radius(p.surface_energy, p.effective_young, c.effective_radius, c.overlap);
-    ContactPointT<S> e = c;
-    e.overlap = a * a / c.effective_radius;
-    return e;
-  }
-  template <class S>
-  GPUDEM_HD static S force(const ContactPairParamsT<S>& p, const ContactPointT<S>& e) {
-    return jkr_adhesive_force(p.surface_energy, p.effective_young, contact_radius(e));
+  GPUDEM_HD static Adhesion<S> adhere(const ContactPairParamsT<S>& p, const ContactPointT<S>& c) {
+    Adhesion<S> out{c, S(0)};
+    const S r = c.effective_radius;
+    if (!(p.surface_energy > 0)) {
+      out.point.overlap = c.overlap > 0 ? c.overlap : S(0);
+      return out;
+    }
+    const S k = S(3.14159265358979323846) * p.surface_energy / (S(8) * p.effective_young * r);
+    const S x2 = jkr_relative_radius(k, c.overlap / r);  // x² = a/R*
+    const S x = square_root(x2);
+    out.point.overlap = r * x2 * x2;
+    out.pull = S(8) * p.effective_young * r * r * square_root(k) * x2 * x;
+    return out;
   }
   template <class S>
   GPUDEM_HD static S friction_load(const ContactPairParamsT<S>& p, const ContactPointT<S>& e,
@@ -95,20 +101,13 @@ struct JkrCohesion {
   template <class S>
   GPUDEM_HD static S energy(const ContactPairParamsT<S>& p, const ContactPointT<S>& e) {
     return jkr_adhesive_energy(p.surface_energy, p.effective_young, e.effective_radius,
-                               contact_radius(e));
+                               square_root(e.effective_radius * e.overlap));
   }
   template <class S>
   GPUDEM_HD static S pull_off_gap(const ContactPairParamsT<S>& p, S effective_radius) {
     return p.surface_energy > 0
                ? jkr_pull_off_gap(p.surface_energy, p.effective_young, effective_radius)
                : S(0);
-  }
-
- private:
-  /// a of the Hertz-equivalent point e: √(R* δ_e).
-  template <class S>
-  GPUDEM_HD static S contact_radius(const ContactPointT<S>& e) {
-    return square_root(e.effective_radius * e.overlap);
   }
 };
 

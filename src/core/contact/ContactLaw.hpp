@@ -60,16 +60,17 @@ struct ContactLaw {
   using Force = ContactForce<Scalar>;
 
   /// Force and rolling torque on i; advances `history` by dt (dt = 0: reads the stored state).
-  /// The elastic, damping, tangential and rolling slots see the cohesion's elastic point e.
+  /// The elastic, damping, tangential and rolling slots see the cohesion's point e (adhere).
   /// Normal: F_n = F_e + F_d (clamped at 0 if the damping law says so) minus the cohesion's
   /// pull; the Coulomb and rolling limits scale with the cohesion's friction load (F_e, or
   /// JKR's F_e − pull + 2 F_pull-off; TangentialLaws.hpp).
   GPUDEM_HD static Force evaluate(const Params& p, const Point& c, Scalar* history, Scalar dt) {
-    const Point e = Cohesion::elastic_point(p, c);
+    const Adhesion<Scalar> adhesion = Cohesion::adhere(p, c);
+    const Point& e = adhesion.point;
+    const Scalar pull = adhesion.pull;
     const NormalResponse<Scalar> n = Normal::respond(p, e);
     Scalar fn = n.force + Damping::template normal_force<Normal>(p, e, n);
     if (Damping::clamps_attraction && fn < 0) fn = 0;
-    const Scalar pull = Cohesion::force(p, e);
     const Scalar load = Cohesion::friction_load(p, e, n.force, pull);
     Force out;
     out.tangential = Tangential::template force<Damping, Normal>(p, e, load, history, dt);
@@ -89,7 +90,7 @@ struct ContactLaw {
 
   /// Energy stored in the contact's springs and its adhesion (sjkr's not counted) [J].
   GPUDEM_HD static Scalar energy(const Params& p, const Point& c, const Scalar* history) {
-    const Point e = Cohesion::elastic_point(p, c);
+    const Point e = Cohesion::adhere(p, c).point;
     const NormalResponse<Scalar> n = Normal::respond(p, e);
     return Normal::energy(p, e) + Tangential::energy(p, e, history) +
            Rolling::energy(p, e, n, history + rolling_offset) + Cohesion::energy(p, e);

@@ -16,25 +16,26 @@ namespace gpudem {
 GPUDEM_HD inline double cube_root(double x) { return cbrt(x); }
 GPUDEM_HD inline float cube_root(float x) { return cbrtf(x); }
 
-/// â of the contact at scaled overlap δ̂ ≥ −3: the root â ≥ 1 of δ̂ = â² − 4√â. With x = √â
-/// the quartic x⁴ − 4x − δ̂ = 0 factors (Ferrari) through the positive root m of the resolvent
-/// cubic m³ + δ̂ m − 2 = 0 into x = (s + √(8/s − s²))/2, s = √(2m). Cardano's root m = u + v,
-/// u = ∛(1 + √(1 + δ̂³/27)), v = −δ̂/(3u), is taken as 2/(u² − uv + v²) (u³ + v³ = 2), which
-/// has no cancellation at any δ̂; beyond δ̂ = 10⁶, m = 2/δ̂ to within 4/δ̂³.
+/// ρ = a/R* of the contact at relative overlap d = δ/R* ≥ δ_c/R*, for k = (a_c/R*)³ =
+/// π γ/(8E* R*): the root ρ ≥ k^{1/3} of d = ρ² − 4 √k √ρ (the relation above over R*), in
+/// x = √ρ the quartic x⁴ − 4√k x − d = 0. It factors (Ferrari) through the positive root m of the
+/// resolvent cubic m³ + d m − 2k = 0 into x = (s + √(8√k/s − s²))/2, s = √(2m). Cardano's root m =
+/// u + v, u = ∛(k + √(k² + d³/27)), v = −d/(3u), is taken as 2k/(u² − uv + v²) (u³ + v³ = 2k),
+/// which has no cancellation at any d; where d³ > 27·10¹⁸ k² (deep in the Hertz regime), m = 2k/d
+/// to within 4k²/d³. Lengths relative to R* keep every power within float's range.
 template <class S>
-GPUDEM_HD S jkr_scaled_radius(S scaled_overlap) {
-  const S d = scaled_overlap > S(-3) ? scaled_overlap : S(-3);
+GPUDEM_HD S jkr_relative_radius(S k, S d) {
   S m;
-  if (d > S(1e6)) {
-    m = S(2) / d;
+  if (d > 0 && d * d * d > S(27e18) * k * k) {
+    m = S(2) * k / d;
   } else {
-    const S root = S(1) + d * d * d / S(27);
-    const S u = cube_root(S(1) + square_root(root > 0 ? root : S(0)));
+    const S root = k * k + d * d * d / S(27);
+    const S u = cube_root(k + square_root(root > 0 ? root : S(0)));
     const S v = -d / (S(3) * u);
-    m = S(2) / (u * u - u * v + v * v);
+    m = S(2) * k / (u * u - u * v + v * v);
   }
   const S s = square_root(S(2) * m);
-  const S rest = S(8) / s - s * s;
+  const S rest = S(8) * square_root(k) / s - s * s;
   const S x = S(0.5) * (s + square_root(rest > 0 ? rest : S(0)));
   return x * x;
 }
@@ -59,15 +60,8 @@ GPUDEM_HD S jkr_pull_off_gap(S work_of_adhesion, S young, S radius) {
 template <class S>
 GPUDEM_HD S jkr_contact_radius(S work_of_adhesion, S young, S radius, S overlap) {
   if (!(work_of_adhesion > 0)) return overlap > 0 ? square_root(radius * overlap) : S(0);
-  const S parting_sq = jkr_parting_radius_sq(work_of_adhesion, young, radius);
-  return square_root(parting_sq) * jkr_scaled_radius(overlap * radius / parting_sq);
-}
-
-/// √(8π γ E* a³): the adhesive part of the JKR force at contact radius a, pulling [N].
-template <class S>
-GPUDEM_HD S jkr_adhesive_force(S work_of_adhesion, S young, S contact_radius) {
-  return square_root(S(8) * S(3.14159265358979323846) * work_of_adhesion * young * contact_radius *
-                     contact_radius * contact_radius);
+  const S k = S(3.14159265358979323846) * work_of_adhesion / (S(8) * young * radius);
+  return radius * jkr_relative_radius(k, overlap / radius);
 }
 
 /// The energy stored by adhesion at contact radius a, ∫₀^δ F dδ' less the Hertz energy
