@@ -340,6 +340,38 @@ GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi,
     if (!set.is_contact(k)) visit.separated_from_mesh(begin + k);
 }
 
+/// The plane-wall contacts of particle i, each wall in order: positive overlap, or a formed
+/// contact within the cohesion's pull-off gap; the others are separated.
+template <class Law, class Visitor>
+GPUDEM_HD void visit_wall_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi, MaterialId mi,
+                                   const ContactScene<Law>& s, Visitor& visit) {
+  for (std::uint32_t w = 0; w < s.wall_count; ++w) {
+    const PlaneWall& wall = s.walls[w];
+    const Real overlap = wall_overlap(wall, xyz(xi), xi.w);
+    const std::uint32_t slot = i * s.wall_count + w;
+    Real gap = 0;
+    if constexpr (Law::Cohesion::history_size > 0)
+      if (overlap <= 0)
+        gap = holding_gap<Law>(s.pair_params[mi * s.material_count + wall.material], xi.w,
+                               s.wall_history[slot]);
+    if (overlap <= -gap) {
+      visit.separated_from_wall(slot);
+      continue;
+    }
+    ContactSample<Law> c;
+    c.point.normal = -wall.normal;
+    c.point.overlap = overlap;
+    c.arm = xi.w - Real(0.5) * overlap;
+    describe_wall(c, xi, vi, wi, wall.velocity);
+    c.min_radius = xi.w;
+    c.params = &s.pair_params[mi * s.material_count + wall.material];
+    c.wall = static_cast<std::int32_t>(w);
+    c.slot = slot;
+    if constexpr (Law::history_size > 0) c.state = s.wall_history[slot];
+    visit(c);
+  }
+}
+
 /// Calls visit(sample) for each contact of particle i: positive overlap, or, for a cohesion
 /// that holds contacts past touch (JKR), a formed contact within its pull-off gap.
 template <class Law, class P, class Visitor>
@@ -380,31 +412,7 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
     if constexpr (Law::history_size > 0) c.state = s.pair_history[k];
     visit(c);
   }
-  for (std::uint32_t w = 0; w < s.wall_count; ++w) {
-    const PlaneWall& wall = s.walls[w];
-    const Real overlap = wall_overlap(wall, xyz(xi), xi.w);
-    const std::uint32_t slot = i * s.wall_count + w;
-    Real gap = 0;
-    if constexpr (Law::Cohesion::history_size > 0)
-      if (overlap <= 0)
-        gap = holding_gap<Law>(s.pair_params[mi * s.material_count + wall.material], xi.w,
-                               s.wall_history[slot]);
-    if (overlap <= -gap) {
-      visit.separated_from_wall(slot);
-      continue;
-    }
-    ContactSample<Law> c;
-    c.point.normal = -wall.normal;
-    c.point.overlap = overlap;
-    c.arm = xi.w - Real(0.5) * overlap;
-    describe_wall(c, xi, vi, wi, wall.velocity);
-    c.min_radius = xi.w;
-    c.params = &s.pair_params[mi * s.material_count + wall.material];
-    c.wall = static_cast<std::int32_t>(w);
-    c.slot = slot;
-    if constexpr (Law::history_size > 0) c.state = s.wall_history[slot];
-    visit(c);
-  }
+  visit_wall_contacts(i, xi, vi, wi, mi, s, visit);
   if (s.mesh.mesh_count > 0) visit_mesh_contacts(i, xi, vi, wi, mi, s, visit);
 }
 

@@ -594,6 +594,14 @@ def compare_layouts(runner, label, scene, reference, compare_series_of, layouts,
         compare_series_of(runner, name, reference, out)
 
 
+def checkpoint_on_three_ranks(runner, label, scene, time, *settings):
+    """Runs `scene` (with `settings`) on 3 ranks to `time` into LABEL_restart, checkpointing
+    there; returns the checkpoint's path."""
+    out = runner.run(f"{label}_restart", scene, 3, f"simulation.end_time={time}",
+                     f"checkpoint.every={time}", *settings)
+    return out / "checkpoint.h5"
+
+
 def continue_on_two_ranks(runner, label, scene, reference, checkpoint, stripped, what):
     """Continues `checkpoint` (of run LABEL_restart) on 2 ranks, which must end equal to
     `reference` bit for bit, and its `stripped` copy (without `what`), which must not: the
@@ -616,9 +624,7 @@ def tool(runner):
     compare_layouts(runner, "tool", scene, reference, compare_tool_series,
                     (("slabs_n2", 2, "[2,1,1]"), ("slabs_n4", 4, "[4,1,1]"),
                      ("blocks_2x2", 4, "[2,2,1]")))
-    half = ["simulation.end_time=0.09", "checkpoint.every=0.09"]
-    out = runner.run("tool_restart", scene, 3, *half)
-    checkpoint = out / "checkpoint.h5"
+    checkpoint = checkpoint_on_three_ranks(runner, "tool", scene, 0.09)
     with h5py.File(checkpoint, "r") as f:
         springs = f["mesh_owner"].shape[0]
     print(f"tool_restart: {springs} mesh contact springs in the checkpoint")
@@ -691,9 +697,7 @@ def sticky(runner):
     compare_layouts(runner, "sticky", scene, reference, compare_series,
                     (("slabs_n2", 2, "[2,1,1]"), ("slabs_n3", 3, "[3,1,1]"),
                      ("blocks_2x2", 4, "[2,2,1]")))
-    half = ["simulation.end_time=0.05", "checkpoint.every=0.05"]
-    out = runner.run("sticky_restart", scene, 3, *half)
-    checkpoint = out / "checkpoint.h5"
+    checkpoint = checkpoint_on_three_ranks(runner, "sticky", scene, 0.05)
     with h5py.File(checkpoint, "r") as f:
         formed = int(np.count_nonzero(f["pair_history"][:, -1]))
     print(f"sticky_restart: {formed} formed pair contacts in the checkpoint")
