@@ -240,6 +240,15 @@ void BedLoader::apply_history(const Scene& scene, const MpiContext& mpi, StepEng
   ContactHistory history = std::move(*history_);
   history_.reset();
   const std::uint32_t width = contact_history_width(scene.contact.model);
+  if (scene.contact.model.cohesion == CohesionLaw::Jkr && history.width + 1 == width) {
+    // A bed of the same law without JKR: every record was a touching contact when written.
+    history = with_value_appended(history, 1);
+    if (mpi.is_root())
+      std::printf(
+          "bed %s: its contact history keeps %u values per contact, this law's without JKR's "
+          "formed flag; its contacts keep their springs and start formed\n",
+          path_.c_str(), width - 1);
+  }
   if (history.width != width) {
     if (mpi.is_root())
       std::printf(

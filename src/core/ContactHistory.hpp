@@ -161,6 +161,24 @@ inline ContactHistory collect_history(const ContactSlots& slots, std::uint32_t w
   return history;
 }
 
+/// `history` with `value` appended to every record (width + 1): the records of a law whose
+/// history is another's followed by one more value, e.g. JKR's formed flag after the springs.
+inline ContactHistory with_value_appended(const ContactHistory& history, Real value) {
+  ContactHistory out = history;
+  out.width = history.width + 1;
+  const auto extend = [&](const std::vector<Real>& in, std::size_t records, std::vector<Real>& to) {
+    to.clear();
+    for (std::size_t k = 0; k < records; ++k) {
+      to.insert(to.end(), in.begin() + k * history.width, in.begin() + (k + 1) * history.width);
+      to.push_back(value);
+    }
+  };
+  extend(history.pair_values, history.pair_owner.size(), out.pair_values);
+  extend(history.wall_values, history.wall_owner.size(), out.wall_values);
+  extend(history.mesh_values, history.mesh_owner.size(), out.mesh_values);
+  return out;
+}
+
 /// Flat history arrays (`width` values per contact) for `slots`, holding the records of
 /// `history` and zero elsewhere. Throws std::invalid_argument for a history of another width
 /// (written under another contact law), an unknown particle id, a pair that is not in the

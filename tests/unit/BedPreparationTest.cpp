@@ -299,6 +299,40 @@ TEST_F(BedPreparation, LawOfAnotherHistoryWidthStartsWithoutHistory) {
       << r.output;
 }
 
+/// The bed's Hooke law keeps 4 values per contact (linear_history); Hertz–Mindlin with JKR keeps
+/// those 4 and the formed flag.
+TEST_F(BedPreparation, JkrLawKeepsTheSpringsOfABedWithoutAdhesion) {
+  const fs::path out = dir_ / "out";
+  const std::string sticky =
+      replace(replace(kFromBedScene, "BED", bed().string()), "[contact]\nstiffness = 2000\n",
+              "[contact]\nnormal = \"hertz\"\ncohesion = \"jkr\"\n");
+  const test::RunResult r =
+      test::run_binary(scene(sticky) + " --quiet --set material.0.surface_energy=0.01" +
+                       " --output-dir " + out.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("keeps 4 values per contact, this law's without JKR's formed flag; its "
+                          "contacts keep their springs and start formed"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("zero contact history"), std::string::npos) << r.output;
+}
+
+TEST(BedHistory, AValueAppendedToEveryRecord) {
+  ContactHistory h;
+  h.width = 2;
+  const Real a[] = {1, 2}, b[] = {3, 4}, c[] = {5, 6};
+  h.add_pair(7, 8, a);
+  h.add_pair(8, 7, b);
+  h.add_wall(7, 0, c);
+  const ContactHistory out = with_value_appended(h, 1);
+  EXPECT_EQ(out.width, 3u);
+  EXPECT_EQ(out.pair_values, (std::vector<Real>{1, 2, 1, 3, 4, 1}));
+  EXPECT_EQ(out.wall_values, (std::vector<Real>{5, 6, 1}));
+  EXPECT_TRUE(out.mesh_values.empty());
+  EXPECT_EQ(out.pair_partner, h.pair_partner);
+  EXPECT_TRUE(out.lengths_agree());
+}
+
 TEST_F(BedPreparation, MissingBedIsRefused) {
   const fs::path out = dir_ / "out";
   const std::string missing = (dir_ / "nowhere.h5").string();
