@@ -146,6 +146,9 @@ void print_summary(const Scene& scene, const ParticleStore& deciding, std::uint6
         "impacts at v = %.4g m/s overlap by at most %.3g %% of the radius (instability at %.3g %%, "
         "reached at %.4g m/s)\n",
         impact.speed, 100 * impact.ratio, 100 * kUnstableOverlapRatio, impact.unstable_speed);
+  if (std::isfinite(limits.bond))
+    std::printf("bonds: %zu [[bond]] table(s); the stiffest bond vibrates with pi/omega = %.4g s\n",
+                scene.bonds.size(), limits.bond);
   print_mesh_summary(scene, setup);
   if (engine) {
     const std::string device =
@@ -208,6 +211,7 @@ struct StartShare {
     checkpoint->particles = ParticleStore{};
     checkpoint->list_position_radius = std::vector<Real4>{};
     checkpoint->history = ContactHistory{};
+    checkpoint->bonds = ContactHistory{};
   }
 };
 
@@ -246,6 +250,7 @@ void start_engine(StepEngine& engine, StartShare& share, const std::string& path
     c.particles = ParticleStore{};
     c.list_position_radius = std::vector<Real4>{};
     engine.set_contact_history(std::move(c.history));
+    engine.set_bonds(std::move(c.bonds), c.bonds_made);
   } catch (const std::invalid_argument& e) {
     throw InputError(path, 0, "", e.what());
   }
@@ -405,6 +410,7 @@ int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
   std::unique_ptr<StepEngine> engine = make_engine(options.backend, mpi, setup);
   start_engine(*engine, share, options.restart_file);
   if (!checkpoint) bed.apply_history(scene, mpi, *engine);
+  if (!checkpoint) engine->create_bonds();
   const std::string tuning = engine->tune_launches();
   prepare_output_directory(scene.output.dir);
   const std::vector<MemoryUse> memory = memory_over_ranks(mpi, *engine);

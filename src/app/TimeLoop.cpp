@@ -43,12 +43,13 @@ std::vector<std::string> timeseries_columns(const Scene& scene) {
                                 "imbalance",
                                 "dt"};
   for (std::string& name : force_columns(scene)) c.push_back(std::move(name));
+  if (!scene.bonds.empty()) c.insert(c.end(), {"bonds", "broken_bonds"});
   return c;
 }
 
 std::vector<double> timeseries_row(double time, std::uint64_t step, double dt, const Diagnostics& d,
                                    std::uint64_t removed, double imbalance,
-                                   const ImplementLoads& loads) {
+                                   const ImplementLoads& loads, bool with_bonds) {
   std::vector<double> row = {time,
                              static_cast<double>(step),
                              static_cast<double>(d.particle_count),
@@ -69,6 +70,9 @@ std::vector<double> timeseries_row(double time, std::uint64_t step, double dt, c
     append(d.mesh_torque[m]);
   }
   for (double value : loads.row(time, d.mesh_force, d.mesh_torque)) row.push_back(value);
+  if (with_bonds)
+    row.insert(row.end(),
+               {static_cast<double>(d.bond_count), static_cast<double>(d.broken_bond_count)});
   return row;
 }
 
@@ -166,6 +170,7 @@ Checkpoint TimeLoop::capture(std::uint64_t step) const {
   c.substeps = adaptive_ ? adaptive_->substeps() : 1;
   c.wall_motion = engine_.wall_motion();
   engine_.get_contact_history(c.history);
+  engine_.get_bonds(c.bonds, c.bonds_made);
   c.snapshots = snapshots_.writer().table();
   c.time = step * dt_;
   c.step = step;
@@ -242,7 +247,8 @@ std::optional<Diagnostics> TimeLoop::record_row(std::uint64_t step, bool snapsho
     row = engine_.diagnostics();
     imbalance_ = balance_.imbalance(engine_);
     series_.append(
-        timeseries_row(time, step, step_dt(), *row, removed, imbalance_, implement_loads_));
+        timeseries_row(time, step, step_dt(), *row, removed, imbalance_, implement_loads_,
+                       !scene_.bonds.empty()));
   }
   if (snapshot) write_snapshot(time, step);
   return row;

@@ -26,13 +26,17 @@
 /// the writing scene's materials by index; optional when read: without it, a file written
 /// before it existed, materials are taken by index). wall_motion (W×3 f64, written by rank 0:
 /// per plane wall its displacement, velocity and the particles' push, WallMotion.hpp; optional
-/// when read: without it every wall continues from rest at its start).
+/// when read: without it every wall continues from rest at its start). Parallel bonds, by
+/// rank slices, only in a run with bonds: bond_owner, bond_partner (B u64), bond_values (B×9
+/// f64, core/contact/ParallelBond.hpp's bond_value layout), each end's record of each intact
+/// bond; without them there are no bonds.
 /// Attributes: format_version, history_width (u32), time, dt, dt_fraction, skin (f64), step,
 /// removed, list_build_step (u64; the base step of the last neighbour-list build, optional when
 /// read: the step when missing), list_build_substep and list_build_substeps (u32; the substeps
 /// it was into the next base step, of how many; optional when read: 0 of 1), substeps (u32;
 /// the substeps of the last base step, dt = "adaptive"; optional when read: 1), dt_adaptive
-/// (u8: 1 when the run's dt was "adaptive"; optional when read: 0).
+/// (u8: 1 when the run's dt was "adaptive"; optional when read: 0), bonds_made (u64; the bonds
+/// made at the run's start, written with the bond datasets).
 #include <mpi.h>
 
 #include <cstdint>
@@ -56,6 +60,9 @@ struct Checkpoint {
   ParticleStore particles;                  ///< in the engine's order, with the step's forces
   std::vector<Real4> list_position_radius;  ///< positions at the last neighbour-list build
   ContactHistory history;
+  /// Each end's record of each intact bond (pair records only; width 0 without bonds).
+  ContactHistory bonds;
+  std::uint64_t bonds_made = 0;         ///< bonds made at the run's start
   std::vector<XdmfSnapshot> snapshots;  ///< snapshots written so far (SnapshotWriter::table)
   /// The names of the writing scene's materials, by index (none in files written before the
   /// names were recorded): a scene that lists its materials otherwise reads them by name.

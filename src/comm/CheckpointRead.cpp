@@ -15,6 +15,7 @@
 #include "comm/Hdf5Io.hpp"
 #include "core/ContactModel.hpp"
 #include "core/InputError.hpp"
+#include "core/contact/ParallelBond.hpp"
 
 namespace gpudem {
 namespace {
@@ -248,6 +249,20 @@ void read_history(const Reader& r, FilePart part, ContactHistory& h) {
   check_same_length(r, meshes);
 }
 
+/// The bond records of `part` (bond_values of 9 columns) and the count made; none in a file
+/// without bonds.
+void read_bonds(const Reader& r, FilePart part, Checkpoint& c) {
+  if (!r.has("bond_owner")) return;
+  ContactHistory& b = c.bonds;
+  b.width = bond_value::width;
+  LengthGroup bonds;
+  b.pair_owner = r.rows<ParticleId, ParticleId>("bond_owner", H5T_STD_U64LE, part, &bonds);
+  b.pair_partner = r.rows<ParticleId, ParticleId>("bond_partner", H5T_STD_U64LE, part, &bonds);
+  b.pair_values = r.columns("bond_values", b.width, part, bonds);
+  check_same_length(r, bonds);
+  c.bonds_made = r.attribute<std::uint64_t>("bonds_made", H5T_STD_U64LE);
+}
+
 /// Whether each of the table's `snapshots` holds the rank field (0 or 1); none does when the
 /// table has no snapshot_rank_field (written before it existed).
 std::vector<std::uint8_t> read_rank_field_flags(const Reader& r, std::size_t snapshots) {
@@ -377,6 +392,7 @@ Checkpoint read_checkpoint(const std::string& path, FilePart part) {
   read_attributes(reader, c);  // the version first: other versions may lay datasets out otherwise
   read_particles(reader, part, c);
   read_history(reader, part, c.history);
+  read_bonds(reader, part, c);
   read_snapshot_table(reader, c.snapshots);
   if (reader.has("material_names")) c.material_names = reader.strings("material_names");
   if (reader.has("wall_motion")) read_wall_motion(reader, c.wall_motion);
@@ -431,6 +447,19 @@ void fit_checkpoint_to_scene(Checkpoint& c, const std::string& path, const Scene
                          std::to_string(c.history.mesh_owner.front()) + " with triangle " +
                          std::to_string(c.history.mesh_triangle.front()) +
                          ") but the scene defines no mesh");
+  if (c.bonds.width > 0 && scene.bonds.empty())
+    throw InputError(path, 0, "",
+                     "holds parallel bonds but the scene defines no [[bond]] table: a run "
+                     "continues with the bonds it was saved with");
+  for (std::size_t k = 0; k < c.bonds.pair_owner.size(); ++k) {
+    const Real type = c.bonds.pair_values[k * c.bonds.width + bond_value::type];
+    if (!(type >= 0 && type < Real(scene.bonds.size())))
+      throw InputError(path, 0, "",
+                       "the bond of particles " + std::to_string(c.bonds.pair_owner[k]) + " and " +
+                           std::to_string(c.bonds.pair_partner[k]) + " is of [[bond]] table " +
+                           std::to_string(type) + " but the scene defines " +
+                           std::to_string(scene.bonds.size()));
+  }
   const std::uint32_t width = contact_history_width(scene.contact.model);
   if (c.history.width != width)
     throw InputError(path, 0, "",

@@ -90,6 +90,18 @@ void write_history(MPI_Comm comm, const ParallelFile& file, const ContactHistory
     file.write_dataset(real_rows("mesh_history", h.mesh_values.data(), h.width), meshes);
 }
 
+/// Each end's record of each intact bond, with the count made at the start; nothing without
+/// bonds.
+void write_bonds(MPI_Comm comm, const ParallelFile& file, const Checkpoint& c) {
+  const ContactHistory& b = c.bonds;
+  if (b.width == 0) return;
+  const Slice bonds = global_slice(comm, b.pair_owner.size());
+  file.write_dataset(id_rows("bond_owner", b.pair_owner.data()), bonds);
+  file.write_dataset(id_rows("bond_partner", b.pair_partner.data()), bonds);
+  file.write_dataset(real_rows("bond_values", b.pair_values.data(), b.width), bonds);
+  file.write_attribute("bonds_made", H5T_STD_U64LE, c.bonds_made);
+}
+
 /// Dataset `name` of rank 0's `texts` (the other ranks write no rows), as null-terminated
 /// fixed-length strings. Collective.
 void write_text_rows(MPI_Comm comm, const H5Calls& h5, const ParallelFile& file, const char* name,
@@ -205,6 +217,7 @@ void write_checkpoint(MPI_Comm comm, const std::string& dir, const Checkpoint& c
     ParallelFile file(comm, h5, temporary);
     write_particles(comm, file, checkpoint);
     write_history(comm, file, checkpoint.history);
+    write_bonds(comm, file, checkpoint);
     write_snapshot_table(comm, h5, file, checkpoint.snapshots);
     write_text_rows(comm, h5, file, "material_names", checkpoint.material_names);
     write_wall_motion(comm, file, checkpoint.wall_motion);

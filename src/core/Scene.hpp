@@ -2,6 +2,7 @@
 /// The validated scene: plain data filled by SceneLoader from a TOML file (docs/input.md).
 /// Units are SI throughout. Every field here is documented in docs/input.md.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -67,6 +68,7 @@ struct Material {
   double viscoelastic_time = 0;  ///< A of the viscoelastic damping law [s], >= 0
   double cohesion_energy_density = 0;  ///< k_c of simplified JKR [J/m^3], >= 0
   double surface_energy = 0;  ///< γ of JKR, work of adhesion per contact area [J/m^2], >= 0
+  bool fixed = false;  ///< its particles are held still (v = 0, ω = 0), feeling every load
 };
 
 /// An explicit [[pair]] entry: values that replace the mixing rule for one material pair (in
@@ -79,6 +81,20 @@ struct PairOverride {
   double rolling_friction = -1;
   double cohesion_energy_density = -1;
   double surface_energy = -1;
+};
+
+/// A [[bond]] table: at the start of a new run, a parallel bond (core/contact/ParallelBond.hpp) of
+/// this cement joins every two particles of materials a and b whose surfaces are at most `gap`
+/// apart (the first table that matches a pair makes its bond).
+struct BondSettings {
+  MaterialId a = 0, b = 0;
+  double gap = 0;                           ///< [m], >= 0
+  double young = 0;                         ///< E of the cement [Pa]
+  double poisson = 0.25;                    ///< ν of the cement, G = E / (2(1 + ν))
+  double radius_factor = 1;                 ///< λ: bond radius λ min(r_a, r_b)
+  double tensile_strength = INFINITY;       ///< σ_c [Pa]; absent: never breaks in tension
+  double shear_strength = INFINITY;         ///< τ_c [Pa]; absent: never breaks in shear
+  double damping_ratio = 0;                 ///< β, fraction of critical damping of each mode
 };
 
 /// Contact law selection: one choice per slot, validated against valid_contact_models().
@@ -216,6 +232,7 @@ struct Scene {
   DomainSettings domain;
   std::vector<Material> materials;
   ContactSettings contact;
+  std::vector<BondSettings> bonds;
   NeighborSettings neighbor;
   std::vector<WallSettings> walls;
   std::vector<MeshSettings> meshes;

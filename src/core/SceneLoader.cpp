@@ -30,6 +30,7 @@ namespace gpudem {
 using scene_reading::material_named;
 using scene_reading::mesh_angle_warnings;
 using scene_reading::named_choice;
+using scene_reading::read_bonds;
 using scene_reading::read_implements;
 using scene_reading::read_meshes;
 using scene_reading::read_sources;
@@ -127,7 +128,7 @@ double dynamic_friction(const TableReader& table, const std::string& key, double
 Material read_material(const TableReader& table) {
   table.allow_only({"name", "density", "young", "poisson", "restitution", "friction",
                     "friction_dynamic", "rolling_friction", "rolling_damping", "viscoelastic_time",
-                    "cohesion_energy_density", "surface_energy"});
+                    "cohesion_energy_density", "surface_energy", "fixed"});
   Material m;
   m.name = table.string("name");
   m.density = table.number("density", positive("kg/m^3"));
@@ -142,6 +143,7 @@ Material read_material(const TableReader& table) {
   m.cohesion_energy_density =
       table.number("cohesion_energy_density", non_negative("J/m^3"), m.cohesion_energy_density);
   m.surface_energy = table.number("surface_energy", non_negative("J/m^2"), m.surface_energy);
+  m.fixed = table.boolean("fixed", m.fixed);
   return m;
 }
 
@@ -443,7 +445,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   toml::value tree = parse_scene_file(path);
   apply_overrides(tree, overrides);
   const TableReader root(tree, path, "", "");
-  root.allow_only({"simulation", "domain", "material", "contact", "pair", "neighbor", "wall",
+  root.allow_only({"simulation", "domain", "material", "contact", "pair", "bond", "neighbor", "wall",
                    "mesh", "implement", "insert", "output", "checkpoint", "preparation",
                    "decomposition"});
   Scene scene;
@@ -453,6 +455,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   scene.materials = read_materials(root);
   scene.contact = read_contact(root);
   scene.contact.pairs = read_pairs(root, scene.materials, scene.contact.mixing);
+  scene.bonds = read_bonds(root, scene.materials);
   scene.warnings = ignored_key_warnings(root, path, scene.contact.model);
   scene.neighbor = read_neighbor(root);
   scene.walls = read_walls(root, scene.materials);

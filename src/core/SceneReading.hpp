@@ -25,6 +25,9 @@ MaterialId material_index(const TableReader& table, const std::string& key,
 /// The path string `key` names, resolved relative to the scene file's directory.
 std::string path_beside_scene(const TableReader& table, const std::string& key, const Scene& scene);
 
+/// The [[bond]] tables (SceneBonds.cpp).
+std::vector<BondSettings> read_bonds(const TableReader& root, const std::vector<Material>& materials);
+
 /// The enum value whose name (in `names`, enum order) `key` gives, or `fallback` when absent.
 template <class Enum>
 Enum named_choice(const TableReader& table, const std::string& key,

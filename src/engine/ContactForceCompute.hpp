@@ -85,7 +85,8 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
                              records(in.history.pair),
                              records(in.history.wall),
                              in.mesh,
-                             records(in.history.mesh)};
+                             records(in.history.mesh),
+                             in.bond_records};
   }
 
   DeviceArray<typename Law::Params, Space> pair_params_;

@@ -13,6 +13,7 @@
 #include "core/ParticleStore.hpp"
 #include "core/Vec3.hpp"
 #include "core/contact/ContactLaw.hpp"
+#include "core/contact/ParallelBond.hpp"
 #include "engine/MeshWalls.hpp"
 #include "engine/PeriodicBox.hpp"
 #include "engine/PlaneWall.hpp"
@@ -108,6 +109,14 @@ struct ContactScene {
   const typename Law::State* wall_history;  ///< per (particle, wall): slot i·wall_count + w
   MeshView mesh;
   const typename Law::State* mesh_history;  ///< per mesh candidate-list entry
+  /// Per neighbour-list entry, bond_value::width values: a pair whose rest length is not 0 is
+  /// bonded and has no contact (BondSet.hpp); null without bonds.
+  const typename Law::Scalar* bond_records = nullptr;
+
+  GPUDEM_HD bool bonded(std::uint32_t entry) const {
+    return bond_records &&
+           bond_records[std::size_t(entry) * bond_value::width + bond_value::rest_length] != 0;
+  }
 };
 
 /// Base for visitors that ignore partners out of contact.
@@ -384,6 +393,10 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
   const MaterialId mi = p.material[i];
   for (std::uint32_t k = s.neighbor_offsets[i]; k < s.neighbor_offsets[i + 1]; ++k) {
     const std::uint32_t j = s.neighbor_index[k];
+    if (s.bonded(k)) {
+      visit.separated(k);
+      continue;
+    }
     const Real4 xj = p.position(j);
     const Vec3 d = s.box.minimum_image(xyz(xj) - xyz(xi));
     const Real dist2 = norm2(d);

@@ -40,6 +40,9 @@ struct ContactInputs {
   PeriodicBox box;
   MeshView mesh;
   HistoryPointers<const S> history;
+  /// Per neighbour-list entry, the bond record (BondSet.hpp): a bonded pair has no contact;
+  /// null without bonds.
+  const S* bond_records = nullptr;
 };
 
 /// Where a force evaluation writes, per owned particle: force and torque in the law's scalar,

@@ -13,7 +13,8 @@
 namespace gpudem {
 
 /// v += h·F/m and, when the contact law exerts torques (kRotate), ω += h·T/I, in Real from
-/// a state held in scalar P and forces and torques held in scalar S.
+/// a state held in scalar P and forces and torques held in scalar S. A particle of a fixed
+/// material (fixed[material] = 1) keeps v = 0 and ω = 0 instead; fixed null: none is.
 template <bool kRotate, class S, class P>
 struct Kick {
   Vec4T<P>* velocity_inv_mass;
@@ -22,8 +23,15 @@ struct Kick {
   const Vec3T<S>* torque;
   const Vec4T<P>* position_radius;
   Real h;
+  const MaterialId* material = nullptr;
+  const std::uint8_t* fixed = nullptr;
   GPUDEM_HD void operator()(std::size_t i) const {
     Real4 v = vec4_cast<Real>(velocity_inv_mass[i]);
+    if (fixed && fixed[material[i]]) {
+      velocity_inv_mass[i] = vec4_cast<P>(Real4{0, 0, 0, v.w});
+      angular_velocity[i] = Vec3T<P>{};
+      return;
+    }
     const Vec3 f = vec_cast<Real>(force[i]);
     v.x += h * v.w * f.x;
     v.y += h * v.w * f.y;

@@ -21,8 +21,9 @@ namespace gpudem {
 /// Particles that travel between ranks, as host copies of their persistent fields (the
 /// engine's scalars: state P, loads S), with their pair history as rows keyed by partner id:
 /// particle i's records are row_partner / row_history [row_offsets[i], row_offsets[i + 1]), and
-/// its mesh history as rows keyed by triangle index in mesh_offsets the same way. Each history
-/// record is `history_width` values of scalar S.
+/// its mesh history as rows keyed by triangle index in mesh_offsets the same way, and its bonds
+/// as rows keyed by partner id in bond_offsets. Each history record is `history_width` values of
+/// scalar S, each bond record `bond_width` (0: the scene has no bonds).
 template <class S, class P>
 struct MigratingParticles {
   using Row = WireRow<field_use::persistent, P, S>;
@@ -36,6 +37,10 @@ struct MigratingParticles {
   std::vector<std::uint32_t> mesh_offsets{0};
   std::vector<std::uint32_t> mesh_triangle;
   std::vector<S> mesh_history;
+  std::uint32_t bond_width = 0;
+  std::vector<std::uint32_t> bond_offsets{0};
+  std::vector<ParticleId> bond_partner;
+  std::vector<S> bond_values;
 
   template <class F>
   auto& field() {
@@ -94,7 +99,7 @@ void take_record(const std::vector<char>& in, std::size_t& at, std::uint32_t wid
 }
 
 /// Particle i of `p` as bytes: its fields (WireRow), its wall records, then its row count and rows,
-/// then its mesh row count and mesh rows.
+/// then its mesh row count and mesh rows, then, with bonds, its bond count and bonds.
 template <class S, class P>
 void pack(const MigratingParticles<S, P>& p, std::size_t i, std::uint32_t walls,
           std::vector<char>& out) {
@@ -111,6 +116,23 @@ void pack(const MigratingParticles<S, P>& p, std::size_t i, std::uint32_t walls,
     put(out, p.mesh_triangle[e]);
     put_record(out, p.mesh_history, e, width);
   }
+  if (p.bond_width == 0) return;
+  put(out, p.bond_offsets[i + 1] - p.bond_offsets[i]);
+  for (std::uint32_t e = p.bond_offsets[i]; e < p.bond_offsets[i + 1]; ++e) {
+    put(out, p.bond_partner[e]);
+    put_record(out, p.bond_values, e, p.bond_width);
+  }
+}
+
+/// Appends one particle's bond rows from `in` to `p`.
+template <class S, class P>
+void take_bonds(const std::vector<char>& in, std::size_t& at, MigratingParticles<S, P>& p) {
+  const auto bonds = take<std::uint32_t>(in, at);
+  for (std::uint32_t e = 0; e < bonds; ++e) {
+    p.bond_partner.push_back(take<ParticleId>(in, at));
+    take_record(in, at, p.bond_width, p.bond_values);
+  }
+  p.bond_offsets.push_back(static_cast<std::uint32_t>(p.bond_partner.size()));
 }
 
 /// Appends the particles packed in `in` to `p`.
@@ -134,6 +156,7 @@ void unpack(const std::vector<char>& in, std::uint32_t walls, MigratingParticles
       take_record(in, at, width, p.mesh_history);
     }
     p.mesh_offsets.push_back(static_cast<std::uint32_t>(p.mesh_triangle.size()));
+    if (p.bond_width > 0) take_bonds(in, at, p);
   }
 }
 
@@ -153,6 +176,7 @@ MigratingParticles<S, P> exchange_migrants(const MigratingParticles<S, P>& leavi
   domain.group().exchange(outgoing, incoming);
   MigratingParticles<S, P> arrived;
   arrived.history_width = leaving.history_width;
+  arrived.bond_width = leaving.bond_width;
   for (const std::vector<char>& bytes : incoming) migration_detail::unpack(bytes, walls, arrived);
   return arrived;
 }

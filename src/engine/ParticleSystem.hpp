@@ -17,12 +17,14 @@
 #include "core/StepClock.hpp"
 #include "core/Stopwatch.hpp"
 #include "engine/ArrayKernels.hpp"
+#include "engine/BondSet.hpp"
 #include "engine/CellList.hpp"
 #include "engine/ContactForces.hpp"
 #include "engine/DeviceArray.hpp"
 #include "engine/Diagnostics.hpp"
 #include "engine/DomainLink.hpp"
 #include "engine/ForceCompute.hpp"
+#include "engine/ForceScratch.hpp"
 #include "engine/GhostExchange.hpp"
 #include "engine/HistoryCarryOver.hpp"
 #include "engine/HostCopies.hpp"
@@ -64,9 +66,11 @@ class ParticleSystem final : public StepEngine {
         pistons_(setup.walls, setup.pistons, setup.gravity),
         carried_pairs_(width_),
         meshes_(setup.meshes, setup.box, width_),
-        ghosts_(law_->needs_spin()),
+        bonds_(setup.bonds),
+        ghosts_(law_->needs_spin() || !setup.bonds.empty()),
         clock_{setup.start_step} {
     walls_.upload(pistons_.walls());
+    fixed_.upload(setup.fixed_materials);
     if (!meshes_.empty()) meshes_.set_time(clock_.time(setup.dt));
   }
 
@@ -80,6 +84,12 @@ class ParticleSystem final : public StepEngine {
   void get_contact_history(ContactHistory& history) const override;
 
   void set_contact_history(ContactHistory share) override;
+
+  void create_bonds() override;
+
+  void get_bonds(ContactHistory& bonds, std::uint64_t& made) const override;
+
+  void set_bonds(ContactHistory bonds, std::uint64_t made) override;
 
   std::vector<WallMotion> wall_motion() const override { return pistons_.motion(); }
 
@@ -151,7 +161,8 @@ class ParticleSystem final : public StepEngine {
   /// ranks each record is sent to the rank that owns its owner particle first, and a problem on
   /// any rank (another width, arrays of different lengths, an unknown particle, a pair not in
   /// the list) is thrown on every rank.
-  HistoryValues scatter_share(ContactHistory share, const ContactSlots& slots) const;
+  HistoryValues scatter_share(ContactHistory share, const ContactSlots& slots,
+                              std::uint32_t width) const;
 
   /// The particle count over all ranks and the checksum of their ids, from this rank's share
   /// of the ids. Collective.
@@ -223,8 +234,22 @@ class ParticleSystem final : public StepEngine {
                                      wall_count(),
                                      setup_.box,
                                      meshes_.view(),
-                                     history_pointers()};
+                                     history_pointers(),
+                                     bonds_.records()};
   }
+
+  /// What the bond kernels read: every particle array, the owned particles' list rows, the ids.
+  BondRows<P> bond_rows() const;
+
+  /// Adds the bonds' loads to the owned particles' forces, the bonds advanced by the step.
+  void add_bond_loads();
+
+  /// Throws std::runtime_error when a bond has stretched so far that the next list may miss its
+  /// partner: a surface gap of 0.9 skin or more. Collective.
+  void check_bond_reach() const;
+
+  /// Whether the particles' spins change: the law or the bonds exert torques.
+  bool spins() const { return law_->needs_spin() || !bonds_.empty(); }
 
   /// Velocities (and spins) by h times the accelerations, the pistons' too.
   void kick(Real h);
@@ -239,25 +264,7 @@ class ParticleSystem final : public StepEngine {
   /// (WallPistons.hpp). Collective.
   void measure_pistons();
 
-  /// Outputs and history of a force evaluation whose results are thrown away (launch tuning).
-  struct ForceScratch {
-    ForceScratch(std::size_t owned, std::size_t pairs, std::size_t wall_slots, std::size_t mesh)
-        : force(owned),
-          torque(owned),
-          overlap_ratio(owned),
-          pair(pairs),
-          wall(wall_slots),
-          mesh(mesh) {}
-    /// The bytes the constructor allocates.
-    static std::size_t bytes(std::size_t owned, std::size_t pairs, std::size_t wall_slots,
-                             std::size_t mesh) {
-      return owned * (2 * sizeof(ForceVec) + sizeof(Real)) +
-             (pairs + wall_slots + mesh) * sizeof(S);
-    }
-    DeviceArray<ForceVec, Space> force, torque;
-    DeviceArray<Real, Space> overlap_ratio;
-    DeviceArray<S, Space> pair, wall, mesh;  ///< history values
-  };
+  using ForceScratch = ForceScratchOf<Space, S>;
 
   /// Bytes by which the device memory that launch tuning allocates (a ForceScratch and a second
   /// neighbour list, with an eighth more for the list's sort scratch and growth) exceeds the
@@ -266,8 +273,11 @@ class ParticleSystem final : public StepEngine {
 
   std::uint32_t wall_count() const { return static_cast<std::uint32_t>(setup_.walls.size()); }
 
-  /// The forces of every owned particle.
-  void compute_forces() { compute_forces(nullptr, owned_); }
+  /// The forces of every owned particle, bonds included.
+  void compute_forces() {
+    compute_forces(nullptr, owned_);
+    add_bond_loads();
+  }
 
   /// The forces of the owned particles list[0, count) (all of 0..count when list is null).
   /// The step of the base step in progress: dt / substeps.
@@ -437,6 +447,7 @@ class ParticleSystem final : public StepEngine {
   OneRankDomain one_rank_;
   DomainLink& domain_;                   ///< setup.domain, or one_rank_ when there is none
   DeviceArray<PlaneWall, Space> walls_;  ///< at their current positions
+  DeviceArray<std::uint8_t, Space> fixed_;  ///< per material, 1: fixed (empty: none is)
   WallPistons pistons_;
   /// With pistons, each owned particle's push on each wall, per slot i·wall_count + w [N].
   DeviceArray<S, Space> wall_push_;
@@ -461,6 +472,8 @@ class ParticleSystem final : public StepEngine {
   CellList<Space> cells_;
   NeighborList<Space> neighbors_;
   MeshWalls<Space, S> meshes_;
+  BondSet<Space, S> bonds_;
+  std::uint64_t bonds_made_ = 0;  ///< bonds made at the run's start, on all ranks
   ParticleStaging<Space, P, S> staging_;  ///< snapshot copies (host memory)
   GhostExchange<Space, P, S> ghosts_;
   GhostRowSplit<Space> ghost_rows_;  ///< owned particles by whether their rows read ghosts
@@ -478,6 +491,7 @@ class ParticleSystem final : public StepEngine {
 
 }  // namespace gpudem
 
+#include "engine/ParticleSystemBonds.hpp"
 #include "engine/ParticleSystemRebuild.hpp"
 #include "engine/ParticleSystemReport.hpp"
 #include "engine/ParticleSystemRestore.hpp"

@@ -48,6 +48,10 @@ void ParticleSystem<Space, P, S>::rebuild() {
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::keep_previous_rows() {
   iota(previous_index_, owned_);
+  if (!bonds_.empty() && has_list_) {
+    check_bond_reach();
+    bonds_.keep(owned_, neighbors_.offsets(), partner_ids());
+  }
   if (width_ > 0) {
     if (has_list_) {
       meshes_.keep_rows();
@@ -116,6 +120,13 @@ MigratingParticles<S, P> ParticleSystem<Space, P, S>::owned_from(std::size_t fir
   p.fields = columns_.template download_rows<field_use::persistent>(first, count);
   p.row_offsets.assign(count + 1, 0);
   p.mesh_offsets.assign(count + 1, 0);
+  p.bond_offsets.assign(count + 1, 0);
+  if (!bonds_.empty()) {
+    p.bond_width = bond_value::width;
+    if (has_list_ && count > 0)
+      bonds_.kept_rows().download(previous_index_.data() + first, count, p.bond_offsets,
+                                  p.bond_partner, p.bond_values);
+  }
   if (width_ > 0) {
     p.wall_history = download_values<Space>(wall_history_.data() + first * walls * width_,
                                             count * walls * width_);
@@ -137,8 +148,11 @@ void ParticleSystem<Space, P, S>::append_owned(const MigratingParticles<S, P>& a
   parallel_for(Space{}, owned_, Fill<ForceVec>{torque_.data(), ForceVec{}});
   // The arrivals' rows go after the kept ones (none without history: the index is then only
   // carried along by the sorts).
-  const auto first_row = static_cast<std::uint32_t>(carried_pairs_.rows().rows());
+  const auto first_row = static_cast<std::uint32_t>(
+      width_ > 0 ? carried_pairs_.rows().rows() : bonds_.kept_rows().rows());
   parallel_for(Space{}, arrived.size(), IotaFrom{previous_index_.data() + first, first_row});
+  if (!bonds_.empty() && has_list_)
+    bonds_.kept_rows().append(arrived.bond_offsets, arrived.bond_partner, arrived.bond_values);
   if (width_ > 0) {
     upload_values<Space>(arrived.wall_history, wall_history_.data() + first * walls * width_);
     if (!has_list_) return;
@@ -209,6 +223,9 @@ void ParticleSystem<Space, P, S>::remap_pair_history() {
     pair_history_.swap(fresh);
     carried_pairs_.release();
   }
+  if (!bonds_.empty())
+    bonds_.remap(owned_, neighbors_.offsets(), neighbors_.pairs_kept(), partner_ids(),
+                 previous_index_.data(), has_list_);
   has_list_ = true;
 }
 

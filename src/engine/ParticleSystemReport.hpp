@@ -30,6 +30,11 @@ Diagnostics ParticleSystem<Space, P, S>::diagnostics() const {
   Diagnostics d = local_diagnostics(contact_share);
   if (domain_.ranks() > 1) sum_over_ranks(d, contact_share);
   d.particle_count = global_count_;
+  if (!bonds_.empty()) {
+    const double half = bonds_.half_count(neighbors_.offsets(), owned_);
+    d.bond_count = static_cast<std::uint64_t>(std::llround(domain_.group().sum<double>(half)));
+    d.broken_bond_count = bonds_made_ > d.bond_count ? bonds_made_ - d.bond_count : 0;
+  }
   for (std::size_t k = 0; k < pistons_.count(); ++k)
     d.piston_motion.push_back(pistons_.motion()[pistons_.piston(k).wall]);
   return d;
@@ -93,7 +98,8 @@ std::vector<MemoryUse> ParticleSystem<Space, P, S>::memory_use() const {
                          {"rebuild scratch", scratch_bytes()},
                          {"ghost buffers", ghosts_.memory_bytes() + ghost_rows_.memory_bytes() +
                                                rank_cells_.memory_bytes()},
-                         {"meshes", meshes_.memory_bytes()}});
+                         {"meshes", meshes_.memory_bytes()},
+                         {"bonds", bonds_.bytes()}});
   return use;
 }
 
@@ -117,6 +123,7 @@ void ParticleSystem<Space, P, S>::refresh_ghosts_computing_interior(Stopwatch& w
   times_.halo_bytes += ghosts_.refresh_bytes();
   ++times_.refreshes;
   compute_forces(ghost_rows_.boundary(), ghost_rows_.boundary_count());
+  add_bond_loads();
 }
 
 template <class Space, class P, class S>
@@ -152,6 +159,7 @@ Diagnostics ParticleSystem<Space, P, S>::local_diagnostics(double& contact_share
   law_->contact_terms(contact_inputs(), n,
                       {contacts.data(), energy.data(), body_force.data(), mesh_torque.data()});
   d.potential_elastic = reduce_sum(Space{}, n, ReadValue{energy.data()});
+  if (!bonds_.empty()) d.potential_elastic += bonds_.half_energy(bond_rows(), n);
   contact_share = reduce_sum(Space{}, n, ReadValue{contacts.data()});
   d.contact_count = static_cast<std::uint64_t>(std::llround(contact_share));
   d.max_overlap_ratio = reduce_max(Space{}, n, Real(0), ReadValue{overlap_ratio_.data()});

@@ -46,7 +46,7 @@ void ParticleSystem<Space, P, S>::get_contact_history(ContactHistory& history) c
 
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::set_contact_history(ContactHistory share) {
-  const HistoryValues values = scatter_share(std::move(share), contact_slots());
+  const HistoryValues values = scatter_share(std::move(share), contact_slots(), width_);
   if (width_ > 0) {
     upload_history(values.pair, pair_history_);
     upload_history(values.wall, wall_history_);
@@ -57,12 +57,13 @@ void ParticleSystem<Space, P, S>::set_contact_history(ContactHistory share) {
 
 template <class Space, class P, class S>
 HistoryValues ParticleSystem<Space, P, S>::scatter_share(ContactHistory share,
-                                                         const ContactSlots& slots) const {
-  if (domain_.ranks() == 1) return scatter_history(slots, width_, share);
+                                                         const ContactSlots& slots,
+                                                         std::uint32_t width) const {
+  if (domain_.ranks() == 1) return scatter_history(slots, width, share);
   std::string problem;
-  if (!share.empty() && share.width != width_)
+  if (!share.empty() && share.width != width)
     problem = "contact history: it holds " + std::to_string(share.width) +
-              " values per contact but this contact law keeps " + std::to_string(width_);
+              " values per contact but this contact law keeps " + std::to_string(width);
   else if (!share.lengths_agree())
     problem = "contact history: the arrays of one kind of contact differ in length";
   throw_first_problem(problem, domain_);
@@ -70,7 +71,7 @@ HistoryValues ParticleSystem<Space, P, S>::scatter_share(ContactHistory share,
   HistoryValues values;
   try {
     values =
-        scatter_history(slots, width_, route_history(std::move(share), width_, owned, domain_));
+        scatter_history(slots, width, route_history(std::move(share), width, owned, domain_));
   } catch (const std::invalid_argument& e) {
     problem = e.what();
   }
@@ -143,6 +144,9 @@ void ParticleSystem<Space, P, S>::build_list_at_saved_positions(
   if (domain_.ranks() > 1) ghosts_.update(domain_, arrays(), owned_);
   if (width_ > 0) pair_history_.resize(neighbors_.pairs_kept() * width_);
   zero_history();
+  if (!bonds_.empty())
+    bonds_.remap(owned_, neighbors_.offsets(), neighbors_.pairs_kept(), partner_ids(),
+                 previous_index_.data(), false);
   has_list_ = true;
 }
 

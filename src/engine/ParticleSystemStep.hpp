@@ -51,7 +51,7 @@ void ParticleSystem<Space, P, S>::step() {
 
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::kick(Real h) {
-  if (law_->needs_spin())
+  if (spins())
     kick_with<true>(h);
   else
     kick_with<false>(h);
@@ -63,7 +63,8 @@ template <bool kRotate>
 void ParticleSystem<Space, P, S>::kick_with(Real h) {
   parallel_for(Space{}, owned_,
                Kick<kRotate, S, P>{velocity_inv_mass_.data(), angular_velocity_.data(),
-                                   force_.data(), torque_.data(), position_radius_.data(), h},
+                                   force_.data(), torque_.data(), position_radius_.data(), h,
+                                   material_.data(), fixed_.data()},
                LaunchSlot::integrate);
 }
 

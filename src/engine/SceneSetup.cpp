@@ -126,6 +126,20 @@ void require_skin_covers_pull_off(const Scene& scene, double skin, double gap) {
                        short_number(gap) + " m");
 }
 
+/// Refuses a [[bond]] gap that the skin does not hold twice over: bonds form along the neighbour
+/// list, and a bond is kept only while its surface gap stays under 0.9 skin (check_bond_reach).
+void require_skin_covers_bond_gaps(const Scene& scene, double skin) {
+  for (std::size_t k = 0; k < scene.bonds.size(); ++k) {
+    const double gap = scene.bonds[k].gap;
+    if (gap <= 0.5 * skin) continue;
+    throw InputError(scene.file, 0, "bond[" + std::to_string(k) + "].gap",
+                     "gap " + short_number(gap) + " m is more than half the neighbour skin " +
+                         short_number(skin) +
+                         " m, within which bonds form and hold: set neighbor.skin >= " +
+                         short_number(2 * gap) + " m or a smaller gap");
+  }
+}
+
 /// True when some keyframe of the mesh's motion has a non-zero angular velocity.
 bool ever_rotates(const MeshSettings& mesh) {
   for (const MotionKeyframe& k : mesh.keyframes)
@@ -221,7 +235,7 @@ void require_stable_dt(const Scene& scene, const TimeStepLimits& limits) {
       "dt = " + short_number(sim.dt) + " s exceeds the stable limit " +
           short_number(limits.stable) +
           " s (the smaller of the Rayleigh time T_R = " + short_number(limits.rayleigh) +
-          " s and 2/omega of the stiffest contact; contact duration t_c = " +
+          " s and 2/omega of the stiffest contact or bond; contact duration t_c = " +
           short_number(limits.contact_duration) +
           " s); use a smaller dt or dt = \"auto\", or set simulation.allow_unstable_dt = true "
           "to run anyway");
@@ -320,6 +334,12 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   require_meshes_fit_periodic_axes(scene, s.meshes, largest_radius(particles), s.skin);
   require_skin_covers_pull_off(
       scene, s.skin, largest_pull_off_gap(scene, s.pair_params, largest_radius(particles)));
+  require_skin_covers_bond_gaps(scene, s.skin);
+  s.bonds = scene.bonds;
+  for (const Material& m : scene.materials)
+    if (m.fixed) s.fixed_materials.assign(scene.materials.size(), 0);
+  for (std::size_t k = 0; k < s.fixed_materials.size(); ++k)
+    s.fixed_materials[k] = scene.materials[k].fixed ? 1 : 0;
   require_meshes_meet_the_domain(scene, s.meshes, std::isfinite(r_min) ? 2 * r_min : 0.0);
   const TimeStepLimits limits = time_step_limits(scene, particles, s.meshes);
   require_stable_dt(scene, limits);

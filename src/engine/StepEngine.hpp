@@ -39,6 +39,9 @@ struct EngineSetup {
   std::vector<PlaneWall> walls;
   std::vector<PistonSetup> pistons;   ///< the walls that slide (WallPistons.hpp)
   std::vector<MeshWallSetup> meshes;  ///< triangle-mesh walls (tools)
+  std::vector<BondSettings> bonds;    ///< the [[bond]] tables: none, no bonds
+  /// Per material, 1 when its particles are held still (Material::fixed); empty: none is.
+  std::vector<std::uint8_t> fixed_materials;
   std::uint64_t start_step = 0;       ///< base step the run starts at (a restart's): the clock
   /// This rank's part of the decomposed domain; null: a run on one rank. Must outlive the
   /// engine.
@@ -58,6 +61,8 @@ struct Diagnostics {
   double potential_gravity = 0;      ///< Σ −m g·x [J]
   double potential_elastic = 0;      ///< Σ contact spring energy [J]
   double max_overlap_ratio = 0;      ///< max over contacts of δ / min(r_i, r_j)
+  std::uint64_t bond_count = 0;      ///< intact parallel bonds
+  std::uint64_t broken_bond_count = 0;  ///< bonds made at the run's start that broke since
   std::vector<Vec3> wall_force;
   std::vector<Vec3> mesh_force;           ///< force the particles exert on each mesh [N]
   std::vector<Vec3> mesh_torque;          ///< their torque on each mesh about its centre [N m]
@@ -169,6 +174,18 @@ class EngineIo : public SnapshotSource {
   /// the neighbour list, or a wall index beyond the walls. Forces are not re-evaluated. Takes
   /// `share` by value: a caller that moves it in lets the records be freed as they are sent.
   virtual void set_contact_history(ContactHistory share) = 0;
+
+  /// Makes the bonds of the [[bond]] tables between the particles present (each pair in the
+  /// neighbour list whose materials and gap a table names) and re-evaluates the forces; call
+  /// once when a new run starts, after the particles and their contact history are set.
+  virtual void create_bonds() = 0;
+  /// The records of the intact bonds of the owned particles (bond_value::width values each,
+  /// each end's record, keyed by global ids as pair records) and the number of bonds made at
+  /// the run's start.
+  virtual void get_bonds(ContactHistory& bonds, std::uint64_t& made) const = 0;
+  /// Gives the bonds listed in `bonds` their records (as set_contact_history gives pair
+  /// records, with its refusals) and continues the broken count from `made`.
+  virtual void set_bonds(ContactHistory bonds, std::uint64_t made) = 0;
 
   /// Every plane wall's motion (zero for the walls that stand still).
   virtual std::vector<WallMotion> wall_motion() const = 0;

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/contact/ContactSlots.hpp"
+#include "core/contact/ParallelBond.hpp"
 #include "engine/SceneSetup.hpp"
 
 namespace gpudem {
@@ -29,6 +30,24 @@ double smallest_rayleigh_time(const Scene& scene, const ParticleStore& particles
         t, rayleigh_time(scene.materials[particles.material[i]], particles.position_radius[i].w));
   }
   return t;
+}
+
+/// ω² of the stiffest bond the [[bond]] tables can make between the particles present, each
+/// material by its smallest particle; 0 without bonds.
+double stiffest_bond(const Scene& scene, const ParticleStore& particles) {
+  const std::vector<std::size_t> smallest = smallest_particle_per_material(scene, particles);
+  double omega2 = 0;
+  for (const BondSettings& b : scene.bonds) {
+    const std::size_t i = smallest[b.a], j = smallest[b.b];
+    if (i == particles.size() || j == particles.size()) continue;
+    const BondParams p{b.young, gpudem::shear_modulus(b.young, b.poisson), b.radius_factor,
+                       b.tensile_strength, b.shear_strength, b.damping_ratio};
+    omega2 = std::max(omega2, bond_frequency_squared(p, particles.position_radius[i].w,
+                                                     1 / particles.velocity_inv_mass[i].w,
+                                                     particles.position_radius[j].w,
+                                                     1 / particles.velocity_inv_mass[j].w));
+  }
+  return omega2;
 }
 
 /// The materials of the plane walls and the mesh walls, each as often as it is used.
@@ -295,6 +314,12 @@ TimeStepLimits time_step_limits(const Scene& scene, const ParticleStore& particl
       set_contact_limits<decltype(normal), decltype(tangential)>(limits, scene, particles);
     });
   });
+  limits.bond = kInfinity;
+  const double bond_omega2 = stiffest_bond(scene, particles);
+  if (bond_omega2 > 0) {
+    limits.bond = kPi / std::sqrt(bond_omega2);
+    limits.stable = std::min(limits.stable, 2 / std::sqrt(bond_omega2));
+  }
   limits.max_speed = max_speed(scene, particles, meshes);
   limits.displacement = limits.max_speed > 0 ? scene.simulation.displacement_fraction *
                                                    smallest_radius(particles) / limits.max_speed

@@ -25,12 +25,19 @@ struct TimeStepLimits {
   /// hertz: ω = √(S_max/m*) with the tangent stiffness at the peak overlap of an impact at v,
   /// S_max = 2 E* √(R* δ_max), δ_max = (15 m* v² / (16 E* √R*))^{2/5}
   double stable = 0;
+  /// π/ω of the stiffest parallel bond (bond_frequency_squared), over the [[bond]] tables with
+  /// the smallest particle of each of their materials; +infinity without bonds. `stable` is
+  /// also at most 2/ω.
+  double bond = 0;
   /// v_max [m/s], the fastest a particle may close on another or on a wall (max_speed)
   double max_speed = 0;
   /// displacement_fraction × r_min / v_max: the step in which a particle at v_max moves that
   /// fraction of the smallest radius r_min
   double displacement = 0;
-  double critical() const { return contact_duration < rayleigh ? contact_duration : rayleigh; }
+  double critical() const {
+    const double contact = contact_duration < rayleigh ? contact_duration : rayleigh;
+    return contact < bond ? contact : bond;
+  }
   /// dt = "auto": dt_fraction × critical(), at most the displacement step.
   double automatic(double dt_fraction) const {
     const double step = dt_fraction * critical();

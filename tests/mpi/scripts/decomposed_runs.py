@@ -707,6 +707,44 @@ def sticky(runner):
                           "the contacts' formed flags")
 
 
+# ---- bonded -------------------------------------------------------------------------------------
+
+
+def without_bonds(checkpoint, copy):
+    """A copy of `checkpoint` without its bond records: the clod continues uncemented."""
+    shutil.copy(checkpoint, copy)
+    with h5py.File(copy, "r+") as f:
+        for name in ("bond_owner", "bond_partner", "bond_values"):
+            del f[name]
+
+
+def bond_counts(out):
+    """(bonds at the start, broken bonds at the end) of a run's time series."""
+    rows = series(out)
+    return int(float(rows[0]["bonds"])), int(float(rows[-1]["broken_bonds"]))
+
+
+def bonded(runner):
+    scene = SCENES / "bonded.toml"
+    reference = runner.run("bonded_n1", scene, 1)
+    made, broken = bond_counts(reference)
+    print(f"bonded_n1: {made} bonds made, {broken} broken")
+    if not 0 < broken < made:
+        runner.fail(f"bonded_n1: {broken} of {made} bonds broke; the case needs some of each")
+    compare_layouts(runner, "bonded", scene, reference, compare_series,
+                    (("slabs_n2", 2, "[2,1,1]"), ("slabs_n3", 3, "[3,1,1]"),
+                     ("blocks_2x2", 4, "[2,2,1]")))
+    checkpoint = checkpoint_on_three_ranks(runner, "bonded", scene, 0.03)
+    with h5py.File(checkpoint, "r") as f:
+        records = f["bond_owner"].shape[0]
+    print(f"bonded_restart: {records} bond records in the checkpoint")
+    if records == 0:
+        runner.fail("bonded_restart: the checkpoint holds no bond records")
+    stripped = runner.work / "without_bonds.h5"
+    without_bonds(checkpoint, stripped)
+    continue_on_two_ranks(runner, "bonded", scene, reference, checkpoint, stripped, "the bonds")
+
+
 # ---- adaptive -----------------------------------------------------------------------------------
 
 ADAPTIVE = ('simulation.dt="adaptive"', "simulation.displacement_fraction=0.01")
@@ -874,7 +912,7 @@ def main():
     parser.add_argument("--work", required=True)
     parser.add_argument("case", choices=["same-physics", "restart", "balance", "momentum",
                                          "leaving", "tiled", "sliding-pair", "killed-checkpoint",
-                                         "tool", "piston", "sticky", "adaptive", "bed",
+                                         "tool", "piston", "sticky", "bonded", "adaptive", "bed",
                                          "cuda"])
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
@@ -884,7 +922,7 @@ def main():
              "momentum": momentum, "leaving": leaving, "tiled": tiled,
              "sliding-pair": sliding_pair,
              "killed-checkpoint": killed_checkpoint, "tool": tool, "piston": piston,
-             "sticky": sticky, "adaptive": adaptive, "bed": bed, "cuda": cuda}
+             "sticky": sticky, "bonded": bonded, "adaptive": adaptive, "bed": bed, "cuda": cuda}
     if cases[args.case](runner) == SKIPPED:
         return SKIPPED
     for line in runner.failures:

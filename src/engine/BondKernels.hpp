@@ -1,0 +1,188 @@
+#pragma once
+/// The per-particle kernels of parallel bonds (core/contact/ParallelBond.hpp): bonds made along
+/// the neighbour list, their loads gathered by each end (one thread per owned particle, its bonds
+/// in its list order, no atomics), and the reductions of the diagnostics. A bond's values are a
+/// record of bond_value::width values of the law's scalar S per neighbour-list entry; a record
+/// whose rest length is 0 holds no bond.
+#include <cstdint>
+
+#include "core/Config.hpp"
+#include "core/ParticleStore.hpp"
+#include "core/Scene.hpp"
+#include "core/contact/ParallelBond.hpp"
+#include "engine/ContactVisitor.hpp"
+#include "engine/PeriodicBox.hpp"
+
+namespace gpudem {
+
+/// What the bond kernels read: every particle array in Real, the owned particles' list rows and
+/// the ids that orient each bond.
+template <class P>
+struct BondRows {
+  ParticleView<P> particles;
+  const ParticleId* id;
+  const std::uint32_t* offsets;
+  const std::uint32_t* neighbors;
+  PeriodicBox box;
+};
+
+/// The bond between a and b seen from a to b, its stretch L − L₀ formed in Real.
+template <class S, class P>
+GPUDEM_HD BondGeometry<S> bond_geometry(const BondRows<P>& rows, std::uint32_t a, std::uint32_t b,
+                                        S rest_length) {
+  const ParticleView<P>& p = rows.particles;
+  const Real4 xa = p.position(a), xb = p.position(b), va = p.velocity(a), vb = p.velocity(b);
+  const Vec3 wa = p.spin(a), wb = p.spin(b);
+  const Vec3 d = rows.box.minimum_image(xyz(xb) - xyz(xa));
+  const Real length = norm(d);
+  const Vec3 n = (Real(1) / length) * d;
+  const Real arm_a = length * xa.w / (xa.w + xb.w), arm_b = length - arm_a;
+  const Real inertia_a = sphere_inertia(xa.w, va.w), inertia_b = sphere_inertia(xb.w, vb.w);
+  BondGeometry<S> g;
+  g.normal = vec_cast<S>(n);
+  g.stretch = static_cast<S>(length - static_cast<Real>(rest_length));
+  g.arm_a = static_cast<S>(arm_a);
+  g.arm_b = static_cast<S>(arm_b);
+  g.min_radius = static_cast<S>(xa.w < xb.w ? xa.w : xb.w);
+  g.velocity = vec_cast<S>((xyz(vb) + cross(wb, -arm_b * n)) - (xyz(va) + cross(wa, arm_a * n)));
+  g.spin = vec_cast<S>(wb - wa);
+  g.reduced_mass = static_cast<S>(Real(1) / (va.w + vb.w));
+  g.reduced_inertia = static_cast<S>(inertia_a * inertia_b / (inertia_a + inertia_b));
+  return g;
+}
+
+/// A bond rule of the scene as the kernels read it: the two materials and the largest gap.
+struct BondRule {
+  MaterialId a, b;
+  Real gap;
+};
+
+namespace bond_kernels {
+
+/// Makes, on each list entry of owned particle i, the bond of the first rule whose materials
+/// are the pair's and whose gap the pair's surfaces are within; both ends find the same rule
+/// and rest length.
+template <class P, class S>
+struct Create {
+  BondRows<P> rows;
+  const BondRule* rules;
+  std::uint32_t rule_count;
+  S* records;
+  GPUDEM_HD void operator()(std::size_t i) const {
+    const ParticleView<P>& p = rows.particles;
+    for (std::uint32_t e = rows.offsets[i]; e < rows.offsets[i + 1]; ++e) {
+      const std::uint32_t j = rows.neighbors[e];
+      const bool first = rows.id[i] < rows.id[j];
+      const std::uint32_t a = first ? std::uint32_t(i) : j, b = first ? j : std::uint32_t(i);
+      const Real4 xa = p.position(a), xb = p.position(b);
+      const Real length = norm(rows.box.minimum_image(xyz(xb) - xyz(xa)));
+      const Real gap = length - xa.w - xb.w;
+      for (std::uint32_t k = 0; k < rule_count; ++k) {
+        const BondRule& r = rules[k];
+        const bool match = (p.material[a] == r.a && p.material[b] == r.b) ||
+                           (p.material[a] == r.b && p.material[b] == r.a);
+        if (!match || gap > r.gap) continue;
+        S* record = records + std::size_t(e) * bond_value::width;
+        for (std::uint32_t v = 0; v < bond_value::width; ++v) record[v] = S{};
+        record[bond_value::rest_length] = static_cast<S>(length);
+        record[bond_value::type] = static_cast<S>(k);
+        break;
+      }
+    }
+  }
+};
+
+/// Adds to force[i] and torque[i] the loads of owned particle i's bonds, advanced by dt; a bond
+/// that breaks is cleared. torque[i] is first set to zero when the contact law writes no torque.
+template <class P, class S>
+struct AddLoads {
+  BondRows<P> rows;
+  const BondParamsT<S>* types;
+  S* records;
+  S dt;
+  Vec3T<S>* force;
+  Vec3T<S>* torque;
+  bool torque_written;  ///< the contact law wrote torque[i] this step
+  GPUDEM_HD void operator()(std::size_t i) const {
+    Vec3T<S> f{}, t{};
+    for (std::uint32_t e = rows.offsets[i]; e < rows.offsets[i + 1]; ++e) {
+      S* record = records + std::size_t(e) * bond_value::width;
+      if (record[bond_value::rest_length] == 0) continue;
+      const std::uint32_t j = rows.neighbors[e];
+      const bool first = rows.id[i] < rows.id[j];
+      const BondGeometry<S> g =
+          bond_geometry<S>(rows, first ? std::uint32_t(i) : j, first ? j : std::uint32_t(i),
+                           record[bond_value::rest_length]);
+      const auto type = static_cast<std::uint32_t>(record[bond_value::type]);
+      const BondLoad<S> load = evaluate_bond(types[type], g, record, dt);
+      if (load.broken) {
+        for (std::uint32_t v = 0; v < bond_value::width; ++v) record[v] = S{};
+        continue;
+      }
+      f += first ? load.force : -load.force;
+      t += first ? load.torque_a : load.torque_b;
+    }
+    force[i] += f;
+    torque[i] = torque_written ? torque[i] + t : t;
+  }
+};
+
+/// Owned particle i's intact bonds, each counting ½ (its partner counts the other half).
+template <class S>
+struct HalfBonds {
+  const std::uint32_t* offsets;
+  const S* records;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    Real count = 0;
+    for (std::uint32_t e = offsets[i]; e < offsets[i + 1]; ++e)
+      if (records[std::size_t(e) * bond_value::width + bond_value::rest_length] != 0)
+        count += Real(0.5);
+    return count;
+  }
+};
+
+/// Half the elastic energy of owned particle i's bonds [J].
+template <class P, class S>
+struct HalfEnergy {
+  BondRows<P> rows;
+  const BondParamsT<S>* types;
+  const S* records;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    Real energy = 0;
+    for (std::uint32_t e = rows.offsets[i]; e < rows.offsets[i + 1]; ++e) {
+      const S* record = records + std::size_t(e) * bond_value::width;
+      if (record[bond_value::rest_length] == 0) continue;
+      const std::uint32_t j = rows.neighbors[e];
+      const bool first = rows.id[i] < rows.id[j];
+      const BondGeometry<S> g =
+          bond_geometry<S>(rows, first ? std::uint32_t(i) : j, first ? j : std::uint32_t(i),
+                           record[bond_value::rest_length]);
+      const auto type = static_cast<std::uint32_t>(record[bond_value::type]);
+      energy += Real(0.5) * static_cast<Real>(bond_energy(types[type], g, record));
+    }
+    return energy;
+  }
+};
+
+/// The widest surface gap of owned particle i's bonds, L − r_i − r_j [m] (−inf without bonds).
+template <class P, class S>
+struct WidestGap {
+  BondRows<P> rows;
+  const S* records;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    const ParticleView<P>& p = rows.particles;
+    Real widest = -INFINITY;
+    const Real4 xi = p.position(i);
+    for (std::uint32_t e = rows.offsets[i]; e < rows.offsets[i + 1]; ++e) {
+      if (records[std::size_t(e) * bond_value::width + bond_value::rest_length] == 0) continue;
+      const Real4 xj = p.position(rows.neighbors[e]);
+      const Real gap = norm(rows.box.minimum_image(xyz(xj) - xyz(xi))) - xi.w - xj.w;
+      widest = gap > widest ? gap : widest;
+    }
+    return widest;
+  }
+};
+
+}  // namespace bond_kernels
+
+}  // namespace gpudem

@@ -1,0 +1,77 @@
+#pragma once
+/// ParticleSystem's parallel bonds (ParticleSystem.hpp, which includes this file after the
+/// class; BondSet.hpp): made at a run's start, their loads added after the contact forces, their
+/// reach checked before each rebuild, read and set as keyed records for checkpoints.
+#include <cstdio>
+
+#include "engine/ParticleSystem.hpp"
+
+namespace gpudem {
+
+template <class Space, class P, class S>
+BondRows<P> ParticleSystem<Space, P, S>::bond_rows() const {
+  return {state_view(), id_.data(), neighbors_.offsets(), neighbors_.neighbors(), setup_.box};
+}
+
+template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::add_bond_loads() {
+  if (bonds_.empty()) return;
+  bonds_.add_loads(bond_rows(), owned_, step_dt(), force_.data(), torque_.data(),
+                   law_->needs_spin());
+}
+
+template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::create_bonds() {
+  if (bonds_.empty()) return;
+  bonds_.create(bond_rows(), owned_);
+  bonds_made_ = static_cast<std::uint64_t>(
+      std::llround(domain_.group().sum<double>(bonds_.half_count(neighbors_.offsets(), owned_))));
+  compute_forces();
+  measure_pistons();
+}
+
+template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::check_bond_reach() const {
+  const double widest = domain_.group().max<double>(bonds_.widest_gap(bond_rows(), owned_));
+  if (widest < 0.9 * setup_.skin) return;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "a bond stretched to a surface gap of %.4g m, near the neighbour reach (skin "
+                "%.4g m) beyond which its ends would lose each other: raise neighbor.skin, or "
+                "give the [[bond]] a tensile_strength that breaks it before",
+                widest, setup_.skin);
+  throw std::runtime_error(text);
+}
+
+template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::get_bonds(ContactHistory& bonds, std::uint64_t& made) const {
+  made = bonds_made_;
+  bonds = ContactHistory{};
+  if (bonds_.empty()) return;
+  bonds.width = bond_value::width;
+  if (!has_list_) return;
+  ContactSlots slots = contact_slots();
+  slots.wall_count = 0;
+  slots.mesh_offsets.clear();
+  HistoryValues values;
+  std::vector<S> records;
+  download_values<Space>(bonds_.records(), neighbors_.pairs_kept() * bond_value::width)
+      .swap(records);
+  values.pair.assign(records.begin(), records.end());
+  bonds = collect_history(slots, bond_value::width, values);
+}
+
+template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::set_bonds(ContactHistory share, std::uint64_t made) {
+  ContactSlots slots = contact_slots();
+  slots.wall_count = 0;
+  slots.mesh_offsets.clear();
+  slots.mesh_triangles.clear();
+  const std::uint32_t width = bonds_.empty() ? 0 : bond_value::width;
+  if (share.empty()) share.width = width;
+  const HistoryValues values = scatter_share(std::move(share), slots, width);
+  bonds_made_ = made;
+  if (!bonds_.empty()) upload_history(values.pair, bonds_.record_array());
+}
+
+}  // namespace gpudem
