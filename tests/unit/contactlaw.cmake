@@ -11,3 +11,7 @@ gpudem_add_test(test_jkr_law
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/JkrLawTest.cpp
   LIBS gpudem_contact_model
   LABELS unit)
+gpudem_add_test(test_parallel_bond
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/ParallelBondTest.cpp
+  LIBS gpudem_contact_model
+  LABELS unit)

@@ -1,0 +1,252 @@
+// Parallel bonds through the whole engine. A cantilever of twenty spheres joined by bonds,
+// clamped by a fixed sphere at x = 0, released from rest under its own weight: its tip swings
+// about the static deflection of a beam of the bond's section EI under the spheres' weights as
+// point loads, Σ P a²(3L − a)/(6EI) (Euler–Bernoulli), plus Σ P a/(κGA) (Timoshenko,
+// κ = 6(1 + ν)/(7 + 6ν) for a circle), at the first natural frequency of that beam with the
+// spheres as lumped masses. Pulled along its axis, it stretches by Σ P a/(EA) and rings at the
+// quarter-wave frequency c/(4L) of a bar whose wave speed is c = √(E/ρ), ρ the spheres' mass
+// per volume of bond. Two spheres pulled apart break their bond when its tensile stress reaches
+// the strength, and the bond's elastic energy leaves with it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "engine/SceneSetup.hpp"
+#include "support/Backends.hpp"
+#include "support/Format.hpp"
+#include "support/SceneBuilder.hpp"
+
+namespace gpudem::test {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kNodes = 20;  // free spheres of the beam
+constexpr double kRadius = 1e-3, kDensity = 1000, kYoung = 1e7, kPoisson = 0.25;
+constexpr ContactModel kElasticHertz{NormalLaw::Hertz, DampingLaw::None, TangentialLaw::None,
+                                     RollingLaw::None, CohesionLaw::None};
+
+double spacing() { return 2 * kRadius; }
+double node_mass() { return sphere_mass(kDensity, kRadius); }
+double area() { return kPi * kRadius * kRadius; }
+double second_moment() { return 0.25 * kPi * std::pow(kRadius, 4); }
+
+BondSettings bond_between(MaterialId a, MaterialId b) {
+  BondSettings bond;
+  bond.a = a;
+  bond.b = b;
+  bond.gap = 1e-5;
+  bond.young = kYoung;
+  bond.poisson = kPoisson;
+  return bond;
+}
+
+/// Material 0 the beam's spheres, material 1 the fixed clamp; bonds between touching spheres.
+Scene beam_scene(Vec3 gravity, double dt) {
+  Scene s = basic_scene({-0.01, -0.05, -0.05}, {0.06, 0.05, 0.05}, 0, 1, 0);
+  s.materials[0].density = kDensity;
+  s.materials[0].young = kYoung;
+  Material clamp = s.materials[0];
+  clamp.name = "clamp";
+  clamp.fixed = true;
+  s.materials.push_back(clamp);
+  s.contact.model = kElasticHertz;
+  s.bonds = {bond_between(0, 0), bond_between(1, 0)};
+  s.neighbor.skin = 5e-4;
+  s.simulation.gravity = gravity;
+  s.simulation.dt_auto = false;
+  s.simulation.dt = dt;
+  return s;
+}
+
+/// The clamp (id 0) at the origin and the beam's spheres (ids 1..kNodes) along +x, touching.
+ParticleStore beam_particles() {
+  ParticleStore p;
+  const double inv_mass = 1 / node_mass();
+  p.add(0, {0, 0, 0}, kRadius, 1, {0, 0, 0}, inv_mass);
+  for (int k = 1; k <= kNodes; ++k) p.add(k, {k * spacing(), 0, 0}, kRadius, 0, {0, 0, 0}, inv_mass);
+  return p;
+}
+
+/// The tip's displacement along one axis, sampled every few steps.
+struct TipRecord {
+  double interval = 0;  ///< [s] between samples
+  std::vector<double> displacement;
+};
+
+/// The mean of a swinging record over its whole periods, and the period.
+struct Swing {
+  double mean = 0, period = 0;
+};
+
+/// Upward crossings of the record's mean, then the mean between the first and the last of them
+/// (whole periods of the first mode) and the period between them.
+Swing whole_periods(const TipRecord& r) {
+  const std::vector<double>& w = r.displacement;
+  double mean = 0;
+  for (const double x : w) mean += x / w.size();
+  std::vector<double> crossings;
+  std::size_t first = 0, last = 0;
+  for (std::size_t k = 1; k < w.size(); ++k)
+    if (w[k - 1] < mean && w[k] >= mean) {
+      crossings.push_back((k - 1 + (mean - w[k - 1]) / (w[k] - w[k - 1])) * r.interval);
+      (crossings.size() == 1 ? first : last) = k;
+    }
+  Swing s;
+  if (crossings.size() < 3) return s;
+  for (std::size_t k = first; k < last; ++k) s.mean += w[k] / (last - first);
+  s.period = (crossings.back() - crossings.front()) / (crossings.size() - 1);
+  return s;
+}
+
+class BondedBeam : public BackendTest {
+ public:
+  /// Runs the beam under `gravity` for `steps` steps, sampling the tip's displacement along
+  /// `axis` every `every` steps.
+  TipRecord swing(Vec3 gravity, double dt, long steps, int every, int axis_index) {
+    const Scene scene = beam_scene(gravity, dt);
+    ParticleStore p = beam_particles();
+    auto engine = make_engine(make_engine_setup(scene, p));
+    engine->set_particles(p);
+    engine->create_bonds();
+    EXPECT_EQ(engine->diagnostics().bond_count, std::uint64_t(kNodes));
+    TipRecord record{every * dt, {}};
+    const double start = axis(Vec3{kNodes * spacing(), 0, 0}, axis_index);
+    for (long n = 0; n < steps; ++n) {
+      engine->step();
+      if (n % every != every - 1) continue;
+      engine->get_particles(p);
+      for (std::size_t i = 0; i < p.size(); ++i)
+        if (p.id[i] == ParticleId(kNodes))
+          record.displacement.push_back(axis(xyz(p.position_radius[i]), axis_index) - start);
+    }
+    EXPECT_EQ(engine->diagnostics().broken_bond_count, 0u);
+    return record;
+  }
+};
+
+/// Σ P a²(3L − a)/(6EI): the tip deflection of an Euler–Bernoulli cantilever of length L under
+/// the spheres' weights P at a = k d.
+double euler_bernoulli_tip(double weight) {
+  const double length = kNodes * spacing();
+  double tip = 0;
+  for (int k = 1; k <= kNodes; ++k) {
+    const double a = k * spacing();
+    tip += weight * a * a * (3 * length - a) / (6 * kYoung * second_moment());
+  }
+  return tip;
+}
+
+/// The shear deflection Σ P a/(κGA) that Timoshenko's beam adds.
+double timoshenko_shear_tip(double weight) {
+  const double kappa = 6 * (1 + kPoisson) / (7 + 6 * kPoisson);
+  const double shear = kYoung / (2 * (1 + kPoisson));
+  double tip = 0;
+  for (int k = 1; k <= kNodes; ++k) tip += weight * k * spacing() / (kappa * shear * area());
+  return tip;
+}
+
+/// The first bending frequency of the Euler–Bernoulli cantilever with the spheres as point
+/// masses m at a = k d [Hz]: ω² = 1/λ, λ the largest eigenvalue of m F, F the beam's flexibility
+/// between the masses (power iteration).
+double lumped_first_frequency() {
+  const double ei = kYoung * second_moment();
+  std::vector<double> v(kNodes, 1.0), next(kNodes);
+  double lambda = 0;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    for (int i = 0; i < kNodes; ++i) {
+      next[i] = 0;
+      for (int j = 0; j < kNodes; ++j) {
+        const double a = std::min(i + 1, j + 1) * spacing(), b = std::max(i + 1, j + 1) * spacing();
+        next[i] += node_mass() * a * a * (3 * b - a) / (6 * ei) * v[j];
+      }
+    }
+    lambda = next[kNodes - 1] / v[kNodes - 1];
+    for (int i = 0; i < kNodes; ++i) v[i] = next[i] / next[kNodes - 1];
+  }
+  return 1 / (2 * kPi * std::sqrt(lambda));
+}
+
+TEST_P(BondedBeam, CantileverSwingsAboutTheBeamsDeflectionAtItsFirstFrequency) {
+  const double g = 9.81, dt = 2e-6;
+  const TipRecord record = swing({0, 0, -g}, dt, 150000, 10, 2);
+  const Swing s = whole_periods(record);
+  ASSERT_GT(s.period, 0) << "the tip did not swing";
+  const double weight = node_mass() * g, deflection = -s.mean;
+  const double eb = euler_bernoulli_tip(weight), timoshenko = eb + timoshenko_shear_tip(weight);
+  const double f = 1 / s.period, f_lumped = lumped_first_frequency();
+  RecordProperty("tip_deflection", significant(deflection));
+  RecordProperty("euler_bernoulli", significant(eb));
+  RecordProperty("timoshenko", significant(timoshenko));
+  RecordProperty("deflection_error_eb", significant(deflection / eb - 1));
+  RecordProperty("deflection_error_timoshenko", significant(deflection / timoshenko - 1));
+  RecordProperty("frequency", significant(f));
+  RecordProperty("frequency_lumped_beam", significant(f_lumped));
+  RecordProperty("frequency_error", significant(f / f_lumped - 1));
+  EXPECT_NEAR(deflection, eb, 0.02 * eb);
+  EXPECT_NEAR(deflection, timoshenko, 0.02 * timoshenko);
+  EXPECT_NEAR(f, f_lumped, 0.02 * f_lumped);
+}
+
+TEST_P(BondedBeam, AxialPullStretchesAndRingsAtTheBarsWaveSpeed) {
+  const double g = 9.81, dt = 2e-6;
+  const TipRecord record = swing({g, 0, 0}, dt, 5000, 1, 0);
+  const Swing s = whole_periods(record);
+  ASSERT_GT(s.period, 0) << "the tip did not ring";
+  double stretch = 0;  // Σ P a/(EA)
+  for (int k = 1; k <= kNodes; ++k) stretch += node_mass() * g * k * spacing() / (kYoung * area());
+  const double bar_length = kNodes * spacing() + kRadius;  // clamp centre to the tip's far side
+  const double density = node_mass() / (area() * spacing());
+  const double speed = 4 * bar_length / s.period, expected = std::sqrt(kYoung / density);
+  RecordProperty("stretch", significant(s.mean));
+  RecordProperty("stretch_expected", significant(stretch));
+  RecordProperty("wave_speed", significant(speed));
+  RecordProperty("wave_speed_expected", significant(expected));
+  EXPECT_NEAR(s.mean, stretch, 0.02 * stretch);
+  EXPECT_NEAR(speed, expected, 0.01 * expected);
+}
+
+/// Two free spheres bonded along x, flying apart at relative speed v, the bond breaking at
+/// stretch `breaking_stretch` (tensile strength k̄_n · stretch).
+TEST_P(BondedBeam, BondBreaksAtItsTensileStrengthAndTakesItsEnergy) {
+  Scene scene = beam_scene({0, 0, 0}, 1e-7);
+  const double kn = kYoung / spacing() * area(), reduced_mass = 0.5 * node_mass(), v = 0.05;
+  const double most_stretch = v * std::sqrt(reduced_mass / kn);
+  const double breaking_stretch = 0.5 * most_stretch;
+  scene.bonds[0].tensile_strength = kYoung / spacing() * breaking_stretch;
+  ParticleStore p;
+  p.add(1, {0, 0, 0}, kRadius, 0, {-0.5 * v, 0, 0}, 1 / node_mass());
+  p.add(2, {spacing(), 0, 0}, kRadius, 0, {0.5 * v, 0, 0}, 1 / node_mass());
+  auto engine = make_engine(make_engine_setup(scene, p));
+  engine->set_particles(p);
+  engine->create_bonds();
+  const double start_energy = engine->diagnostics().kinetic_translational;
+  double last_intact_stretch = 0, worst_drift = 0;
+  for (int n = 0; n < 200000 && engine->diagnostics().bond_count == 1; ++n) {
+    const Diagnostics d = engine->diagnostics();
+    worst_drift = std::max(worst_drift, std::abs(d.kinetic_translational + d.potential_elastic -
+                                                 start_energy));
+    engine->get_particles(p);
+    last_intact_stretch = std::abs(p.position_radius[1].x - p.position_radius[0].x) - spacing();
+    engine->step();
+  }
+  const Diagnostics after = engine->diagnostics();
+  ASSERT_EQ(after.bond_count, 0u);
+  EXPECT_EQ(after.broken_bond_count, 1u);
+  EXPECT_EQ(after.potential_elastic, 0.0);
+  const double step_stretch = v * 1e-7;
+  RecordProperty("last_intact_stretch", significant(last_intact_stretch));
+  RecordProperty("breaking_stretch", significant(breaking_stretch));
+  EXPECT_LT(last_intact_stretch, breaking_stretch);
+  EXPECT_GT(last_intact_stretch, breaking_stretch - 2 * step_stretch);
+  EXPECT_LT(worst_drift, 1e-3 * start_energy);
+  // The bond held ½ k δ_b² = ¼ of the kinetic energy when it broke; that energy is gone.
+  const double kept = after.kinetic_translational / start_energy;
+  RecordProperty("kinetic_energy_kept", significant(kept));
+  EXPECT_NEAR(kept, 0.75, 0.01);
+}
+
+GPUDEM_INSTANTIATE_BACKENDS(BondedBeam);
+
+}  // namespace
+}  // namespace gpudem::test
