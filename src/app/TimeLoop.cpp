@@ -246,9 +246,8 @@ std::optional<Diagnostics> TimeLoop::record_row(std::uint64_t step, bool snapsho
     removal_reported_ = removal_reported_ || removed > 0;
     row = engine_.diagnostics();
     imbalance_ = balance_.imbalance(engine_);
-    series_.append(
-        timeseries_row(time, step, step_dt(), *row, removed, imbalance_, implement_loads_,
-                       !scene_.bonds.empty()));
+    series_.append(timeseries_row(time, step, step_dt(), *row, removed, imbalance_,
+                                  implement_loads_, !scene_.bonds.empty()));
   }
   if (snapshot) write_snapshot(time, step);
   return row;

@@ -68,7 +68,10 @@ struct Material {
   double viscoelastic_time = 0;  ///< A of the viscoelastic damping law [s], >= 0
   double cohesion_energy_density = 0;  ///< k_c of simplified JKR [J/m^3], >= 0
   double surface_energy = 0;  ///< γ of JKR, work of adhesion per contact area [J/m^2], >= 0
-  bool fixed = false;  ///< its particles are held still (v = 0, ω = 0), feeling every load
+  bool fixed = false;         ///< its particles are held still (v = 0, ω = 0), feeling every load
+  /// c [1/s]: a drag −c m v, −c I ω on its particles that brings quasi-static loading to rest
+  /// (a numerical device, not a physical force), >= 0
+  double drag = 0;
 };
 
 /// An explicit [[pair]] entry: values that replace the mixing rule for one material pair (in
@@ -88,13 +91,13 @@ struct PairOverride {
 /// apart (the first table that matches a pair makes its bond).
 struct BondSettings {
   MaterialId a = 0, b = 0;
-  double gap = 0;                           ///< [m], >= 0
-  double young = 0;                         ///< E of the cement [Pa]
-  double poisson = 0.25;                    ///< ν of the cement, G = E / (2(1 + ν))
-  double radius_factor = 1;                 ///< λ: bond radius λ min(r_a, r_b)
-  double tensile_strength = INFINITY;       ///< σ_c [Pa]; absent: never breaks in tension
-  double shear_strength = INFINITY;         ///< τ_c [Pa]; absent: never breaks in shear
-  double damping_ratio = 0;                 ///< β, fraction of critical damping of each mode
+  double gap = 0;                      ///< [m], >= 0
+  double young = 0;                    ///< E of the cement [Pa]
+  double poisson = 0.25;               ///< ν of the cement, G = E / (2(1 + ν))
+  double radius_factor = 1;            ///< λ: bond radius λ min(r_a, r_b)
+  double tensile_strength = INFINITY;  ///< σ_c [Pa]; absent: never breaks in tension
+  double shear_strength = INFINITY;    ///< τ_c [Pa]; absent: never breaks in shear
+  double damping_ratio = 0;            ///< β, fraction of critical damping of each mode
 };
 
 /// Contact law selection: one choice per slot, validated against valid_contact_models().

@@ -128,7 +128,7 @@ double dynamic_friction(const TableReader& table, const std::string& key, double
 Material read_material(const TableReader& table) {
   table.allow_only({"name", "density", "young", "poisson", "restitution", "friction",
                     "friction_dynamic", "rolling_friction", "rolling_damping", "viscoelastic_time",
-                    "cohesion_energy_density", "surface_energy", "fixed"});
+                    "cohesion_energy_density", "surface_energy", "fixed", "drag"});
   Material m;
   m.name = table.string("name");
   m.density = table.number("density", positive("kg/m^3"));
@@ -144,6 +144,7 @@ Material read_material(const TableReader& table) {
       table.number("cohesion_energy_density", non_negative("J/m^3"), m.cohesion_energy_density);
   m.surface_energy = table.number("surface_energy", non_negative("J/m^2"), m.surface_energy);
   m.fixed = table.boolean("fixed", m.fixed);
+  m.drag = table.number("drag", non_negative("1/s"), m.drag);
   return m;
 }
 
@@ -445,8 +446,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   toml::value tree = parse_scene_file(path);
   apply_overrides(tree, overrides);
   const TableReader root(tree, path, "", "");
-  root.allow_only({"simulation", "domain", "material", "contact", "pair", "bond", "neighbor", "wall",
-                   "mesh", "implement", "insert", "output", "checkpoint", "preparation",
+  root.allow_only({"simulation", "domain", "material", "contact", "pair", "bond", "neighbor",
+                   "wall", "mesh", "implement", "insert", "output", "checkpoint", "preparation",
                    "decomposition"});
   Scene scene;
   scene.file = path;

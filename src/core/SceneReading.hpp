@@ -26,7 +26,8 @@ MaterialId material_index(const TableReader& table, const std::string& key,
 std::string path_beside_scene(const TableReader& table, const std::string& key, const Scene& scene);
 
 /// The [[bond]] tables (SceneBonds.cpp).
-std::vector<BondSettings> read_bonds(const TableReader& root, const std::vector<Material>& materials);
+std::vector<BondSettings> read_bonds(const TableReader& root,
+                                     const std::vector<Material>& materials);
 
 /// The enum value whose name (in `names`, enum order) `key` gives, or `fallback` when absent.
 template <class Enum>

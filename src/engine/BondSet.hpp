@@ -24,9 +24,9 @@ class BondSet {
     std::vector<BondParamsT<S>> types;
     std::vector<BondRule> rules;
     for (const BondSettings& t : tables) {
-      types.push_back(bond_params_cast<S>(
-          BondParams{t.young, shear_modulus(t.young, t.poisson), t.radius_factor,
-                     t.tensile_strength, t.shear_strength, t.damping_ratio}));
+      types.push_back(bond_params_cast<S>(BondParams{t.young, shear_modulus(t.young, t.poisson),
+                                                     t.radius_factor, t.tensile_strength,
+                                                     t.shear_strength, t.damping_ratio}));
       rules.push_back(BondRule{t.a, t.b, t.gap});
     }
     types_.upload(types);
@@ -44,10 +44,10 @@ class BondSet {
   /// Makes the bonds of the rules on owned particles' list entries (each end its record).
   template <class P>
   void create(const BondRows<P>& rows, std::size_t owned) {
-    parallel_for(Space{}, owned,
-                 bond_kernels::Create<P, S>{rows, rules_.data(),
-                                            static_cast<std::uint32_t>(rules_.size()),
-                                            records_.data()});
+    parallel_for(
+        Space{}, owned,
+        bond_kernels::Create<P, S>{rows, rules_.data(), static_cast<std::uint32_t>(rules_.size()),
+                                   records_.data()});
   }
 
   /// Adds the owned particles' bond loads to force and torque, the bonds advanced by dt.

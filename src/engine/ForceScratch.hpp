@@ -11,7 +11,12 @@ namespace gpudem {
 template <class Space, class S>
 struct ForceScratchOf {
   ForceScratchOf(std::size_t owned, std::size_t pairs, std::size_t wall_slots, std::size_t mesh)
-      : force(owned), torque(owned), overlap_ratio(owned), pair(pairs), wall(wall_slots), mesh(mesh) {}
+      : force(owned),
+        torque(owned),
+        overlap_ratio(owned),
+        pair(pairs),
+        wall(wall_slots),
+        mesh(mesh) {}
   /// The bytes the constructor allocates.
   static std::size_t bytes(std::size_t owned, std::size_t pairs, std::size_t wall_slots,
                            std::size_t mesh) {

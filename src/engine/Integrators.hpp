@@ -5,6 +5,7 @@
 /// with the same kick for ω using T/I. Forces depend on velocity (dashpots), so the Verlet
 /// variant evaluates them with the half-step velocity, as is usual in DEM.
 #include <cmath>
+#include <cstdint>
 
 #include "core/Config.hpp"
 #include "core/ParticleStore.hpp"
@@ -12,9 +13,17 @@
 
 namespace gpudem {
 
+/// How the kick treats the particles of one material (Material::fixed, Material::drag).
+struct MaterialMotion {
+  std::uint32_t fixed = 0;  ///< 1: held still
+  Real drag = 0;            ///< c [1/s]
+};
+
 /// v += h·F/m and, when the contact law exerts torques (kRotate), ω += h·T/I, in Real from
-/// a state held in scalar P and forces and torques held in scalar S. A particle of a fixed
-/// material (fixed[material] = 1) keeps v = 0 and ω = 0 instead; fixed null: none is.
+/// a state held in scalar P and forces and torques held in scalar S. With a material table
+/// (motion, per material; null: every material moves freely), a particle of a fixed material
+/// keeps v = 0 and ω = 0, and one of drag c is slowed by −c m v and −c I ω, taken implicitly:
+/// v ← (v + h F/m)/(1 + c h), stable for any c h.
 template <bool kRotate, class S, class P>
 struct Kick {
   Vec4T<P>* velocity_inv_mass;
@@ -24,24 +33,26 @@ struct Kick {
   const Vec4T<P>* position_radius;
   Real h;
   const MaterialId* material = nullptr;
-  const std::uint8_t* fixed = nullptr;
+  const MaterialMotion* motion = nullptr;
   GPUDEM_HD void operator()(std::size_t i) const {
     Real4 v = vec4_cast<Real>(velocity_inv_mass[i]);
-    if (fixed && fixed[material[i]]) {
+    const MaterialMotion m = motion ? motion[material[i]] : MaterialMotion{};
+    if (m.fixed) {
       velocity_inv_mass[i] = vec4_cast<P>(Real4{0, 0, 0, v.w});
       angular_velocity[i] = Vec3T<P>{};
       return;
     }
+    const Real slowed = Real(1) / (Real(1) + m.drag * h);
     const Vec3 f = vec_cast<Real>(force[i]);
-    v.x += h * v.w * f.x;
-    v.y += h * v.w * f.y;
-    v.z += h * v.w * f.z;
+    v.x = (v.x + h * v.w * f.x) * slowed;
+    v.y = (v.y + h * v.w * f.y) * slowed;
+    v.z = (v.z + h * v.w * f.z) * slowed;
     velocity_inv_mass[i] = vec4_cast<P>(v);
     if constexpr (kRotate) {
       const Real inertia = sphere_inertia(position_radius[i].w, v.w);
       const Vec3 w =
           vec_cast<Real>(angular_velocity[i]) + (h / inertia) * vec_cast<Real>(torque[i]);
-      angular_velocity[i] = vec_cast<P>(w);
+      angular_velocity[i] = vec_cast<P>(slowed * w);
     }
   }
 };

@@ -70,7 +70,7 @@ class ParticleSystem final : public StepEngine {
         ghosts_(law_->needs_spin() || !setup.bonds.empty()),
         clock_{setup.start_step} {
     walls_.upload(pistons_.walls());
-    fixed_.upload(setup.fixed_materials);
+    motion_.upload(setup.material_motion);
     if (!meshes_.empty()) meshes_.set_time(clock_.time(setup.dt));
   }
 
@@ -445,9 +445,9 @@ class ParticleSystem final : public StepEngine {
   std::unique_ptr<ForceCompute<Space, LawView, S>> law_;  ///< the contact law
   std::uint32_t width_;  ///< history values per contact (the law's)
   OneRankDomain one_rank_;
-  DomainLink& domain_;                   ///< setup.domain, or one_rank_ when there is none
-  DeviceArray<PlaneWall, Space> walls_;  ///< at their current positions
-  DeviceArray<std::uint8_t, Space> fixed_;  ///< per material, 1: fixed (empty: none is)
+  DomainLink& domain_;                         ///< setup.domain, or one_rank_ when there is none
+  DeviceArray<PlaneWall, Space> walls_;        ///< at their current positions
+  DeviceArray<MaterialMotion, Space> motion_;  ///< per material (empty: all move freely)
   WallPistons pistons_;
   /// With pistons, each owned particle's push on each wall, per slot i·wall_count + w [N].
   DeviceArray<S, Space> wall_push_;
@@ -473,7 +473,7 @@ class ParticleSystem final : public StepEngine {
   NeighborList<Space> neighbors_;
   MeshWalls<Space, S> meshes_;
   BondSet<Space, S> bonds_;
-  std::uint64_t bonds_made_ = 0;  ///< bonds made at the run's start, on all ranks
+  std::uint64_t bonds_made_ = 0;          ///< bonds made at the run's start, on all ranks
   ParticleStaging<Space, P, S> staging_;  ///< snapshot copies (host memory)
   GhostExchange<Space, P, S> ghosts_;
   GhostRowSplit<Space> ghost_rows_;  ///< owned particles by whether their rows read ghosts

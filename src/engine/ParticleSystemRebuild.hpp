@@ -148,8 +148,8 @@ void ParticleSystem<Space, P, S>::append_owned(const MigratingParticles<S, P>& a
   parallel_for(Space{}, owned_, Fill<ForceVec>{torque_.data(), ForceVec{}});
   // The arrivals' rows go after the kept ones (none without history: the index is then only
   // carried along by the sorts).
-  const auto first_row = static_cast<std::uint32_t>(
-      width_ > 0 ? carried_pairs_.rows().rows() : bonds_.kept_rows().rows());
+  const auto first_row = static_cast<std::uint32_t>(width_ > 0 ? carried_pairs_.rows().rows()
+                                                               : bonds_.kept_rows().rows());
   parallel_for(Space{}, arrived.size(), IotaFrom{previous_index_.data() + first, first_row});
   if (!bonds_.empty() && has_list_)
     bonds_.kept_rows().append(arrived.bond_offsets, arrived.bond_partner, arrived.bond_values);

@@ -70,8 +70,7 @@ HistoryValues ParticleSystem<Space, P, S>::scatter_share(ContactHistory share,
   const std::vector<ParticleId> owned(slots.id.begin(), slots.id.begin() + slots.rows);
   HistoryValues values;
   try {
-    values =
-        scatter_history(slots, width, route_history(std::move(share), width, owned, domain_));
+    values = scatter_history(slots, width, route_history(std::move(share), width, owned, domain_));
   } catch (const std::invalid_argument& e) {
     problem = e.what();
   }

@@ -64,7 +64,7 @@ void ParticleSystem<Space, P, S>::kick_with(Real h) {
   parallel_for(Space{}, owned_,
                Kick<kRotate, S, P>{velocity_inv_mass_.data(), angular_velocity_.data(),
                                    force_.data(), torque_.data(), position_radius_.data(), h,
-                                   material_.data(), fixed_.data()},
+                                   material_.data(), motion_.data()},
                LaunchSlot::integrate);
 }
 

@@ -337,9 +337,9 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   require_skin_covers_bond_gaps(scene, s.skin);
   s.bonds = scene.bonds;
   for (const Material& m : scene.materials)
-    if (m.fixed) s.fixed_materials.assign(scene.materials.size(), 0);
-  for (std::size_t k = 0; k < s.fixed_materials.size(); ++k)
-    s.fixed_materials[k] = scene.materials[k].fixed ? 1 : 0;
+    if (m.fixed || m.drag > 0) s.material_motion.resize(scene.materials.size());
+  for (std::size_t k = 0; k < s.material_motion.size(); ++k)
+    s.material_motion[k] = {scene.materials[k].fixed ? 1u : 0u, scene.materials[k].drag};
   require_meshes_meet_the_domain(scene, s.meshes, std::isfinite(r_min) ? 2 * r_min : 0.0);
   const TimeStepLimits limits = time_step_limits(scene, particles, s.meshes);
   require_stable_dt(scene, limits);

@@ -18,6 +18,7 @@
 #include "core/Scene.hpp"
 #include "core/StepClock.hpp"
 #include "engine/DomainLink.hpp"
+#include "engine/Integrators.hpp"
 #include "engine/MeshWallSetup.hpp"
 #include "engine/PeriodicBox.hpp"
 #include "engine/PlaneWall.hpp"
@@ -40,9 +41,10 @@ struct EngineSetup {
   std::vector<PistonSetup> pistons;   ///< the walls that slide (WallPistons.hpp)
   std::vector<MeshWallSetup> meshes;  ///< triangle-mesh walls (tools)
   std::vector<BondSettings> bonds;    ///< the [[bond]] tables: none, no bonds
-  /// Per material, 1 when its particles are held still (Material::fixed); empty: none is.
-  std::vector<std::uint8_t> fixed_materials;
-  std::uint64_t start_step = 0;       ///< base step the run starts at (a restart's): the clock
+  /// Per material, whether its particles are held still and their drag (Material::fixed,
+  /// Material::drag); empty: every material moves freely.
+  std::vector<MaterialMotion> material_motion;
+  std::uint64_t start_step = 0;  ///< base step the run starts at (a restart's): the clock
   /// This rank's part of the decomposed domain; null: a run on one rank. Must outlive the
   /// engine.
   DomainLink* domain = nullptr;
@@ -55,13 +57,13 @@ struct EngineSetup {
 /// particles exert on each wall [N].
 struct Diagnostics {
   std::uint64_t particle_count = 0;
-  std::uint64_t contact_count = 0;   ///< particle–particle plus particle–wall contacts
-  double kinetic_translational = 0;  ///< Σ ½ m v² [J]
-  double kinetic_rotational = 0;     ///< Σ ½ I ω² [J]
-  double potential_gravity = 0;      ///< Σ −m g·x [J]
-  double potential_elastic = 0;      ///< Σ contact spring energy [J]
-  double max_overlap_ratio = 0;      ///< max over contacts of δ / min(r_i, r_j)
-  std::uint64_t bond_count = 0;      ///< intact parallel bonds
+  std::uint64_t contact_count = 0;      ///< particle–particle plus particle–wall contacts
+  double kinetic_translational = 0;     ///< Σ ½ m v² [J]
+  double kinetic_rotational = 0;        ///< Σ ½ I ω² [J]
+  double potential_gravity = 0;         ///< Σ −m g·x [J]
+  double potential_elastic = 0;         ///< Σ contact spring energy [J]
+  double max_overlap_ratio = 0;         ///< max over contacts of δ / min(r_i, r_j)
+  std::uint64_t bond_count = 0;         ///< intact parallel bonds
   std::uint64_t broken_bond_count = 0;  ///< bonds made at the run's start that broke since
   std::vector<Vec3> wall_force;
   std::vector<Vec3> mesh_force;           ///< force the particles exert on each mesh [N]

@@ -40,8 +40,9 @@ double stiffest_bond(const Scene& scene, const ParticleStore& particles) {
   for (const BondSettings& b : scene.bonds) {
     const std::size_t i = smallest[b.a], j = smallest[b.b];
     if (i == particles.size() || j == particles.size()) continue;
-    const BondParams p{b.young, gpudem::shear_modulus(b.young, b.poisson), b.radius_factor,
-                       b.tensile_strength, b.shear_strength, b.damping_ratio};
+    const BondParams p{b.young,          gpudem::shear_modulus(b.young, b.poisson),
+                       b.radius_factor,  b.tensile_strength,
+                       b.shear_strength, b.damping_ratio};
     omega2 = std::max(omega2, bond_frequency_squared(p, particles.position_radius[i].w,
                                                      1 / particles.velocity_inv_mass[i].w,
                                                      particles.position_radius[j].w,

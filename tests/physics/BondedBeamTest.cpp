@@ -6,7 +6,8 @@
 // spheres as lumped masses. Pulled along its axis, it stretches by Σ P a/(EA) and rings at the
 // quarter-wave frequency c/(4L) of a bar whose wave speed is c = √(E/ρ), ρ the spheres' mass
 // per volume of bond. Two spheres pulled apart break their bond when its tensile stress reaches
-// the strength, and the bond's elastic energy leaves with it.
+// the strength, and the bond's elastic energy leaves with it. Loaded to a large deflection and
+// brought to rest by drag, the cantilever's tip lies where the elastica puts it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -42,10 +43,11 @@ BondSettings bond_between(MaterialId a, MaterialId b) {
 }
 
 /// Material 0 the beam's spheres, material 1 the fixed clamp; bonds between touching spheres.
-Scene beam_scene(Vec3 gravity, double dt) {
+Scene beam_scene(Vec3 gravity, double dt, double drag = 0) {
   Scene s = basic_scene({-0.01, -0.05, -0.05}, {0.06, 0.05, 0.05}, 0, 1, 0);
   s.materials[0].density = kDensity;
   s.materials[0].young = kYoung;
+  s.materials[0].drag = drag;
   Material clamp = s.materials[0];
   clamp.name = "clamp";
   clamp.fixed = true;
@@ -64,7 +66,8 @@ ParticleStore beam_particles() {
   ParticleStore p;
   const double inv_mass = 1 / node_mass();
   p.add(0, {0, 0, 0}, kRadius, 1, {0, 0, 0}, inv_mass);
-  for (int k = 1; k <= kNodes; ++k) p.add(k, {k * spacing(), 0, 0}, kRadius, 0, {0, 0, 0}, inv_mass);
+  for (int k = 1; k <= kNodes; ++k)
+    p.add(k, {k * spacing(), 0, 0}, kRadius, 0, {0, 0, 0}, inv_mass);
   return p;
 }
 
@@ -103,8 +106,8 @@ class BondedBeam : public BackendTest {
  public:
   /// Runs the beam under `gravity` for `steps` steps, sampling the tip's displacement along
   /// `axis` every `every` steps.
-  TipRecord swing(Vec3 gravity, double dt, long steps, int every, int axis_index) {
-    const Scene scene = beam_scene(gravity, dt);
+  TipRecord swing(Vec3 gravity, double dt, long steps, int every, int axis_index, double drag = 0) {
+    const Scene scene = beam_scene(gravity, dt, drag);
     ParticleStore p = beam_particles();
     auto engine = make_engine(make_engine_setup(scene, p));
     engine->set_particles(p);
@@ -224,8 +227,8 @@ TEST_P(BondedBeam, BondBreaksAtItsTensileStrengthAndTakesItsEnergy) {
   double last_intact_stretch = 0, worst_drift = 0;
   for (int n = 0; n < 200000 && engine->diagnostics().bond_count == 1; ++n) {
     const Diagnostics d = engine->diagnostics();
-    worst_drift = std::max(worst_drift, std::abs(d.kinetic_translational + d.potential_elastic -
-                                                 start_energy));
+    worst_drift = std::max(worst_drift,
+                           std::abs(d.kinetic_translational + d.potential_elastic - start_energy));
     engine->get_particles(p);
     last_intact_stretch = std::abs(p.position_radius[1].x - p.position_radius[0].x) - spacing();
     engine->step();
@@ -244,6 +247,72 @@ TEST_P(BondedBeam, BondBreaksAtItsTensileStrengthAndTakesItsEnergy) {
   const double kept = after.kinetic_translational / start_energy;
   RecordProperty("kinetic_energy_kept", significant(kept));
   EXPECT_NEAR(kept, 0.75, 0.01);
+}
+
+/// The tip of the elastica under point loads P at a_k = k d: θ'' = −V(s) cos θ / EI with V(s)
+/// the loads beyond s, θ(0) = 0 (clamped) and θ'(L) = 0 (no moment at the free end), by shooting
+/// on θ'(0) (bisection between 0 and the straight beam's Σ P a_k / EI) with RK4 steps of d/100.
+struct TipPosition {
+  double shortening = 0, deflection = 0;  ///< along x towards the clamp, and down [m]
+};
+
+TipPosition elastica_tip(double weight) {
+  const double ei = kYoung * second_moment(), length = kNodes * spacing(), h = spacing() / 100;
+  const auto shoot = [&](double root_curvature, TipPosition& tip) {
+    double y[4] = {0, root_curvature, 0, 0};  // θ, θ', x, z (down)
+    for (int e = 0; e < kNodes; ++e) {
+      const double shear = weight * (kNodes - e);
+      const auto rate = [&](const double* u, double* du) {
+        du[0] = u[1];
+        du[1] = -shear * std::cos(u[0]) / ei;
+        du[2] = std::cos(u[0]);
+        du[3] = std::sin(u[0]);
+      };
+      for (int step = 0; step < 100; ++step) {
+        double k1[4], k2[4], k3[4], k4[4], u[4];
+        rate(y, k1);
+        for (int c = 0; c < 4; ++c) u[c] = y[c] + 0.5 * h * k1[c];
+        rate(u, k2);
+        for (int c = 0; c < 4; ++c) u[c] = y[c] + 0.5 * h * k2[c];
+        rate(u, k3);
+        for (int c = 0; c < 4; ++c) u[c] = y[c] + h * k3[c];
+        rate(u, k4);
+        for (int c = 0; c < 4; ++c) y[c] += h / 6 * (k1[c] + 2 * k2[c] + 2 * k3[c] + k4[c]);
+      }
+    }
+    tip = {length - y[2], y[3]};
+    return y[1];  // θ'(L)
+  };
+  double low = 0, high = 0;
+  for (int k = 1; k <= kNodes; ++k) high += weight * k * spacing() / ei;
+  TipPosition tip;
+  for (int iteration = 0; iteration < 80; ++iteration) {
+    const double mid = 0.5 * (low + high);
+    (shoot(mid, tip) < 0 ? low : high) = mid;
+  }
+  shoot(0.5 * (low + high), tip);
+  return tip;
+}
+
+TEST_P(BondedBeam, LargeDeflectionRestsOnTheElastica) {
+  // Loads of 8 EI/L² in all: the linear beam would put the tip below the length of the beam.
+  const double length = kNodes * spacing();
+  const double g = 8 * kYoung * second_moment() / (length * length) / (kNodes * node_mass());
+  const double dt = 2e-6, drag = 200;  // about 0.8 of the first mode's critical damping
+  const TipRecord down = swing({0, 0, -g}, dt, 100000, 100000, 2, drag);
+  const TipRecord along = swing({0, 0, -g}, dt, 100000, 100000, 0, drag);
+  ASSERT_EQ(down.displacement.size(), 1u);
+  const TipPosition expected = elastica_tip(node_mass() * g);
+  const double deflection = -down.displacement[0], shortening = -along.displacement[0];
+  const double linear = euler_bernoulli_tip(node_mass() * g);
+  RecordProperty("tip_deflection", significant(deflection));
+  RecordProperty("elastica_deflection", significant(expected.deflection));
+  RecordProperty("linear_deflection", significant(linear));
+  RecordProperty("tip_shortening", significant(shortening));
+  RecordProperty("elastica_shortening", significant(expected.shortening));
+  EXPECT_GT(linear, 1.5 * expected.deflection);  // the case is far from linear
+  EXPECT_NEAR(deflection, expected.deflection, 0.02 * expected.deflection);
+  EXPECT_NEAR(shortening, expected.shortening, 0.02 * expected.shortening);
 }
 
 GPUDEM_INSTANTIATE_BACKENDS(BondedBeam);

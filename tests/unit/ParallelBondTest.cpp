@@ -77,8 +77,7 @@ TEST(ParallelBond, BendingAndTwistFollowTheRelativeRotation) {
   BondLoad<double> load;
   for (int k = 0; k < 4; ++k) load = evaluate_bond(params(), g, r.value, dt);
   const double bending = kYoung / kRest * second_moment() * 2 * 4 * dt;
-  const double twist =
-      kYoung / (2 * (1 + kPoisson)) / kRest * 2 * second_moment() * 3 * 4 * dt;
+  const double twist = kYoung / (2 * (1 + kPoisson)) / kRest * 2 * second_moment() * 3 * 4 * dt;
   EXPECT_NEAR(load.torque_a.y, bending, 1e-12 * bending);
   EXPECT_NEAR(load.torque_b.y, -bending, 1e-12 * bending);
   EXPECT_NEAR(load.torque_a.x, twist, 1e-12 * twist);
@@ -104,7 +103,8 @@ TEST(ParallelBond, EveryEvaluationConservesMomentumAndAngularMomentum) {
   for (int k = 0; k < 5; ++k) {
     const BondLoad<double> load = evaluate_bond(p, g, r.value, 1e-5);
     // a gets F, b gets −F; their moments about the origin cancel with the torques.
-    const Vec3 total = cross(xa, load.force) + load.torque_a + cross(xb, -load.force) + load.torque_b;
+    const Vec3 total =
+        cross(xa, load.force) + load.torque_a + cross(xb, -load.force) + load.torque_b;
     const double scale = norm(load.force) * norm(d) + norm(load.torque_a);
     EXPECT_LT(norm(total), 1e-12 * scale) << "step " << k;
   }

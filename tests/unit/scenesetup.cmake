@@ -15,3 +15,8 @@ gpudem_add_test(test_jkr_setup
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/JkrSetupTest.cpp
   LIBS gpudem_sim
   LABELS unit)
+# [[bond]] tables and fixed materials: the keys, the refusals, the skin and the stable step.
+gpudem_add_test(test_bond_scene
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/BondSceneTest.cpp
+  LIBS gpudem_sim
+  LABELS unit)

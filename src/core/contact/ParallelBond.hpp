@@ -47,8 +47,8 @@ using BondParams = BondParamsT<Real>;
 
 template <class To>
 BondParamsT<To> bond_params_cast(const BondParams& p) {
-  return {static_cast<To>(p.young),           static_cast<To>(p.shear),
-          static_cast<To>(p.radius_factor),   static_cast<To>(p.tensile_strength),
+  return {static_cast<To>(p.young),          static_cast<To>(p.shear),
+          static_cast<To>(p.radius_factor),  static_cast<To>(p.tensile_strength),
           static_cast<To>(p.shear_strength), static_cast<To>(p.damping_ratio)};
 }
 
@@ -75,14 +75,14 @@ inline constexpr std::uint32_t width = 9;
 /// A bond's geometry and relative motion, from end a to end b, in the law's scalar.
 template <class S>
 struct BondGeometry {
-  Vec3T<S> normal;          ///< n, unit, from a to b
-  S stretch = 0;            ///< L − L₀, formed where L is known to full precision [m]
-  S arm_a = 0, arm_b = 0;   ///< L_a, L_b: distances of the contact point from a and b [m]
-  S min_radius = 0;         ///< min(r_a, r_b) [m]
-  Vec3T<S> velocity;        ///< of b w.r.t. a at the contact point [m/s]
-  Vec3T<S> spin;            ///< ω_b − ω_a [rad/s]
-  S reduced_mass = 0;       ///< m* [kg]
-  S reduced_inertia = 0;    ///< I* [kg m²]
+  Vec3T<S> normal;         ///< n, unit, from a to b
+  S stretch = 0;           ///< L − L₀, formed where L is known to full precision [m]
+  S arm_a = 0, arm_b = 0;  ///< L_a, L_b: distances of the contact point from a and b [m]
+  S min_radius = 0;        ///< min(r_a, r_b) [m]
+  Vec3T<S> velocity;       ///< of b w.r.t. a at the contact point [m/s]
+  Vec3T<S> spin;           ///< ω_b − ω_a [rad/s]
+  S reduced_mass = 0;      ///< m* [kg]
+  S reduced_inertia = 0;   ///< I* [kg m²]
 };
 
 /// The loads of a bond this step: on a the force and torque, on b −force and torque_b.
@@ -158,8 +158,9 @@ GPUDEM_HD BondLoad<S> evaluate_bond(const BondParamsT<S>& p, const BondGeometry<
   state[v::twist] = twist;
   const S beta = p.damping_ratio;
   const Vec3T<S> shear_total = shear + bond_damping(beta, g.reduced_mass, k.shear) * vt;
-  const Vec3T<S> moment = (twist + bond_damping(beta, g.reduced_inertia, k.twist) * twist_rate) * n +
-                          bending + bond_damping(beta, g.reduced_inertia, k.bending) * wt;
+  const Vec3T<S> moment =
+      (twist + bond_damping(beta, g.reduced_inertia, k.twist) * twist_rate) * n + bending +
+      bond_damping(beta, g.reduced_inertia, k.bending) * wt;
   load.force =
       (normal_force + bond_damping(beta, g.reduced_mass, k.normal) * normal_rate) * n + shear_total;
   load.torque_a = moment + cross(g.arm_a * n, shear_total);

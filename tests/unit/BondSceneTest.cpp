@@ -1,0 +1,159 @@
+// [[bond]] tables and fixed materials in a scene: every key read, defaults, refusals that name
+// file, line and key, a gap the skin cannot hold refused at set-up, and the bond vibration in
+// the time-step limits.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/InputError.hpp"
+#include "core/SceneLoader.hpp"
+#include "engine/SceneSetup.hpp"
+#include "engine/TimeStepLimits.hpp"
+
+namespace gpudem::test {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPi = 3.14159265358979323846;
+
+/// Lines 1-18 fixed; the [[bond]] table from line 19 on.
+const char* const kScene = R"([simulation]
+end_time = 1.0
+[domain]
+min = [0, 0, 0]
+max = [1, 1, 1]
+[[material]]
+name = "soil"
+density = 1850
+young = 2e6
+[[material]]
+name = "clamp"
+density = 1850
+young = 2e6
+fixed = true
+[contact]
+normal = "hertz"
+[neighbor]
+skin = 0.001
+)";
+
+class BondScene : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("gpudem-bond-scene-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path() const { return (dir_ / "scene.toml").string(); }
+
+  Scene load(const std::string& bond) {
+    std::ofstream(path()) << kScene << bond;
+    return load_scene(path(), {});
+  }
+
+  /// The InputError of loading the scene with `bond`, checked to name the file, `line`, `key`
+  /// and `phrase`.
+  void expect_refused(const std::string& bond, int line, const std::string& key,
+                      const std::string& phrase) {
+    try {
+      load(bond);
+      ADD_FAILURE() << "loaded:\n" << bond;
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(e.file(), path()) << message;
+      EXPECT_EQ(e.line(), line) << message;
+      EXPECT_EQ(e.key(), key) << message;
+      EXPECT_NE(message.find(phrase), std::string::npos) << message;
+    }
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(BondScene, ReadsEveryKeyAndTheFixedFlag) {
+  const Scene s = load(
+      "[[bond]]\nmaterials = [\"clamp\", \"soil\"]\ngap = 2e-4\nyoung = 3e7\npoisson = 0.2\n"
+      "radius_factor = 0.7\ntensile_strength = 1e5\nshear_strength = 2e5\ndamping_ratio = 0.3\n"
+      "[[bond]]\nmaterials = [\"soil\", \"soil\"]\nyoung = 1e6\n");
+  ASSERT_EQ(s.bonds.size(), 2u);
+  const BondSettings& b = s.bonds[0];
+  EXPECT_EQ(b.a, 1u);
+  EXPECT_EQ(b.b, 0u);
+  EXPECT_EQ(b.gap, 2e-4);
+  EXPECT_EQ(b.young, 3e7);
+  EXPECT_EQ(b.poisson, 0.2);
+  EXPECT_EQ(b.radius_factor, 0.7);
+  EXPECT_EQ(b.tensile_strength, 1e5);
+  EXPECT_EQ(b.shear_strength, 2e5);
+  EXPECT_EQ(b.damping_ratio, 0.3);
+  const BondSettings& d = s.bonds[1];
+  EXPECT_EQ(d.gap, 0.0);
+  EXPECT_EQ(d.poisson, 0.25);
+  EXPECT_EQ(d.radius_factor, 1.0);
+  EXPECT_TRUE(std::isinf(d.tensile_strength));
+  EXPECT_TRUE(std::isinf(d.shear_strength));
+  EXPECT_EQ(d.damping_ratio, 0.0);
+  EXPECT_FALSE(s.materials[0].fixed);
+  EXPECT_TRUE(s.materials[1].fixed);
+}
+
+TEST_F(BondScene, RefusalsNameTheKey) {
+  expect_refused("[[bond]]\nmaterials = [\"soil\", \"sand\"]\nyoung = 1e6\n", 20,
+                 "bond[0].materials", "unknown material 'sand'");
+  expect_refused("[[bond]]\nmaterials = [\"soil\", \"soil\"]\n", 19, "bond[0].young",
+                 "missing required key 'young'");
+  expect_refused("[[bond]]\nmaterials = [\"soil\", \"soil\"]\nyoung = 1e6\ntensile_strength = -1\n",
+                 22, "bond[0].tensile_strength", "> 0");
+  expect_refused("[[bond]]\nmaterials = [\"soil\", \"soil\"]\nyoung = 1e6\nstrength = 1\n", 22,
+                 "bond[0].strength", "unknown key");
+}
+
+/// Two touching spheres of radius r, one of each material.
+ParticleStore two_spheres(double r) {
+  ParticleStore p;
+  const double inv_mass = 1 / sphere_mass(1850, r);
+  p.add(0, {0.5, 0.5, 0.5}, r, 0, {0, 0, 0}, inv_mass);
+  p.add(1, {0.5 + 2 * r, 0.5, 0.5}, r, 0, {0, 0, 0}, inv_mass);
+  return p;
+}
+
+TEST_F(BondScene, AGapBeyondHalfTheSkinIsRefusedAtSetUp) {
+  const Scene s = load("[[bond]]\nmaterials = [\"soil\", \"soil\"]\nyoung = 1e6\ngap = 6e-4\n");
+  try {
+    make_engine_setup(s, two_spheres(0.005));
+    ADD_FAILURE() << "a gap of 0.6 skin was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "bond[0].gap");
+    EXPECT_NE(std::string(e.what()).find("neighbor.skin >= 0.0012"), std::string::npos) << e.what();
+  }
+  const Scene held = load("[[bond]]\nmaterials = [\"soil\", \"soil\"]\nyoung = 1e6\ngap = 5e-4\n");
+  EXPECT_EQ(make_engine_setup(held, two_spheres(0.005)).bonds.size(), 1u);
+}
+
+TEST_F(BondScene, TheStiffestBondBoundsTheStep) {
+  const double r = 0.005, young = 1e9;  // ν = 0.25 (the default): G = E/2.5
+  const Scene s = load("[[bond]]\nmaterials = [\"soil\", \"soil\"]\nyoung = 1e9\n");
+  const ParticleStore p = two_spheres(r);
+  const TimeStepLimits limits = time_step_limits(s, p, {});
+  // Equal spheres, L₀ = 2r, r_b = r: ω² = 2 [(k_n + 2k_s)/m + (k_t + 2k_b + 2k_s r²)/I].
+  const double m = sphere_mass(1850, r), inertia = 0.4 * m * r * r, shear = young / 2.5;
+  const double area = kPi * r * r, second = 0.25 * kPi * std::pow(r, 4), length = 2 * r;
+  const double kn = young * area / length, ks = shear * area / length;
+  const double kt = shear * 2 * second / length, kb = young * second / length;
+  const double omega2 = 2 * ((kn + 2 * ks) / m + (kt + 2 * kb + 2 * ks * r * r) / inertia);
+  EXPECT_NEAR(limits.bond, kPi / std::sqrt(omega2), 1e-12 * limits.bond);
+  EXPECT_LE(limits.stable, 2 / std::sqrt(omega2));
+  EXPECT_EQ(limits.critical(), limits.bond);  // far stiffer than the soil's contacts
+  const Scene unbonded = load("");
+  EXPECT_TRUE(std::isinf(time_step_limits(unbonded, p, {}).bond));
+}
+
+}  // namespace
+}  // namespace gpudem::test
