@@ -81,6 +81,7 @@ std::vector<double> timeseries_row(double time, std::uint64_t step, double dt, c
 SnapshotOptions snapshot_options(const Scene& scene, const EngineSetup& setup) {
   SnapshotOptions options;
   options.layout = {scene.output.rank_field, scene.output.fields, scene.output.single_precision};
+  options.bonds = scene.output.bonds;
   for (std::size_t m = 0; m < setup.meshes.size(); ++m)
     options.meshes.push_back({scene.meshes[m].name, setup.meshes[m].mesh.vertices.size(),
                               setup.meshes[m].mesh.triangles.size()});

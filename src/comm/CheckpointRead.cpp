@@ -307,15 +307,23 @@ void read_snapshot_table(const Reader& r, std::vector<XdmfSnapshot>& table) {
   const std::vector<std::uint8_t> rank_fields = read_rank_field_flags(r, files.size());
   const std::vector<std::uint32_t> fields = read_field_sets(r, files.size());
   const std::vector<std::uint8_t> precisions = read_precisions(r, files.size());
+  const std::vector<std::uint64_t> bond_counts =  // none before bonds were written
+      r.has("snapshot_bond_count")
+          ? r.rows<std::uint64_t, std::uint64_t>("snapshot_bond_count", H5T_STD_U64LE)
+          : std::vector<std::uint64_t>(files.size(), 0);
   check_same_length(r, {{"snapshot_file", files.size()},
                         {"snapshot_time", times.size()},
                         {"snapshot_count", counts.size()},
                         {"snapshot_rank_field", rank_fields.size()},
                         {"snapshot_fields", fields.size()},
-                        {"snapshot_precision", precisions.size()}});
+                        {"snapshot_precision", precisions.size()},
+                        {"snapshot_bond_count", bond_counts.size()}});
   for (std::size_t k = 0; k < files.size(); ++k)
-    table.push_back(
-        {files[k], times[k], counts[k], {rank_fields[k] == 1, fields[k], precisions[k] == 4}});
+    table.push_back({files[k],
+                     times[k],
+                     counts[k],
+                     {rank_fields[k] == 1, fields[k], precisions[k] == 4},
+                     bond_counts[k]});
 }
 
 void read_wall_motion(const Reader& r, std::vector<WallMotion>& motion) {

@@ -132,13 +132,14 @@ void write_snapshot_table(MPI_Comm comm, const H5Calls& h5, const ParallelFile& 
   const Slice slice = global_slice(comm, rows.size());
   std::vector<std::string> names;
   std::vector<double> times;
-  std::vector<std::uint64_t> counts;
+  std::vector<std::uint64_t> counts, bond_counts;
   std::vector<std::uint8_t> rank_fields, precisions;
   std::vector<std::uint32_t> fields;
   for (std::size_t k = 0; k < rows.size(); ++k) {
     names.push_back(rows[k].h5_file);
     times.push_back(rows[k].time);
     counts.push_back(rows[k].count);
+    bond_counts.push_back(rows[k].bond_count);
     rank_fields.push_back(rows[k].layout.rank_field ? 1 : 0);
     fields.push_back(rows[k].layout.fields);
     precisions.push_back(static_cast<std::uint8_t>(real_precision(rows[k])));
@@ -146,6 +147,7 @@ void write_snapshot_table(MPI_Comm comm, const H5Calls& h5, const ParallelFile& 
   write_text_rows(comm, h5, file, "snapshot_file", names);
   file.write_dataset(real_rows("snapshot_time", times.data(), 1), slice);
   file.write_dataset(id_rows("snapshot_count", counts.data()), slice);
+  file.write_dataset(id_rows("snapshot_bond_count", bond_counts.data()), slice);
   file.write_dataset(
       {"snapshot_rank_field", rank_fields.data(), H5T_NATIVE_UINT8, H5T_STD_U8LE, 1, 1, 0}, slice);
   file.write_dataset({"snapshot_fields", fields.data(), H5T_NATIVE_UINT32, H5T_STD_U32LE, 1, 1, 0},

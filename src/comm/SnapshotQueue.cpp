@@ -54,7 +54,8 @@ SnapshotQueue::~SnapshotQueue() {
 
 void SnapshotQueue::write(SnapshotSource& source, double time, std::uint64_t step) {
   wait();  // the staging buffer is free again
-  Job job{&source.stage_particles(), source.mesh_surfaces(), time, step};
+  Job job{&source.stage_particles(), source.mesh_surfaces(),
+          writer_.writes_bonds() ? source.bond_lines() : BondLines{}, time, step};
   if (!asynchronous()) return write_now(job);
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -96,7 +97,7 @@ void SnapshotQueue::write_now(const Job& job) {
   Stopwatch watch;
   job.particles->collect(particles_);
   check_conserved(comm_, particles_, job.particles->expected_tally);
-  writer_.write(particles_, job.meshes, job.time, job.step);
+  writer_.write(particles_, job.meshes, job.bonds, job.time, job.step);
   write_seconds_ += watch.lap();
 }
 

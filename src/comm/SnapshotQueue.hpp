@@ -59,6 +59,7 @@ class SnapshotQueue {
   struct Job {
     StagedParticles* particles = nullptr;
     std::vector<MeshSurface> meshes;
+    BondLines bonds;
     double time = 0;
     std::uint64_t step = 0;
   };

@@ -112,6 +112,7 @@ void check_mesh_names(const SnapshotOptions& options) {
   std::set<std::string> seen;
   for (const XdmfMesh& mesh : options.meshes) {
     const char* problem = mesh_output_name_problem(mesh.name, options.basename);
+    if (!problem && options.bonds && mesh.name == "bonds") problem = "is the bonds' name";
     if (!problem && !seen.insert(mesh.name).second) problem = "is used twice";
     if (problem) throw std::invalid_argument("snapshot mesh name '" + mesh.name + "' " + problem);
   }
@@ -161,6 +162,28 @@ void write_mesh(MPI_Comm comm, const ParallelFile& file, const std::string& name
   file.write_dataset({pressure.c_str(), values.data(), H5T_NATIVE_DOUBLE, f64, 1, 1, 0}, rows(t));
 }
 
+/// Group `/bonds/` of a snapshot: each rank's bonds at its offset among all ranks' (the two
+/// points of bond k at rows 2k and 2k + 1). Returns the bonds of all ranks.
+std::uint64_t write_bonds(MPI_Comm comm, const ParallelFile& file, const BondLines& bonds) {
+  const Slice slice = global_slice(comm, bonds.size());
+  const Slice ends{2 * slice.offset, 2 * slice.count, 2 * slice.total};
+  std::vector<std::uint64_t> connectivity(2 * bonds.size());
+  for (std::size_t k = 0; k < connectivity.size(); ++k) connectivity[k] = 2 * slice.offset + k;
+  const hid_t real = native_type<Real>(), f64 = H5T_IEEE_F64LE;
+  file.write_dataset(
+      {"bonds/ids", bonds.ids.data(), H5T_NATIVE_UINT64, H5T_STD_U64LE, 2, 2, 0}, slice);
+  file.write_dataset({"bonds/connectivity", connectivity.data(), H5T_NATIVE_UINT64,
+                      H5T_STD_U64LE, 2, 2, 0},
+                     slice);
+  file.write_dataset({"bonds/points", bonds.points.data(), real, f64, 3, 3, 0}, ends);
+  file.write_dataset(
+      {"bonds/normal_force", bonds.normal_force.data(), H5T_NATIVE_DOUBLE, f64, 1, 1, 0}, slice);
+  file.write_dataset(
+      {"bonds/strength_used", bonds.strength_used.data(), H5T_NATIVE_DOUBLE, f64, 1, 1, 0},
+      slice);
+  return slice.total;
+}
+
 /// One snapshot file written by all ranks of `comm` through the MPI-IO driver.
 struct SnapshotFile {
   MPI_Comm comm;
@@ -170,8 +193,9 @@ struct SnapshotFile {
   const SnapshotOptions& options;
 };
 
-void write_snapshot_file(const SnapshotFile& target, const ParticleStore& particles,
-                         const Slice& slice, const std::vector<MeshSurface>& surfaces) {
+std::uint64_t write_snapshot_file(const SnapshotFile& target, const ParticleStore& particles,
+                                  const Slice& slice, const std::vector<MeshSurface>& surfaces,
+                                  const BondLines& bonds) {
   const H5Calls h5("snapshot", target.path);
   ParallelFile file(target.comm, h5, target.path);
   const SnapshotOptions& options = target.options;
@@ -181,9 +205,11 @@ void write_snapshot_file(const SnapshotFile& target, const ParticleStore& partic
   write_connectivity(file, slice);
   for (std::size_t m = 0; m < options.meshes.size(); ++m)
     write_mesh(target.comm, file, options.meshes[m].name, surfaces[m]);
+  const std::uint64_t bond_count = options.bonds ? write_bonds(target.comm, file, bonds) : 0;
   file.write_attribute("time", H5T_IEEE_F64LE, target.time);
   file.write_attribute("step", H5T_STD_U64LE, target.step);
   file.close();
+  return bond_count;
 }
 
 /// Replaces `path` by `text` through a temporary file and a rename, so a reader never sees a
@@ -222,14 +248,20 @@ void SnapshotWriter::write(const ParticleStore& particles, double time, std::uin
 
 void SnapshotWriter::write(const ParticleStore& particles, const std::vector<MeshSurface>& meshes,
                            double time, std::uint64_t step) {
+  write(particles, meshes, BondLines{}, time, step);
+}
+
+void SnapshotWriter::write(const ParticleStore& particles, const std::vector<MeshSurface>& meshes,
+                           const BondLines& bonds, double time, std::uint64_t step) {
   check_store_lengths(particles);
   check_mesh_surfaces(options_.meshes, meshes);
   const Slice slice = global_slice(comm_, particles.size());
   const std::string name = snapshot_file_name(options_.basename, files_.size());
   const std::string path = (std::filesystem::path(dir_) / name).string();
-  write_snapshot_file({comm_, path, time, step, options_}, particles, slice, meshes);
+  const std::uint64_t bond_count =
+      write_snapshot_file({comm_, path, time, step, options_}, particles, slice, meshes, bonds);
   files_.push_back(path);
-  written_.push_back({name, time, slice.total, options_.layout});
+  written_.push_back({name, time, slice.total, options_.layout, bond_count});
   publish_xmf();
 }
 
@@ -252,6 +284,9 @@ void SnapshotWriter::publish_xmf() const {
     error = replace_file(xmf_path_, particle_xdmf(options_.basename, snapshots));
     for (const XdmfMesh& mesh : options_.meshes)
       if (error.empty()) error = replace_file(mesh_xmf_path(mesh), mesh_xdmf(mesh, snapshots));
+    if (error.empty() && options_.bonds)
+      error = replace_file((std::filesystem::path(dir_) / "bonds.xmf").string(),
+                           bond_xdmf(snapshots));
   }
   int failed = error.empty() ? 0 : 1;
   MPI_Bcast(&failed, 1, MPI_INT, 0, comm_);

@@ -24,6 +24,9 @@ struct SnapshotOptions {
   /// The mesh walls every snapshot holds, in the order write() gets them: names unique,
   /// non-empty, without '/', neither "." nor ".." and not `basename`.
   std::vector<XdmfMesh> meshes = {};
+  /// Every snapshot holds the bonds (group `/bonds/`, `bonds.xmf`); no mesh may then be
+  /// named "bonds".
+  bool bonds = false;
 };
 
 class SnapshotWriter {
@@ -44,10 +47,17 @@ class SnapshotWriter {
   /// std::invalid_argument when `meshes` does not match the options' counts. Collective.
   void write(const ParticleStore& particles, const std::vector<MeshSurface>& meshes, double time,
              std::uint64_t step);
+  /// write() with this rank's `bonds`, which a writer with SnapshotOptions::bonds puts in group
+  /// `/bonds/`, each rank its rows at an MPI_Exscan offset: ids (B×2, uint64), points (2B×3:
+  /// the two ends of each bond), connectivity (B×2, uint64: rows of points), normal_force (B)
+  /// and strength_used (B) (BondLines). Collective.
+  void write(const ParticleStore& particles, const std::vector<MeshSurface>& meshes,
+             const BondLines& bonds, double time, std::uint64_t step);
   /// write() of a writer without meshes.
   void write(const ParticleStore& particles, double time, std::uint64_t step);
 
   const std::string& xmf_path() const { return xmf_path_; }
+  bool writes_bonds() const { return options_.bonds; }
   /// Paths of the snapshot files written so far.
   const std::vector<std::string>& files() const { return files_; }
   /// The snapshots written so far as the .xmf lists them (file names relative to the folder).

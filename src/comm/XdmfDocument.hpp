@@ -27,6 +27,7 @@ struct XdmfSnapshot {
   double time = 0;          ///< simulated time [s]
   std::uint64_t count = 0;  ///< number of particles (all ranks)
   SnapshotLayout layout;    ///< what the file holds
+  std::uint64_t bond_count = 0;  ///< bonds in its group `/bonds/` (snapshots with bonds)
 };
 
 /// A mesh wall as its XDMF document lists it; its counts do not change during a run.
@@ -166,6 +167,25 @@ inline std::string mesh_grid(const XdmfSnapshot& snapshot, const XdmfMesh& mesh)
   return grid + "      </Grid>\n";
 }
 
+/// The Polyline grid of the bonds in one snapshot file: one two-point cell per bond, geometry
+/// `points`, topology `connectivity` and the per-bond (Cell) attributes `normal_force` and
+/// `strength_used` of group `/bonds/`.
+inline std::string bond_grid(const XdmfSnapshot& snapshot) {
+  const std::string& file = snapshot.h5_file;
+  const std::uint64_t b = snapshot.bond_count;
+  std::string grid = "      <Grid Name=\"" + escape(stem(file)) + "\" GridType=\"Uniform\">\n";
+  grid += "        <Time Value=\"" + exact_decimal(snapshot.time) + "\"/>\n";
+  grid += "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"" + std::to_string(b) +
+          "\" NodesPerElement=\"2\">\n          " +
+          hdf_item(file, "bonds/connectivity", "UInt", 8, b, 2) + "\n        </Topology>\n";
+  grid += "        <Geometry GeometryType=\"XYZ\">\n          " +
+          hdf_item(file, "bonds/points", "Float", 8, 2 * b, 3) + "\n        </Geometry>\n";
+  for (const char* name : {"normal_force", "strength_used"})
+    grid += attribute_element(name, "Scalar", "Cell",
+                              hdf_item(file, std::string("bonds/") + name, "Float", 8, b, 1));
+  return grid + "      </Grid>\n";
+}
+
 /// A whole .xmf text: a temporal collection named `name` around `grids`.
 inline std::string temporal_collection(const std::string& name, const std::string& grids) {
   std::string text = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n";
@@ -184,6 +204,14 @@ inline std::string particle_xdmf(const std::string& name,
   std::string grids;
   for (const XdmfSnapshot& snapshot : snapshots) grids += xdmf_detail::uniform_grid(snapshot);
   return xdmf_detail::temporal_collection(name, grids);
+}
+
+/// The .xmf text of the bonds: a temporal collection "bonds" with one Polyline grid per
+/// snapshot, in the order given.
+inline std::string bond_xdmf(const std::vector<XdmfSnapshot>& snapshots) {
+  std::string grids;
+  for (const XdmfSnapshot& snapshot : snapshots) grids += xdmf_detail::bond_grid(snapshot);
+  return xdmf_detail::temporal_collection("bonds", grids);
 }
 
 /// The .xmf text of one mesh wall: a temporal collection named after the mesh with one

@@ -169,6 +169,7 @@ struct OutputSettings {
   bool asynchronous = true;     ///< snapshots written on a writer thread while the run steps on
   std::uint32_t fields = kAllSnapshotFields;  ///< datasets beside the positions (OutputNames)
   bool single_precision = false;  ///< real-valued particle datasets stored as 32-bit floats
+  bool bonds = false;  ///< snapshots hold the bonds (group /bonds/, bonds.xmf)
 };
 
 struct CheckpointSettings {

@@ -322,7 +322,8 @@ std::vector<PairOverride> read_pairs(const TableReader& root,
 OutputSettings read_output(const TableReader& root) {
   const TableReader table = root.optional_table("output");
   table.allow_only(
-      {"dir", "every", "timeseries_every", "rank_field", "asynchronous", "fields", "precision"});
+      {"dir", "every", "timeseries_every", "rank_field", "asynchronous", "fields", "precision",
+       "bonds"});
   OutputSettings o;
   o.dir = table.string("dir", o.dir);
   o.every = table.number("every", non_negative("s"), o.every);
@@ -332,6 +333,7 @@ OutputSettings read_output(const TableReader& root) {
   if (table.has("fields"))
     o.fields = table.subset("fields", {kSnapshotFields.begin(), kSnapshotFields.end()});
   o.single_precision = table.choice("precision", {"double", "float"}, "double") == "float";
+  o.bonds = table.boolean("bonds", o.bonds);
   return o;
 }
 
@@ -466,6 +468,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     scene.warnings.push_back(std::move(warning));
   scene.sources = read_sources(root, scene);
   scene.output = read_output(root);
+  if (scene.output.bonds && scene.bonds.empty())
+    root.optional_table("output").fail("bonds", "the scene defines no [[bond]] table to write");
   scene.checkpoint = read_checkpoint(root);
   scene.preparation = read_preparation(root, scene.simulation.gravity);
   scene.decomposition = read_decomposition(root);

@@ -24,14 +24,18 @@ class BondSet {
     std::vector<BondParamsT<S>> types;
     std::vector<BondRule> rules;
     for (const BondSettings& t : tables) {
-      types.push_back(bond_params_cast<S>(BondParams{t.young, shear_modulus(t.young, t.poisson),
-                                                     t.radius_factor, t.tensile_strength,
-                                                     t.shear_strength, t.damping_ratio}));
+      host_types_.push_back(BondParams{t.young, shear_modulus(t.young, t.poisson),
+                                       t.radius_factor, t.tensile_strength, t.shear_strength,
+                                       t.damping_ratio});
+      types.push_back(bond_params_cast<S>(host_types_.back()));
       rules.push_back(BondRule{t.a, t.b, t.gap});
     }
     types_.upload(types);
     rules_.upload(rules);
   }
+
+  /// The parameters of [[bond]] table k.
+  const BondParams& type(std::size_t k) const { return host_types_.at(k); }
 
   /// No [[bond]] tables: nothing is stored or computed.
   bool empty() const { return empty_; }
@@ -110,6 +114,7 @@ class BondSet {
   DeviceArray<BondRule, Space> rules_;        ///< per [[bond]] table
   DeviceArray<S, Space> records_;             ///< bond_value::width per neighbour-list entry
   HistoryCarryOver<Space, ParticleId, S> carried_;
+  std::vector<BondParams> host_types_;  ///< types_ in Real, on the host
 };
 
 }  // namespace gpudem

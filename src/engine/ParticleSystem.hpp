@@ -91,6 +91,8 @@ class ParticleSystem final : public StepEngine {
 
   void set_bonds(ContactHistory bonds, std::uint64_t made) override;
 
+  BondLines bond_lines() const override;
+
   std::vector<WallMotion> wall_motion() const override { return pistons_.motion(); }
 
   void set_wall_motion(const std::vector<WallMotion>& motion) override {

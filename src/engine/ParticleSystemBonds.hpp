@@ -74,4 +74,35 @@ void ParticleSystem<Space, P, S>::set_bonds(ContactHistory share, std::uint64_t 
   if (!bonds_.empty()) upload_history(values.pair, bonds_.record_array());
 }
 
+template <class Space, class P, class S>
+BondLines ParticleSystem<Space, P, S>::bond_lines() const {
+  BondLines lines;
+  if (bonds_.empty() || !has_list_) return lines;
+  const std::vector<Real4> x = download_in_real(position_radius_);
+  std::vector<ParticleId> id;
+  id_.download(id);
+  const std::vector<std::uint32_t> offsets = download_values<Space>(neighbors_.offsets(), owned_ + 1);
+  const std::vector<std::uint32_t> partner =
+      download_values<Space>(neighbors_.neighbors(), offsets.back());
+  const std::vector<S> stored =
+      download_values<Space>(bonds_.records(), offsets.back() * bond_value::width);
+  for (std::size_t i = 0; i < owned_; ++i)
+    for (std::uint32_t e = offsets[i]; e < offsets[i + 1]; ++e) {
+      const std::uint32_t j = partner[e];
+      double record[bond_value::width];
+      for (std::uint32_t v = 0; v < bond_value::width; ++v)
+        record[v] = stored[std::size_t(e) * bond_value::width + v];
+      if (record[bond_value::rest_length] == 0 || id[i] > id[j]) continue;
+      const Vec3 d = setup_.box.minimum_image(xyz(x[j]) - xyz(x[i]));
+      const BondParams& p = bonds_.type(static_cast<std::size_t>(record[bond_value::type]));
+      const double stretch = norm(d) - record[bond_value::rest_length];
+      const BondReading reading = read_bond(p, std::min(x[i].w, x[j].w), stretch, record);
+      lines.ids.insert(lines.ids.end(), {id[i], id[j]});
+      lines.points.insert(lines.points.end(), {xyz(x[i]), xyz(x[i]) + d});
+      lines.normal_force.push_back(reading.normal_force);
+      lines.strength_used.push_back(reading.stress.strength_used(p));
+    }
+  return lines;
+}
+
 }  // namespace gpudem

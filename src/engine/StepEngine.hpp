@@ -95,6 +95,16 @@ inline std::vector<double> triangle_pressures(const MeshSurface& mesh) {
   return pressure;
 }
 
+/// The intact bonds whose lower-id end this rank owns, each once: its ends' global ids and
+/// centres, its normal force and how much of its strength it uses (snapshots with bonds).
+struct BondLines {
+  std::vector<ParticleId> ids;        ///< 2 per bond: the lower id, then the higher
+  std::vector<Vec3> points;           ///< 2 per bond: the ends' centres, in the order of ids [m]
+  std::vector<double> normal_force;   ///< per bond, tension > 0 [N]
+  std::vector<double> strength_used;  ///< per bond, max(σ/σ_c, τ/τ_c); 0 without strengths
+  std::size_t size() const { return normal_force.size(); }
+};
+
 /// Wall time this rank's engine spent in each part of its steps since it was made [s] (host
 /// clock: on the CUDA backend a part ends when its last launch has returned, unless
 /// EngineSetup::exact_phase_times makes it wait for its kernels), and the ghost bytes its
@@ -149,6 +159,8 @@ class SnapshotSource {
   virtual StagedParticles& stage_particles() = 0;
   /// Each mesh with the load on each of its triangles (StepEngine::mesh_surfaces). Collective.
   virtual std::vector<MeshSurface> mesh_surfaces() const = 0;
+  /// This rank's bonds as BondLines (none without bonds).
+  virtual BondLines bond_lines() const = 0;
 };
 
 /// The particles in and out of an engine: its state set, restored and read back, its contact

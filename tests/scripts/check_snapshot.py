@@ -10,9 +10,9 @@ with increasing times. In each grid, every DataItem (Format "HDF", text "file.h5
 name a file relative to the document that exists and a dataset in it whose shape equals
 Dimensions and whose dtype matches NumberType and Precision; Time Value must equal the file's
 "time" attribute. A Polyvertex grid (particles) has one row per element in every dataset and
-attributes centred on nodes. A Triangle grid (a mesh wall) has Topology data of
-NumberOfElements × 3 vertex indices below the number of Geometry rows, and attributes centred
-on cells with one row per triangle.
+attributes centred on nodes. A Triangle grid (a mesh wall) and a Polyline grid (bonds) have
+Topology data of NumberOfElements × 3 (Triangle) or × NodesPerElement (Polyline) vertex indices
+below the number of Geometry rows, and attributes centred on cells with one row per element.
 Exit status 0 when all holds, 1 with one line per problem otherwise, 2 on bad usage.
 """
 import argparse
@@ -88,8 +88,9 @@ def read_dataset(item, base_dir):
         return h5[dataset_path][()]
 
 
-def check_triangle_indices(topology, geometry, base_dir, where):
-    """Problems of a Triangle topology's vertex indices: each must name a Geometry row."""
+def check_cell_indices(topology, geometry, base_dir, where):
+    """Problems of a Triangle or Polyline topology's vertex indices: each must name a Geometry
+    row."""
     vertices = read_dataset(geometry.find("DataItem"), base_dir).shape[0]
     indices = read_dataset(topology.find("DataItem"), base_dir)
     if indices.size and indices.max() >= vertices:
@@ -98,14 +99,16 @@ def check_triangle_indices(topology, geometry, base_dir, where):
 
 
 # Per topology: where attributes are centred and whether the geometry has a row per element.
-CENTERS = {"polyvertex": "Node", "triangle": "Cell"}
+CENTERS = {"polyvertex": "Node", "triangle": "Cell", "polyline": "Cell"}
 
 
-def grid_items(grid, topology, geometry, cells, where, problems):
-    """(name, element holding a DataItem, values per row, one row per element) to check."""
+def grid_items(grid, topology, geometry, corners, where, problems):
+    """(name, element holding a DataItem, values per row, one row per element) to check;
+    `corners` is the vertices per cell, 0 for a Polyvertex grid."""
+    cells = corners > 0
     items = [(f"{where}/Geometry", geometry, 3, not cells)] if geometry is not None else []
     if cells:
-        items.append((f"{where}/Topology", topology, 3, True))
+        items.append((f"{where}/Topology", topology, corners, True))
     center = "Cell" if cells else "Node"
     for attribute in grid.findall("Attribute"):
         kind = attribute.get("AttributeType", attribute.get("Type", "Scalar"))
@@ -155,9 +158,11 @@ def check_grid(grid, base_dir, where):
         return [f"{where}: no Topology"], time
     topology_type = topology.get("TopologyType", topology.get("Type", ""))
     if topology_type.lower() not in CENTERS:
-        problems.append(f"{where}: TopologyType '{topology_type}', expected Polyvertex or "
-                        "Triangle")
-    cells = topology_type.lower() == "triangle"
+        problems.append(f"{where}: TopologyType '{topology_type}', expected Polyvertex, "
+                        "Triangle or Polyline")
+    corners = {"triangle": 3, "polyline": int(topology.get("NodesPerElement", "2"))}.get(
+        topology_type.lower(), 0)
+    cells = corners > 0
     try:
         elements = int(topology.get("NumberOfElements", topology.get("Dimensions")))
     except (TypeError, ValueError):
@@ -165,11 +170,11 @@ def check_grid(grid, base_dir, where):
     geometry = grid.find("Geometry")
     if geometry is None or geometry.get("GeometryType", geometry.get("Type")) != "XYZ":
         problems.append(f"{where}: no Geometry of GeometryType XYZ")
-    items = grid_items(grid, topology, geometry, cells, where, problems)
+    items = grid_items(grid, topology, geometry, corners, where, problems)
     item_problems, readable = check_items(items, elements, time, base_dir)
     problems += item_problems
     if cells and readable and geometry is not None:
-        problems += check_triangle_indices(topology, geometry, base_dir, where)
+        problems += check_cell_indices(topology, geometry, base_dir, where)
     return problems, time
 
 
@@ -235,7 +240,7 @@ def edit_text(path, old, new):
 GRID = "Domain/Grid/Grid"
 ID_ITEM = f"{GRID}/Attribute[@Name='id']/DataItem"
 # Each breaks a document in one way check_document must report: any document, then particle
-# documents (Polyvertex), then mesh documents (Triangle).
+# documents (Polyvertex), mesh documents (Triangle) and bond documents (Polyline).
 COMMON_BREAKS = {
     "dimensions differ from the dataset":
         lambda root: bump_dimension(first_of(root, f"{GRID}/Geometry/DataItem")),
@@ -269,12 +274,24 @@ MESH_BREAKS = {
                       first_of(root, f"{GRID}/Topology").get("NumberOfElements") + " 3")(root)),
 }
 
+BOND_BREAKS = {
+    "signedness differs from the dataset": set_attribute(f"{GRID}/Topology/DataItem",
+                                                         "NumberType", "Int"),
+    "dataset missing": edit_text(f"{GRID}/Attribute[@Name='normal_force']/DataItem",
+                                 "/normal_force", "/no_such_dataset"),
+    "cell values centred on nodes": set_attribute(f"{GRID}/Attribute[@Name='strength_used']",
+                                                  "Center", "Node"),
+    "two corners given as three": set_attribute(f"{GRID}/Topology", "TopologyType", "Triangle"),
+}
+BREAKS_BY_TOPOLOGY = {"triangle": MESH_BREAKS, "polyline": BOND_BREAKS}
+
 
 def breaks_for(xmf):
-    """The ways to break this document: those of its kind of grid (Polyvertex or Triangle)."""
+    """The ways to break this document: those of its kind of grid (Polyvertex, Triangle or
+    Polyline)."""
     topology = ET.parse(xmf).getroot().find(f"{GRID}/Topology")
-    triangles = topology is not None and topology.get("TopologyType", "").lower() == "triangle"
-    return {**COMMON_BREAKS, **(MESH_BREAKS if triangles else PARTICLE_BREAKS)}
+    kind = topology.get("TopologyType", "").lower() if topology is not None else ""
+    return {**COMMON_BREAKS, **BREAKS_BY_TOPOLOGY.get(kind, PARTICLE_BREAKS)}
 
 
 def self_test(folder):

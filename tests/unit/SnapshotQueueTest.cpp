@@ -71,6 +71,7 @@ class FakeSource final : public SnapshotSource {
     return staging;
   }
   std::vector<MeshSurface> mesh_surfaces() const override { return {}; }
+  BondLines bond_lines() const override { return {}; }
 
   ParticleStore state;
   ParticleTally tally_error;

@@ -601,13 +601,83 @@ TEST_F(SnapshotWriterTest, RejectsMeshNamesThatCannotNameAFileAndSurfacesOfOther
   EXPECT_TRUE(writer.files().empty());
 }
 
+/// rank + 1 bonds on each rank: bond k of rank r joins ids 100 r + k and 100 r + k + 1, from
+/// (r, k, 0) to (r, k, 1), with normal force 10 r + k and strength used k / 4.
+BondLines bonds_of_this_rank() {
+  BondLines lines;
+  const int r = comm_rank();
+  for (int k = 0; k <= r; ++k) {
+    const ParticleId a = 100 * r + k;
+    lines.ids.insert(lines.ids.end(), {a, a + 1});
+    lines.points.insert(lines.points.end(), {Vec3{double(r), double(k), 0}, Vec3{double(r), double(k), 1}});
+    lines.normal_force.push_back(10.0 * r + k);
+    lines.strength_used.push_back(k / 4.0);
+  }
+  return lines;
+}
+
+SnapshotOptions with_bonds(const std::string& basename) {
+  SnapshotOptions options = named(basename);
+  options.bonds = true;
+  return options;
+}
+
+TEST_F(SnapshotWriterTest, BondGroupHoldsEachRanksBondsAtItsOffset) {
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, with_bonds("particles"));
+  const BondLines bonds = bonds_of_this_rank();
+  writer.write(random_store(particles_on_this_rank(), 2100 + comm_rank()), {}, bonds, 0.5, 5);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const hsize_t n = global_count(bonds.size()), at = expected_offset(bonds.size());
+  const hsize_t rows = bonds.size();
+  H5Id<H5Fclose> file(H5Fopen(writer.files()[0].c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  ASSERT_GE(file.id, 0);
+  const hid_t u64 = H5T_STD_U64LE, u64_mem = H5T_NATIVE_UINT64;
+  const hid_t f64 = H5T_IEEE_F64LE, f64_mem = H5T_NATIVE_DOUBLE;
+  expect_bit_identical(bonds.ids,
+                       read_rows<ParticleId>(file.id, "bonds/ids", u64, u64_mem, {n, 2}, at, rows),
+                       "ids");
+  std::vector<std::uint64_t> connectivity;
+  for (hsize_t k = 0; k < 2 * rows; ++k) connectivity.push_back(2 * at + k);
+  expect_bit_identical(
+      connectivity,
+      read_rows<std::uint64_t>(file.id, "bonds/connectivity", u64, u64_mem, {n, 2}, at, rows),
+      "connectivity");
+  expect_bit_identical(
+      xyz_of(bonds.points),
+      read_rows<double>(file.id, "bonds/points", f64, f64_mem, {2 * n, 3}, 2 * at, 2 * rows),
+      "points");
+  expect_bit_identical(
+      bonds.normal_force,
+      read_rows<double>(file.id, "bonds/normal_force", f64, f64_mem, {n}, at, rows), "force");
+  expect_bit_identical(
+      bonds.strength_used,
+      read_rows<double>(file.id, "bonds/strength_used", f64, f64_mem, {n}, at, rows), "used");
+  const std::string xmf = read_text((fs::path(dir_) / "bonds.xmf").string());
+  EXPECT_NE(xmf.find("TopologyType=\"Polyline\" NumberOfElements=\"" + std::to_string(n) +
+                     "\" NodesPerElement=\"2\""),
+            std::string::npos)
+      << xmf;
+  EXPECT_EQ(writer.table().back().bond_count, n);
+}
+
+TEST_F(SnapshotWriterTest, WithoutTheBondsOptionThereIsNoBondGroup) {
+  SnapshotWriter writer(MPI_COMM_WORLD, dir_, named("particles"));
+  writer.write(random_store(particles_on_this_rank(), 2200 + comm_rank()), {},
+               bonds_of_this_rank(), 0.5, 5);
+  MPI_Barrier(MPI_COMM_WORLD);
+  H5Id<H5Fclose> file(H5Fopen(writer.files()[0].c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  EXPECT_EQ(H5Lexists(file.id, "bonds", H5P_DEFAULT), 0);
+  EXPECT_FALSE(fs::exists(fs::path(dir_) / "bonds.xmf"));
+}
+
 #ifdef GPUDEM_SNAPSHOT_FIXTURE_DIR
 // Output folder kept for tests/scripts/check_snapshot.py (every .xmf) and
 // tests/scripts/paraview_open.py (particles.xmf and plate.xmf). particles.xmf: two random
 // snapshots and one without any particle; ranked.xmf: the same with the rank field;
 // resumed.xmf: a series resumed with the rank field switched on after a snapshot without it;
 // lean.xmf: velocity and id only, in single precision; meshed.xmf and plate.xmf: two
-// snapshots with the mesh "plate" (two triangles) in them.
+// snapshots with the mesh "plate" (two triangles) in them; bonded.xmf and bonds.xmf: two
+// snapshots with bonds, the second with none.
 TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
   const std::string dir =
       test::path_from_environment("GPUDEM_SNAPSHOT_FIXTURE_DIR", GPUDEM_SNAPSHOT_FIXTURE_DIR);
@@ -638,9 +708,14 @@ TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
   meshed.write(random_store(particles_on_this_rank(), 1900 + comm_rank()), {two_triangles()}, 0.0,
                0);
   meshed.write(ParticleStore{}, {two_triangles()}, 0.01, 100);
+  SnapshotWriter bonded(MPI_COMM_WORLD, dir, with_bonds("bonded"));
+  bonded.write(random_store(particles_on_this_rank(), 2000 + comm_rank()), {},
+               bonds_of_this_rank(), 0.0, 0);
+  bonded.write(ParticleStore{}, {}, BondLines{}, 0.01, 100);
   MPI_Barrier(MPI_COMM_WORLD);
   EXPECT_TRUE(fs::exists(fs::path(dir) / "plate.xmf"));
-  for (const SnapshotWriter* writer : {&plain, &ranked, &after_restart, &lean, &meshed}) {
+  EXPECT_TRUE(fs::exists(fs::path(dir) / "bonds.xmf"));
+  for (const SnapshotWriter* writer : {&plain, &ranked, &after_restart, &lean, &meshed, &bonded}) {
     for (const std::string& file : writer->files()) EXPECT_TRUE(fs::exists(file)) << file;
     EXPECT_TRUE(fs::exists(writer->xmf_path()));
   }

@@ -123,13 +123,29 @@ GPUDEM_HD S bond_damping(S ratio, S inertia, S stiffness) {
   return 2 * ratio * square_root(inertia * stiffness);
 }
 
+/// The largest tensile and shear stresses of the section [Pa]: σ = F_n/A + |M_b| r_b/I and
+/// τ = |F_s|/A + |M_t| r_b/J.
+template <class S>
+struct BondStress {
+  S tension, shear;
+  GPUDEM_HD static BondStress of(const BondSection<S>& a, S normal_force, const Vec3T<S>& shear,
+                                 const Vec3T<S>& bending, S twist) {
+    return {normal_force / a.area + norm(bending) * a.radius / a.inertia,
+            norm(shear) / a.area + (twist < 0 ? -twist : twist) * a.radius / a.polar};
+  }
+  /// The larger of σ/σ_c and τ/τ_c: 1 breaks the bond (0 without strengths).
+  GPUDEM_HD S strength_used(const BondParamsT<S>& p) const {
+    const S t = tension / p.tensile_strength, s = shear / p.shear_strength;
+    return t > s ? t : s;
+  }
+};
+
 /// True when the section's stresses reach either strength (the criterion above).
 template <class S>
 GPUDEM_HD bool bond_fails(const BondParamsT<S>& p, const BondSection<S>& a, S normal_force,
                           const Vec3T<S>& shear, const Vec3T<S>& bending, S twist) {
-  const S tension = normal_force / a.area + norm(bending) * a.radius / a.inertia;
-  const S shear_stress = norm(shear) / a.area + (twist < 0 ? -twist : twist) * a.radius / a.polar;
-  return tension >= p.tensile_strength || shear_stress >= p.shear_strength;
+  const BondStress<S> stress = BondStress<S>::of(a, normal_force, shear, bending, twist);
+  return stress.tension >= p.tensile_strength || stress.shear >= p.shear_strength;
 }
 
 /// Advances the bond whose stored values are `state` (bond_value layout) by dt and returns its
@@ -166,6 +182,23 @@ GPUDEM_HD BondLoad<S> evaluate_bond(const BondParamsT<S>& p, const BondGeometry<
   load.torque_a = moment + cross(g.arm_a * n, shear_total);
   load.torque_b = cross(g.arm_b * n, shear_total) - moment;
   return load;
+}
+
+/// What a snapshot shows of a bond: its normal force and stresses.
+struct BondReading {
+  double normal_force = 0;  ///< [N], tension > 0
+  BondStress<double> stress;
+};
+
+/// The reading of the bond whose stored values are `state`, at stretch L − L₀.
+inline BondReading read_bond(const BondParams& p, double min_radius, double stretch,
+                             const double* state) {
+  namespace v = bond_value;
+  const BondSection<double> a = BondSection<double>::of(p, min_radius);
+  const BondStiffness<double> k = BondStiffness<double>::of(p, a, state[v::rest_length]);
+  const double normal_force = k.normal * stretch;
+  return {normal_force, BondStress<double>::of(a, normal_force, load_vec(state + v::shear),
+                                               load_vec(state + v::bending), state[v::twist])};
 }
 
 /// ω² bounding the fastest vibration of two spheres (radius r, mass m each) joined by a bond of

@@ -724,6 +724,29 @@ def bond_counts(out):
     return int(float(rows[0]["bonds"])), int(float(rows[-1]["broken_bonds"]))
 
 
+def bond_lines_by_ids(path):
+    """The bonds of a snapshot (group /bonds/) sorted by their two ids: ids, normal force and
+    strength used."""
+    with h5py.File(path, "r") as f:
+        ids = f["bonds/ids"][...]
+        order = np.lexsort((ids[:, 1], ids[:, 0]))
+        return (ids[order], f["bonds/normal_force"][...][order],
+                f["bonds/strength_used"][...][order])
+
+
+def compare_bonded(runner, label, reference, candidate):
+    """compare_series, the bond columns of every row, and the last snapshot's bonds bit for
+    bit."""
+    compare_series(runner, label, reference, candidate)
+    for key in ("bonds", "broken_bonds"):
+        if [row[key] for row in series(reference)] != [row[key] for row in series(candidate)]:
+            runner.fail(f"{label}: column {key} differs")
+    a = bond_lines_by_ids(last_snapshot(reference))
+    b = bond_lines_by_ids(last_snapshot(candidate))
+    if any(x.shape != y.shape or not np.array_equal(x, y) for x, y in zip(a, b)):
+        runner.fail(f"{label}: the last snapshot's bonds differ")
+
+
 def bonded(runner):
     scene = SCENES / "bonded.toml"
     reference = runner.run("bonded_n1", scene, 1)
@@ -731,7 +754,7 @@ def bonded(runner):
     print(f"bonded_n1: {made} bonds made, {broken} broken")
     if not 0 < broken < made:
         runner.fail(f"bonded_n1: {broken} of {made} bonds broke; the case needs some of each")
-    compare_layouts(runner, "bonded", scene, reference, compare_series,
+    compare_layouts(runner, "bonded", scene, reference, compare_bonded,
                     (("slabs_n2", 2, "[2,1,1]"), ("slabs_n3", 3, "[3,1,1]"),
                      ("blocks_2x2", 4, "[2,2,1]")))
     checkpoint = checkpoint_on_three_ranks(runner, "bonded", scene, 0.03)
