@@ -86,19 +86,6 @@ struct PairOverride {
   double surface_energy = -1;
 };
 
-/// A [[bond]] table: at the start of a new run, a parallel bond (core/contact/ParallelBond.hpp) of
-/// this cement joins every two particles of materials a and b whose surfaces are at most `gap`
-/// apart (the first table that matches a pair makes its bond).
-struct BondSettings {
-  MaterialId a = 0, b = 0;
-  double gap = 0;                      ///< [m], >= 0
-  double young = 0;                    ///< E of the cement [Pa]
-  double poisson = 0.25;               ///< ν of the cement, G = E / (2(1 + ν))
-  double radius_factor = 1;            ///< λ: bond radius λ min(r_a, r_b)
-  double tensile_strength = INFINITY;  ///< σ_c [Pa]; absent: never breaks in tension
-  double shear_strength = INFINITY;    ///< τ_c [Pa]; absent: never breaks in shear
-  double damping_ratio = 0;            ///< β, fraction of critical damping of each mode
-};
 
 /// Contact law selection: one choice per slot, validated against valid_contact_models().
 struct ContactSettings {
@@ -225,6 +212,30 @@ struct ImplementSettings {
   Vec3 forward;                           ///< unit travel direction at t = 0
   Vec3 up;                                ///< unit, normal to forward
   std::vector<MotionKeyframe> keyframes;  ///< none: the implement stands still
+};
+
+/// The clods of a [[bond]] table: spheres drawn at a new run's start, none overlapping another,
+/// within which alone the table bonds particles.
+struct ClodSettings {
+  std::uint64_t count = 0;      ///< 0: the table bonds anywhere
+  RadiusDistribution radius;    ///< of the clod spheres [m]
+  Vec3 region_min, region_max;  ///< where their centres lie [m]
+};
+
+/// A [[bond]] table: at the start of a new run, a parallel bond (core/contact/ParallelBond.hpp) of
+/// this cement joins every two particles of materials a and b whose surfaces are at most `gap`
+/// apart (the first table that matches a pair makes its bond), and with clods only pairs whose
+/// two centres lie in the same clod.
+struct BondSettings {
+  MaterialId a = 0, b = 0;
+  double gap = 0;                      ///< [m], >= 0
+  double young = 0;                    ///< E of the cement [Pa]
+  double poisson = 0.25;               ///< ν of the cement, G = E / (2(1 + ν))
+  double radius_factor = 1;            ///< λ: bond radius λ min(r_a, r_b)
+  double tensile_strength = INFINITY;  ///< σ_c [Pa]; absent: never breaks in tension
+  double shear_strength = INFINITY;    ///< τ_c [Pa]; absent: never breaks in shear
+  double damping_ratio = 0;            ///< β, fraction of critical damping of each mode
+  ClodSettings clods;                  ///< count 0: bonds anywhere
 };
 
 struct Scene {

@@ -458,7 +458,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   scene.materials = read_materials(root);
   scene.contact = read_contact(root);
   scene.contact.pairs = read_pairs(root, scene.materials, scene.contact.mixing);
-  scene.bonds = read_bonds(root, scene.materials);
+  scene.bonds = read_bonds(root, scene);
   scene.warnings = ignored_key_warnings(root, path, scene.contact.model);
   scene.neighbor = read_neighbor(root);
   scene.walls = read_walls(root, scene.materials);

@@ -25,9 +25,12 @@ MaterialId material_index(const TableReader& table, const std::string& key,
 /// The path string `key` names, resolved relative to the scene file's directory.
 std::string path_beside_scene(const TableReader& table, const std::string& key, const Scene& scene);
 
+/// `radius` of `table`: a number (every particle the same) or a distribution table
+/// (SceneSources.cpp).
+RadiusDistribution read_radius(const TableReader& table);
+
 /// The [[bond]] tables (SceneBonds.cpp).
-std::vector<BondSettings> read_bonds(const TableReader& root,
-                                     const std::vector<Material>& materials);
+std::vector<BondSettings> read_bonds(const TableReader& root, const Scene& scene);
 
 /// The enum value whose name (in `names`, enum order) `key` gives, or `fallback` when absent.
 template <class Enum>

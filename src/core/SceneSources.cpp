@@ -55,7 +55,8 @@ RadiusDistribution read_discrete_radius(const TableReader& table) {
   return r;
 }
 
-/// `radius`: a number (every particle the same) or a distribution table.
+}  // namespace
+
 RadiusDistribution read_radius(const TableReader& source) {
   if (source.has("radius") && source.value("radius").is_table()) {
     const TableReader table = source.table("radius");
@@ -69,6 +70,8 @@ RadiusDistribution read_radius(const TableReader& source) {
   r.mean = source.number("radius", positive("m"));
   return r;
 }
+
+namespace {
 
 /// The box `region` of a source, which must lie inside the domain (touching it is allowed).
 void read_region(const TableReader& source, const DomainSettings& domain, ParticleSource& s) {

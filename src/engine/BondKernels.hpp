@@ -51,22 +51,40 @@ GPUDEM_HD BondGeometry<S> bond_geometry(const BondRows<P>& rows, std::uint32_t a
   return g;
 }
 
-/// A bond rule of the scene as the kernels read it: the two materials and the largest gap.
+/// A bond rule of the scene as the kernels read it: the two materials, the largest gap and the
+/// table's clods, clods[first_clod .. first_clod + clod_count) (none: bonds anywhere).
 struct BondRule {
   MaterialId a, b;
   Real gap;
+  std::uint32_t first_clod = 0, clod_count = 0;
 };
+
+/// True when rule r bonds particles at xa and xb as far as clods go: it has none, or one of its
+/// clod spheres holds both centres.
+GPUDEM_HD inline bool in_one_clod(const BondRule& r, const Real4* clods, const PeriodicBox& box,
+                                  Vec3 xa, Vec3 xb) {
+  if (r.clod_count == 0) return true;
+  for (std::uint32_t c = r.first_clod; c < r.first_clod + r.clod_count; ++c) {
+    const Real4 clod = clods[c];
+    const Real r2 = clod.w * clod.w;
+    if (norm2(box.minimum_image(xa - xyz(clod))) <= r2 &&
+        norm2(box.minimum_image(xb - xyz(clod))) <= r2)
+      return true;
+  }
+  return false;
+}
 
 namespace bond_kernels {
 
 /// Makes, on each list entry of owned particle i, the bond of the first rule whose materials
-/// are the pair's and whose gap the pair's surfaces are within; both ends find the same rule
-/// and rest length.
+/// are the pair's, whose gap the pair's surfaces are within and one of whose clods (if it has
+/// any) holds both centres; both ends find the same rule and rest length.
 template <class P, class S>
 struct Create {
   BondRows<P> rows;
   const BondRule* rules;
   std::uint32_t rule_count;
+  const Real4* clods;
   S* records;
   GPUDEM_HD void operator()(std::size_t i) const {
     const ParticleView<P>& p = rows.particles;
@@ -81,7 +99,7 @@ struct Create {
         const BondRule& r = rules[k];
         const bool match = (p.material[a] == r.a && p.material[b] == r.b) ||
                            (p.material[a] == r.b && p.material[b] == r.a);
-        if (!match || gap > r.gap) continue;
+        if (!match || gap > r.gap || !in_one_clod(r, clods, rows.box, xyz(xa), xyz(xb))) continue;
         S* record = records + std::size_t(e) * bond_value::width;
         for (std::uint32_t v = 0; v < bond_value::width; ++v) record[v] = S{};
         record[bond_value::rest_length] = static_cast<S>(length);

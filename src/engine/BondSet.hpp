@@ -19,19 +19,26 @@ namespace gpudem {
 template <class Space, class S>
 class BondSet {
  public:
-  explicit BondSet(const std::vector<BondSettings>& tables)
+  /// `clods`: per table, its clod spheres (EngineSetup::clods).
+  BondSet(const std::vector<BondSettings>& tables, const std::vector<std::vector<Real4>>& clods)
       : empty_(tables.empty()), carried_(bond_value::width) {
     std::vector<BondParamsT<S>> types;
     std::vector<BondRule> rules;
-    for (const BondSettings& t : tables) {
+    std::vector<Real4> all_clods;
+    for (std::size_t k = 0; k < tables.size(); ++k) {
+      const BondSettings& t = tables[k];
       host_types_.push_back(BondParams{t.young, shear_modulus(t.young, t.poisson),
                                        t.radius_factor, t.tensile_strength, t.shear_strength,
                                        t.damping_ratio});
       types.push_back(bond_params_cast<S>(host_types_.back()));
-      rules.push_back(BondRule{t.a, t.b, t.gap});
+      const std::vector<Real4> mine = k < clods.size() ? clods[k] : std::vector<Real4>{};
+      rules.push_back(BondRule{t.a, t.b, t.gap, static_cast<std::uint32_t>(all_clods.size()),
+                               static_cast<std::uint32_t>(mine.size())});
+      all_clods.insert(all_clods.end(), mine.begin(), mine.end());
     }
     types_.upload(types);
     rules_.upload(rules);
+    clods_.upload(all_clods);
   }
 
   /// The parameters of [[bond]] table k.
@@ -51,7 +58,7 @@ class BondSet {
     parallel_for(
         Space{}, owned,
         bond_kernels::Create<P, S>{rows, rules_.data(), static_cast<std::uint32_t>(rules_.size()),
-                                   records_.data()});
+                                   clods_.data(), records_.data()});
   }
 
   /// Adds the owned particles' bond loads to force and torque, the bonds advanced by dt.
@@ -112,6 +119,7 @@ class BondSet {
   bool empty_;
   DeviceArray<BondParamsT<S>, Space> types_;  ///< per [[bond]] table
   DeviceArray<BondRule, Space> rules_;        ///< per [[bond]] table
+  DeviceArray<Real4, Space> clods_;           ///< the tables' clod spheres, table by table
   DeviceArray<S, Space> records_;             ///< bond_value::width per neighbour-list entry
   HistoryCarryOver<Space, ParticleId, S> carried_;
   std::vector<BondParams> host_types_;  ///< types_ in Real, on the host

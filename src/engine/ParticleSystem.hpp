@@ -66,7 +66,7 @@ class ParticleSystem final : public StepEngine {
         pistons_(setup.walls, setup.pistons, setup.gravity),
         carried_pairs_(width_),
         meshes_(setup.meshes, setup.box, width_),
-        bonds_(setup.bonds),
+        bonds_(setup.bonds, setup.clods),
         ghosts_(law_->needs_spin() || !setup.bonds.empty()),
         clock_{setup.start_step} {
     walls_.upload(pistons_.walls());

@@ -10,6 +10,7 @@
 #include "core/InputError.hpp"
 #include "core/StlReader.hpp"
 #include "core/contact/ContactSlots.hpp"
+#include "engine/BondClods.hpp"
 #include "engine/MeshReach.hpp"
 
 namespace gpudem {
@@ -336,6 +337,7 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
       scene, s.skin, largest_pull_off_gap(scene, s.pair_params, largest_radius(particles)));
   require_skin_covers_bond_gaps(scene, s.skin);
   s.bonds = scene.bonds;
+  s.clods = draw_clods(scene);
   for (const Material& m : scene.materials)
     if (m.fixed || m.drag > 0) s.material_motion.resize(scene.materials.size());
   for (std::size_t k = 0; k < s.material_motion.size(); ++k)

@@ -41,6 +41,7 @@ struct EngineSetup {
   std::vector<PistonSetup> pistons;   ///< the walls that slide (WallPistons.hpp)
   std::vector<MeshWallSetup> meshes;  ///< triangle-mesh walls (tools)
   std::vector<BondSettings> bonds;    ///< the [[bond]] tables: none, no bonds
+  std::vector<std::vector<Real4>> clods;  ///< per [[bond]] table, its clod spheres (BondClods)
   /// Per material, whether its particles are held still and their drag (Material::fixed,
   /// Material::drag); empty: every material moves freely.
   std::vector<MaterialMotion> material_motion;

@@ -249,6 +249,38 @@ TEST_P(BondedBeam, BondBreaksAtItsTensileStrengthAndTakesItsEnergy) {
   EXPECT_NEAR(kept, 0.75, 0.01);
 }
 
+/// A 6×6×6 lattice of touching spheres with two clods: bonds join only touching pairs whose
+/// two centres lie in the same clod sphere, counted here pair by pair.
+TEST_P(BondedBeam, ClodsBondOnlyTheSpheresTheyHold) {
+  Scene scene = beam_scene({0, 0, 0}, 1e-6);
+  scene.bonds.pop_back();  // one table, soil with soil
+  ParticleStore p;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k)
+        p.add(p.size(), {i * spacing(), j * spacing() - 0.005, k * spacing() - 0.005}, kRadius,
+              0, {0, 0, 0}, 1 / node_mass());
+  EngineSetup setup = make_engine_setup(scene, p);
+  const std::vector<Real4> clods = {{0.002, -0.003, -0.003, 0.0035}, {0.008, 0.004, 0.004, 0.005}};
+  setup.clods = {clods};
+  std::uint64_t expected = 0;
+  for (std::size_t a = 0; a < p.size(); ++a)
+    for (std::size_t b = a + 1; b < p.size(); ++b) {
+      const Vec3 xa = xyz(p.position_radius[a]), xb = xyz(p.position_radius[b]);
+      if (norm(xb - xa) - 2 * kRadius > 1e-5) continue;
+      bool held = false;
+      for (const Real4& c : clods)
+        held = held || (norm(xa - xyz(c)) <= c.w && norm(xb - xyz(c)) <= c.w);
+      expected += held ? 1 : 0;
+    }
+  auto engine = make_engine(setup);
+  engine->set_particles(p);
+  engine->create_bonds();
+  RecordProperty("bonds", static_cast<int>(expected));
+  EXPECT_GT(expected, 10u);
+  EXPECT_EQ(engine->diagnostics().bond_count, expected);
+}
+
 /// The tip of the elastica under point loads P at a_k = k d: θ'' = −V(s) cos θ / EI with V(s)
 /// the loads beyond s, θ(0) = 0 (clamped) and θ'(L) = 0 (no moment at the free end), by shooting
 /// on θ'(0) (bisection between 0 and the straight beam's Σ P a_k / EI) with RK4 steps of d/100.

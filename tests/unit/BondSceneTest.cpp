@@ -11,6 +11,7 @@
 
 #include "core/InputError.hpp"
 #include "core/SceneLoader.hpp"
+#include "engine/BondClods.hpp"
 #include "engine/SceneSetup.hpp"
 #include "engine/TimeStepLimits.hpp"
 
@@ -135,6 +136,37 @@ TEST_F(BondScene, AGapBeyondHalfTheSkinIsRefusedAtSetUp) {
   }
   const Scene held = load("[[bond]]\nmaterials = [\"soil\", \"soil\"]\nyoung = 1e6\ngap = 5e-4\n");
   EXPECT_EQ(make_engine_setup(held, two_spheres(0.005)).bonds.size(), 1u);
+}
+
+TEST_F(BondScene, ClodsAreDrawnInTheirRegionWithoutOverlapTheSameEveryTime) {
+  const std::string clods =
+      "[[bond]]\nmaterials = [\"soil\", \"soil\"]\nyoung = 1e6\n"
+      "clods = { count = 40, radius = { mean = 0.05, spread = 0.02 }, "
+      "region = { min = [0.1, 0.1, 0.1], max = [0.9, 0.9, 0.4] } }\n";
+  const Scene s = load(clods);
+  ASSERT_EQ(s.bonds[0].clods.count, 40u);
+  const std::vector<std::vector<Real4>> drawn = draw_clods(s);
+  ASSERT_EQ(drawn.size(), 1u);
+  ASSERT_EQ(drawn[0].size(), 40u);
+  for (std::size_t a = 0; a < drawn[0].size(); ++a) {
+    const Real4 c = drawn[0][a];
+    EXPECT_GE(c.w, 0.03);
+    EXPECT_LE(c.w, 0.07);
+    EXPECT_TRUE(c.x >= 0.1 && c.x <= 0.9 && c.y >= 0.1 && c.y <= 0.9 && c.z >= 0.1 && c.z <= 0.4);
+    for (std::size_t b = a + 1; b < drawn[0].size(); ++b)
+      EXPECT_GE(norm(xyz(c) - xyz(drawn[0][b])), c.w + drawn[0][b].w) << a << " and " << b;
+  }
+  const std::vector<std::vector<Real4>> again = draw_clods(s);
+  EXPECT_EQ(again[0][17].x, drawn[0][17].x);
+  const Scene crowded = load(
+      "[[bond]]\nmaterials = [\"soil\", \"soil\"]\nyoung = 1e6\n"
+      "clods = { count = 400, radius = 0.1 }\n");
+  try {
+    draw_clods(crowded);
+    ADD_FAILURE() << "400 clods of 0.1 m fitted in a 1 m box";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "bond[0].clods.count");
+  }
 }
 
 TEST_F(BondScene, TheStiffestBondBoundsTheStep) {
