@@ -43,8 +43,8 @@ std::vector<FieldSource> field_sources(const ParticleStore& p, const SnapshotLay
     using Parts = ValueComponents<FieldValue<decltype(field), Real, Real>>;
     using Scalar = typename Parts::Scalar;
     const hid_t stored = !std::is_floating_point_v<Scalar> ? stored_type<Scalar>()
-                         : layout.single_precision      ? H5T_IEEE_F32LE
-                                                        : H5T_IEEE_F64LE;
+                         : layout.single_precision         ? H5T_IEEE_F32LE
+                                                           : H5T_IEEE_F64LE;
     for (const SnapshotColumn& c : field.snapshot) {
       const std::size_t k = snapshot_field_index(c.name);
       by_index[k] = {c.name,
@@ -170,17 +170,16 @@ std::uint64_t write_bonds(MPI_Comm comm, const ParallelFile& file, const BondLin
   std::vector<std::uint64_t> connectivity(2 * bonds.size());
   for (std::size_t k = 0; k < connectivity.size(); ++k) connectivity[k] = 2 * slice.offset + k;
   const hid_t real = native_type<Real>(), f64 = H5T_IEEE_F64LE;
-  file.write_dataset(
-      {"bonds/ids", bonds.ids.data(), H5T_NATIVE_UINT64, H5T_STD_U64LE, 2, 2, 0}, slice);
-  file.write_dataset({"bonds/connectivity", connectivity.data(), H5T_NATIVE_UINT64,
-                      H5T_STD_U64LE, 2, 2, 0},
+  file.write_dataset({"bonds/ids", bonds.ids.data(), H5T_NATIVE_UINT64, H5T_STD_U64LE, 2, 2, 0},
                      slice);
+  file.write_dataset(
+      {"bonds/connectivity", connectivity.data(), H5T_NATIVE_UINT64, H5T_STD_U64LE, 2, 2, 0},
+      slice);
   file.write_dataset({"bonds/points", bonds.points.data(), real, f64, 3, 3, 0}, ends);
   file.write_dataset(
       {"bonds/normal_force", bonds.normal_force.data(), H5T_NATIVE_DOUBLE, f64, 1, 1, 0}, slice);
   file.write_dataset(
-      {"bonds/strength_used", bonds.strength_used.data(), H5T_NATIVE_DOUBLE, f64, 1, 1, 0},
-      slice);
+      {"bonds/strength_used", bonds.strength_used.data(), H5T_NATIVE_DOUBLE, f64, 1, 1, 0}, slice);
   return slice.total;
 }
 
@@ -285,8 +284,8 @@ void SnapshotWriter::publish_xmf() const {
     for (const XdmfMesh& mesh : options_.meshes)
       if (error.empty()) error = replace_file(mesh_xmf_path(mesh), mesh_xdmf(mesh, snapshots));
     if (error.empty() && options_.bonds)
-      error = replace_file((std::filesystem::path(dir_) / "bonds.xmf").string(),
-                           bond_xdmf(snapshots));
+      error =
+          replace_file((std::filesystem::path(dir_) / "bonds.xmf").string(), bond_xdmf(snapshots));
   }
   int failed = error.empty() ? 0 : 1;
   MPI_Bcast(&failed, 1, MPI_INT, 0, comm_);

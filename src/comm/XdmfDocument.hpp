@@ -23,10 +23,10 @@ struct SnapshotLayout {
 
 /// One snapshot as the XDMF document lists it.
 struct XdmfSnapshot {
-  std::string h5_file;      ///< HDF5 file name relative to the .xmf
-  double time = 0;          ///< simulated time [s]
-  std::uint64_t count = 0;  ///< number of particles (all ranks)
-  SnapshotLayout layout;    ///< what the file holds
+  std::string h5_file;           ///< HDF5 file name relative to the .xmf
+  double time = 0;               ///< simulated time [s]
+  std::uint64_t count = 0;       ///< number of particles (all ranks)
+  SnapshotLayout layout;         ///< what the file holds
   std::uint64_t bond_count = 0;  ///< bonds in its group `/bonds/` (snapshots with bonds)
 };
 

@@ -86,7 +86,6 @@ struct PairOverride {
   double surface_energy = -1;
 };
 
-
 /// Contact law selection: one choice per slot, validated against valid_contact_models().
 struct ContactSettings {
   ContactModel model;
@@ -156,7 +155,7 @@ struct OutputSettings {
   bool asynchronous = true;     ///< snapshots written on a writer thread while the run steps on
   std::uint32_t fields = kAllSnapshotFields;  ///< datasets beside the positions (OutputNames)
   bool single_precision = false;  ///< real-valued particle datasets stored as 32-bit floats
-  bool bonds = false;  ///< snapshots hold the bonds (group /bonds/, bonds.xmf)
+  bool bonds = false;             ///< snapshots hold the bonds (group /bonds/, bonds.xmf)
 };
 
 struct CheckpointSettings {

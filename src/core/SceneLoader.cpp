@@ -321,9 +321,8 @@ std::vector<PairOverride> read_pairs(const TableReader& root,
 
 OutputSettings read_output(const TableReader& root) {
   const TableReader table = root.optional_table("output");
-  table.allow_only(
-      {"dir", "every", "timeseries_every", "rank_field", "asynchronous", "fields", "precision",
-       "bonds"});
+  table.allow_only({"dir", "every", "timeseries_every", "rank_field", "asynchronous", "fields",
+                    "precision", "bonds"});
   OutputSettings o;
   o.dir = table.string("dir", o.dir);
   o.every = table.number("every", non_negative("s"), o.every);

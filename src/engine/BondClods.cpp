@@ -58,8 +58,7 @@ std::vector<Real4> draw_table(const Scene& scene, std::size_t k) {
 std::vector<std::vector<Real4>> draw_clods(const Scene& scene) {
   std::vector<std::vector<Real4>> clods;
   for (std::size_t k = 0; k < scene.bonds.size(); ++k)
-    clods.push_back(scene.bonds[k].clods.count > 0 ? draw_table(scene, k)
-                                                   : std::vector<Real4>{});
+    clods.push_back(scene.bonds[k].clods.count > 0 ? draw_table(scene, k) : std::vector<Real4>{});
   return clods;
 }
 

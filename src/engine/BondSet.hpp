@@ -27,9 +27,8 @@ class BondSet {
     std::vector<Real4> all_clods;
     for (std::size_t k = 0; k < tables.size(); ++k) {
       const BondSettings& t = tables[k];
-      host_types_.push_back(BondParams{t.young, shear_modulus(t.young, t.poisson),
-                                       t.radius_factor, t.tensile_strength, t.shear_strength,
-                                       t.damping_ratio});
+      host_types_.push_back(BondParams{t.young, shear_modulus(t.young, t.poisson), t.radius_factor,
+                                       t.tensile_strength, t.shear_strength, t.damping_ratio});
       types.push_back(bond_params_cast<S>(host_types_.back()));
       const std::vector<Real4> mine = k < clods.size() ? clods[k] : std::vector<Real4>{};
       rules.push_back(BondRule{t.a, t.b, t.gap, static_cast<std::uint32_t>(all_clods.size()),

@@ -81,7 +81,8 @@ BondLines ParticleSystem<Space, P, S>::bond_lines() const {
   const std::vector<Real4> x = download_in_real(position_radius_);
   std::vector<ParticleId> id;
   id_.download(id);
-  const std::vector<std::uint32_t> offsets = download_values<Space>(neighbors_.offsets(), owned_ + 1);
+  const std::vector<std::uint32_t> offsets =
+      download_values<Space>(neighbors_.offsets(), owned_ + 1);
   const std::vector<std::uint32_t> partner =
       download_values<Space>(neighbors_.neighbors(), offsets.back());
   const std::vector<S> stored =

@@ -38,9 +38,9 @@ struct EngineSetup {
   std::uint32_t material_count = 0;
   std::vector<ContactPairParams> pair_params;  ///< material_count² entries, row-major
   std::vector<PlaneWall> walls;
-  std::vector<PistonSetup> pistons;   ///< the walls that slide (WallPistons.hpp)
-  std::vector<MeshWallSetup> meshes;  ///< triangle-mesh walls (tools)
-  std::vector<BondSettings> bonds;    ///< the [[bond]] tables: none, no bonds
+  std::vector<PistonSetup> pistons;       ///< the walls that slide (WallPistons.hpp)
+  std::vector<MeshWallSetup> meshes;      ///< triangle-mesh walls (tools)
+  std::vector<BondSettings> bonds;        ///< the [[bond]] tables: none, no bonds
   std::vector<std::vector<Real4>> clods;  ///< per [[bond]] table, its clod spheres (BondClods)
   /// Per material, whether its particles are held still and their drag (Material::fixed,
   /// Material::drag); empty: every material moves freely.

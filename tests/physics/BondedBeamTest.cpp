@@ -258,8 +258,8 @@ TEST_P(BondedBeam, ClodsBondOnlyTheSpheresTheyHold) {
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j)
       for (int k = 0; k < 6; ++k)
-        p.add(p.size(), {i * spacing(), j * spacing() - 0.005, k * spacing() - 0.005}, kRadius,
-              0, {0, 0, 0}, 1 / node_mass());
+        p.add(p.size(), {i * spacing(), j * spacing() - 0.005, k * spacing() - 0.005}, kRadius, 0,
+              {0, 0, 0}, 1 / node_mass());
   EngineSetup setup = make_engine_setup(scene, p);
   const std::vector<Real4> clods = {{0.002, -0.003, -0.003, 0.0035}, {0.008, 0.004, 0.004, 0.005}};
   setup.clods = {clods};

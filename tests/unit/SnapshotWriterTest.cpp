@@ -609,7 +609,8 @@ BondLines bonds_of_this_rank() {
   for (int k = 0; k <= r; ++k) {
     const ParticleId a = 100 * r + k;
     lines.ids.insert(lines.ids.end(), {a, a + 1});
-    lines.points.insert(lines.points.end(), {Vec3{double(r), double(k), 0}, Vec3{double(r), double(k), 1}});
+    lines.points.insert(lines.points.end(),
+                        {Vec3{double(r), double(k), 0}, Vec3{double(r), double(k), 1}});
     lines.normal_force.push_back(10.0 * r + k);
     lines.strength_used.push_back(k / 4.0);
   }
@@ -662,8 +663,8 @@ TEST_F(SnapshotWriterTest, BondGroupHoldsEachRanksBondsAtItsOffset) {
 
 TEST_F(SnapshotWriterTest, WithoutTheBondsOptionThereIsNoBondGroup) {
   SnapshotWriter writer(MPI_COMM_WORLD, dir_, named("particles"));
-  writer.write(random_store(particles_on_this_rank(), 2200 + comm_rank()), {},
-               bonds_of_this_rank(), 0.5, 5);
+  writer.write(random_store(particles_on_this_rank(), 2200 + comm_rank()), {}, bonds_of_this_rank(),
+               0.5, 5);
   MPI_Barrier(MPI_COMM_WORLD);
   H5Id<H5Fclose> file(H5Fopen(writer.files()[0].c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   EXPECT_EQ(H5Lexists(file.id, "bonds", H5P_DEFAULT), 0);
@@ -709,8 +710,8 @@ TEST(SnapshotFixture, WritesOutputFolderForTheXdmfCheck) {
                0);
   meshed.write(ParticleStore{}, {two_triangles()}, 0.01, 100);
   SnapshotWriter bonded(MPI_COMM_WORLD, dir, with_bonds("bonded"));
-  bonded.write(random_store(particles_on_this_rank(), 2000 + comm_rank()), {},
-               bonds_of_this_rank(), 0.0, 0);
+  bonded.write(random_store(particles_on_this_rank(), 2000 + comm_rank()), {}, bonds_of_this_rank(),
+               0.0, 0);
   bonded.write(ParticleStore{}, {}, BondLines{}, 0.01, 100);
   MPI_Barrier(MPI_COMM_WORLD);
   EXPECT_TRUE(fs::exists(fs::path(dir) / "plate.xmf"));
