@@ -4,3 +4,4 @@ gpudem_add_test(test_friction SOURCES physics/FrictionTest.cpp LIBS gpudem_sim L
 gpudem_add_test(test_mesh_wall SOURCES physics/MeshWallTest.cpp LIBS gpudem_sim LABELS physics)
 gpudem_add_test(test_jkr_impact SOURCES physics/JkrImpactTest.cpp LIBS gpudem_sim LABELS physics)
 gpudem_add_test(test_bonded_beam SOURCES physics/BondedBeamTest.cpp LIBS gpudem_sim LABELS physics)
+gpudem_add_test(test_bonded_frame SOURCES physics/BondedFrameTest.cpp LIBS gpudem_sim LABELS physics)

@@ -85,7 +85,7 @@ struct JkrCohesion {
       out.point.overlap = c.overlap > 0 ? c.overlap : S(0);
       return out;
     }
-    const S k = S(3.14159265358979323846) * p.surface_energy / (S(8) * p.effective_young * r);
+    const S k = jkr_adhesion_number(p.surface_energy, p.effective_young, r);
     const S x2 = jkr_relative_radius(k, c.overlap / r);  // x² = a/R*
     const S x = square_root(x2);
     out.point.overlap = r * x2 * x2;

@@ -55,12 +55,18 @@ GPUDEM_HD S jkr_pull_off_gap(S work_of_adhesion, S young, S radius) {
   return S(3) * jkr_parting_radius_sq(work_of_adhesion, young, radius) / radius;
 }
 
+/// k = π γ / (8 E* R*), the one material number of jkr_relative_radius.
+template <class S>
+GPUDEM_HD S jkr_adhesion_number(S work_of_adhesion, S young, S radius) {
+  return S(3.14159265358979323846) * work_of_adhesion / (S(8) * young * radius);
+}
+
 /// The contact radius a at overlap δ ≥ δ_c on the branch the contact follows [m]; the Hertz
 /// radius √(R* δ) (0 apart) when γ = 0.
 template <class S>
 GPUDEM_HD S jkr_contact_radius(S work_of_adhesion, S young, S radius, S overlap) {
   if (!(work_of_adhesion > 0)) return overlap > 0 ? square_root(radius * overlap) : S(0);
-  const S k = S(3.14159265358979323846) * work_of_adhesion / (S(8) * young * radius);
+  const S k = jkr_adhesion_number(work_of_adhesion, young, radius);
   return radius * jkr_relative_radius(k, overlap / radius);
 }
 
