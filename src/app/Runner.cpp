@@ -257,6 +257,16 @@ void start_engine(StepEngine& engine, StartShare& share, const std::string& path
   share.release_rows();
 }
 
+/// Makes the bonds of a new run; a pair a [[bond]] table lists that cannot be bonded is an input
+/// error.
+void create_bonds(const Scene& scene, StepEngine& engine) {
+  try {
+    engine.create_bonds();
+  } catch (const std::invalid_argument& e) {
+    throw InputError(scene.file, 0, "bond", e.what());
+  }
+}
+
 /// Ends a bed preparation: saves the trimmed bed when it settled, else reports why not.
 int finish_preparation(const Scene& scene, const MpiContext& mpi, const StepEngine& engine,
                        const TimeLoop& loop, double dt) {
@@ -410,7 +420,7 @@ int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
   std::unique_ptr<StepEngine> engine = make_engine(options.backend, mpi, setup);
   start_engine(*engine, share, options.restart_file);
   if (!checkpoint) bed.apply_history(scene, mpi, *engine);
-  if (!checkpoint) engine->create_bonds();
+  if (!checkpoint) create_bonds(scene, *engine);
   const std::string tuning = engine->tune_launches();
   prepare_output_directory(scene.output.dir);
   const std::vector<MemoryUse> memory = memory_over_ranks(mpi, *engine);

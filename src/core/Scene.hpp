@@ -224,7 +224,7 @@ struct ClodSettings {
 /// A [[bond]] table: at the start of a new run, a parallel bond (core/contact/ParallelBond.hpp) of
 /// this cement joins every two particles of materials a and b whose surfaces are at most `gap`
 /// apart (the first table that matches a pair makes its bond), and with clods only pairs whose
-/// two centres lie in the same clod.
+/// two centres lie in the same clod; or, given a CSV file of pairs, exactly those pairs.
 struct BondSettings {
   MaterialId a = 0, b = 0;
   double gap = 0;                      ///< [m], >= 0
@@ -235,6 +235,9 @@ struct BondSettings {
   double shear_strength = INFINITY;    ///< τ_c [Pa]; absent: never breaks in shear
   double damping_ratio = 0;            ///< β, fraction of critical damping of each mode
   ClodSettings clods;                  ///< count 0: bonds anywhere
+  /// A CSV file of id pairs (path resolved from the scene's folder): the table bonds exactly
+  /// those pairs, whatever their materials; empty: it bonds by materials and gap.
+  std::string pairs;
 };
 
 struct Scene {

@@ -52,11 +52,18 @@ GPUDEM_HD BondGeometry<S> bond_geometry(const BondRows<P>& rows, std::uint32_t a
 }
 
 /// A bond rule of the scene as the kernels read it: the two materials, the largest gap and the
-/// table's clods, clods[first_clod .. first_clod + clod_count) (none: bonds anywhere).
+/// table's clods, clods[first_clod .. first_clod + clod_count) (none: bonds anywhere); or the
+/// pairs it lists, pairs[first_pair .. first_pair + pair_count), ordered (none: by materials).
 struct BondRule {
   MaterialId a, b;
   Real gap;
   std::uint32_t first_clod = 0, clod_count = 0;
+  std::uint32_t first_pair = 0, pair_count = 0;
+};
+
+/// The ids of a listed bond, lower first.
+struct BondKey {
+  ParticleId lower, higher;
 };
 
 /// True when rule r bonds particles at xa and xb as far as clods go: it has none, or one of its
@@ -74,17 +81,42 @@ GPUDEM_HD inline bool in_one_clod(const BondRule& r, const Real4* clods, const P
   return false;
 }
 
+/// True when rule r lists the pair (lower, higher): a binary search of its ordered pairs.
+GPUDEM_HD inline bool is_listed(const BondRule& r, const BondKey* pairs, ParticleId lower,
+                                ParticleId higher) {
+  std::uint32_t lo = r.first_pair, hi = r.first_pair + r.pair_count;
+  while (lo < hi) {
+    const std::uint32_t mid = lo + (hi - lo) / 2;
+    const BondKey k = pairs[mid];
+    if (k.lower < lower || (k.lower == lower && k.higher < higher))
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo < r.first_pair + r.pair_count && pairs[lo].lower == lower && pairs[lo].higher == higher;
+}
+
+/// True when rule r bonds particles a and b (ids ia < ib, materials ma, mb, surface gap `gap`,
+/// centres xa, xb).
+GPUDEM_HD inline bool rule_bonds(const BondRule& r, const BondKey* pairs, const Real4* clods,
+                                 const PeriodicBox& box, ParticleId ia, ParticleId ib,
+                                 MaterialId ma, MaterialId mb, Real gap, Vec3 xa, Vec3 xb) {
+  if (r.pair_count > 0) return is_listed(r, pairs, ia, ib);
+  const bool match = (ma == r.a && mb == r.b) || (ma == r.b && mb == r.a);
+  return match && gap <= r.gap && in_one_clod(r, clods, box, xa, xb);
+}
+
 namespace bond_kernels {
 
-/// Makes, on each list entry of owned particle i, the bond of the first rule whose materials
-/// are the pair's, whose gap the pair's surfaces are within and one of whose clods (if it has
-/// any) holds both centres; both ends find the same rule and rest length.
+/// Makes, on each list entry of owned particle i, the bond of the first rule that bonds the
+/// pair (rule_bonds); both ends find the same rule and rest length.
 template <class P, class S>
 struct Create {
   BondRows<P> rows;
   const BondRule* rules;
   std::uint32_t rule_count;
   const Real4* clods;
+  const BondKey* pairs;
   S* records;
   GPUDEM_HD void operator()(std::size_t i) const {
     const ParticleView<P>& p = rows.particles;
@@ -96,10 +128,9 @@ struct Create {
       const Real length = norm(rows.box.minimum_image(xyz(xb) - xyz(xa)));
       const Real gap = length - xa.w - xb.w;
       for (std::uint32_t k = 0; k < rule_count; ++k) {
-        const BondRule& r = rules[k];
-        const bool match = (p.material[a] == r.a && p.material[b] == r.b) ||
-                           (p.material[a] == r.b && p.material[b] == r.a);
-        if (!match || gap > r.gap || !in_one_clod(r, clods, rows.box, xyz(xa), xyz(xb))) continue;
+        if (!rule_bonds(rules[k], pairs, clods, rows.box, rows.id[a], rows.id[b], p.material[a],
+                        p.material[b], gap, xyz(xa), xyz(xb)))
+          continue;
         S* record = records + std::size_t(e) * bond_value::width;
         for (std::uint32_t v = 0; v < bond_value::width; ++v) record[v] = S{};
         record[bond_value::rest_length] = static_cast<S>(length);

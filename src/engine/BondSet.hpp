@@ -19,25 +19,33 @@ namespace gpudem {
 template <class Space, class S>
 class BondSet {
  public:
-  /// `clods`: per table, its clod spheres (EngineSetup::clods).
-  BondSet(const std::vector<BondSettings>& tables, const std::vector<std::vector<Real4>>& clods)
+  /// `clods` and `pairs`: per table, its clod spheres and listed pairs (EngineSetup).
+  BondSet(const std::vector<BondSettings>& tables, const std::vector<std::vector<Real4>>& clods,
+          const std::vector<std::vector<ListedBond>>& pairs)
       : empty_(tables.empty()), carried_(bond_value::width) {
     std::vector<BondParamsT<S>> types;
     std::vector<BondRule> rules;
     std::vector<Real4> all_clods;
+    std::vector<BondKey> all_pairs;
     for (std::size_t k = 0; k < tables.size(); ++k) {
       const BondSettings& t = tables[k];
       host_types_.push_back(BondParams{t.young, shear_modulus(t.young, t.poisson), t.radius_factor,
                                        t.tensile_strength, t.shear_strength, t.damping_ratio});
       types.push_back(bond_params_cast<S>(host_types_.back()));
       const std::vector<Real4> mine = k < clods.size() ? clods[k] : std::vector<Real4>{};
+      const std::vector<ListedBond> listed =
+          k < pairs.size() ? pairs[k] : std::vector<ListedBond>{};
       rules.push_back(BondRule{t.a, t.b, t.gap, static_cast<std::uint32_t>(all_clods.size()),
-                               static_cast<std::uint32_t>(mine.size())});
+                               static_cast<std::uint32_t>(mine.size()),
+                               static_cast<std::uint32_t>(all_pairs.size()),
+                               static_cast<std::uint32_t>(listed.size())});
       all_clods.insert(all_clods.end(), mine.begin(), mine.end());
+      for (const ListedBond& b : listed) all_pairs.push_back({b.lower, b.higher});
     }
     types_.upload(types);
     rules_.upload(rules);
     clods_.upload(all_clods);
+    pairs_.upload(all_pairs);
   }
 
   /// The parameters of [[bond]] table k.
@@ -57,7 +65,7 @@ class BondSet {
     parallel_for(
         Space{}, owned,
         bond_kernels::Create<P, S>{rows, rules_.data(), static_cast<std::uint32_t>(rules_.size()),
-                                   clods_.data(), records_.data()});
+                                   clods_.data(), pairs_.data(), records_.data()});
   }
 
   /// Adds the owned particles' bond loads to force and torque, the bonds advanced by dt.
@@ -119,6 +127,7 @@ class BondSet {
   DeviceArray<BondParamsT<S>, Space> types_;  ///< per [[bond]] table
   DeviceArray<BondRule, Space> rules_;        ///< per [[bond]] table
   DeviceArray<Real4, Space> clods_;           ///< the tables' clod spheres, table by table
+  DeviceArray<BondKey, Space> pairs_;         ///< the tables' listed pairs, table by table
   DeviceArray<S, Space> records_;             ///< bond_value::width per neighbour-list entry
   HistoryCarryOver<Space, ParticleId, S> carried_;
   std::vector<BondParams> host_types_;  ///< types_ in Real, on the host

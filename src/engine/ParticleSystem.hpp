@@ -66,7 +66,7 @@ class ParticleSystem final : public StepEngine {
         pistons_(setup.walls, setup.pistons, setup.gravity),
         carried_pairs_(width_),
         meshes_(setup.meshes, setup.box, width_),
-        bonds_(setup.bonds, setup.clods),
+        bonds_(setup.bonds, setup.clods, setup.bond_pairs),
         ghosts_(law_->needs_spin() || !setup.bonds.empty()),
         clock_{setup.start_step} {
     walls_.upload(pistons_.walls());
@@ -82,15 +82,11 @@ class ParticleSystem final : public StepEngine {
   void get_particles(ParticleStore& p) const override { read_owned_particles(owned_arrays(), p); }
 
   void get_contact_history(ContactHistory& history) const override;
-
   void set_contact_history(ContactHistory share) override;
 
   void create_bonds() override;
-
   void get_bonds(ContactHistory& bonds, std::uint64_t& made) const override;
-
   void set_bonds(ContactHistory bonds, std::uint64_t made) override;
-
   BondLines bond_lines() const override;
 
   std::vector<WallMotion> wall_motion() const override { return pistons_.motion(); }
@@ -249,6 +245,10 @@ class ParticleSystem final : public StepEngine {
   /// Throws std::runtime_error when a bond has stretched so far that the next list may miss its
   /// partner: a surface gap of 0.9 skin or more. Collective.
   void check_bond_reach() const;
+
+  /// Throws std::invalid_argument, naming its file and line, for a pair a [[bond]] table lists
+  /// that create_bonds did not bond by that table. Collective.
+  void check_listed_bonds() const;
 
   /// Whether the particles' spins change: the law or the bonds exert torques.
   bool spins() const { return law_->needs_spin() || !bonds_.empty(); }

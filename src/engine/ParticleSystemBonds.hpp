@@ -3,6 +3,9 @@
 /// class; BondSet.hpp): made at a run's start, their loads added after the contact forces, their
 /// reach checked before each rebuild, read and set as keyed records for checkpoints.
 #include <cstdio>
+#include <set>
+#include <string>
+#include <tuple>
 
 #include "engine/ParticleSystem.hpp"
 
@@ -24,6 +27,7 @@ template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::create_bonds() {
   if (bonds_.empty()) return;
   bonds_.create(bond_rows(), owned_);
+  check_listed_bonds();
   bonds_made_ = static_cast<std::uint64_t>(
       std::llround(domain_.group().sum<double>(bonds_.half_count(neighbors_.offsets(), owned_))));
   compute_forces();
@@ -41,6 +45,43 @@ void ParticleSystem<Space, P, S>::check_bond_reach() const {
                 "give the [[bond]] a tensile_strength that breaks it before",
                 widest, setup_.skin);
   throw std::runtime_error(text);
+}
+
+template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::check_listed_bonds() const {
+  std::uint64_t listed = 0;
+  for (const std::vector<ListedBond>& pairs : setup_.bond_pairs) listed += pairs.size();
+  if (listed == 0) return;
+  ContactHistory made;
+  std::uint64_t count = 0;
+  get_bonds(made, count);
+  std::set<std::tuple<Real, ParticleId, ParticleId>> here;  // (table, lower, higher)
+  for (std::size_t k = 0; k < made.pair_owner.size(); ++k)
+    here.insert({made.pair_values[k * made.width + bond_value::type], made.pair_owner[k],
+                 made.pair_partner[k]});
+  std::vector<ParticleId> ids;
+  id_.download(ids);
+  const std::set<ParticleId> owned(ids.begin(), ids.begin() + owned_);
+  std::uint64_t lowers_here = 0;
+  std::string problem;
+  for (std::size_t t = 0; t < setup_.bond_pairs.size(); ++t)
+    for (const ListedBond& b : setup_.bond_pairs[t]) {
+      if (owned.count(b.lower) == 0) continue;
+      ++lowers_here;
+      if (problem.empty() && here.count({Real(t), b.lower, b.higher}) == 0)
+        problem = setup_.bonds[t].pairs + ":" + std::to_string(b.line) + ": the pair " +
+                  std::to_string(b.lower) + ", " + std::to_string(b.higher) +
+                  " was not bonded: particle " + std::to_string(b.higher) +
+                  " is not in the scene, or the two are more than the neighbour skin apart, or "
+                  "an earlier [[bond]] table bonded them";
+    }
+  throw_first_problem(problem, domain_);
+  const std::uint64_t found = domain_.group().sum<std::uint64_t>(lowers_here);
+  if (found != listed)
+    throw std::invalid_argument(std::to_string(listed - found) + " of the " +
+                                std::to_string(listed) +
+                                " pairs the [[bond]] tables list name a particle id (the lower "
+                                "of the pair) that the scene does not have");
 }
 
 template <class Space, class P, class S>

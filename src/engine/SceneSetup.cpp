@@ -338,6 +338,8 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   require_skin_covers_bond_gaps(scene, s.skin);
   s.bonds = scene.bonds;
   s.clods = draw_clods(scene);
+  for (const BondSettings& b : scene.bonds)
+    s.bond_pairs.push_back(b.pairs.empty() ? std::vector<ListedBond>{} : read_bond_pairs(b.pairs));
   for (const Material& m : scene.materials)
     if (m.fixed || m.drag > 0) s.material_motion.resize(scene.materials.size());
   for (std::size_t k = 0; k < s.material_motion.size(); ++k)

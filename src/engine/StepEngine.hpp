@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/BondPairs.hpp"
 #include "core/ContactHistory.hpp"
 #include "core/ContactModel.hpp"
 #include "core/ContactParams.hpp"
@@ -42,6 +43,8 @@ struct EngineSetup {
   std::vector<MeshWallSetup> meshes;      ///< triangle-mesh walls (tools)
   std::vector<BondSettings> bonds;        ///< the [[bond]] tables: none, no bonds
   std::vector<std::vector<Real4>> clods;  ///< per [[bond]] table, its clod spheres (BondClods)
+  /// Per [[bond]] table, the pairs its CSV file lists (none: it bonds by materials and gap).
+  std::vector<std::vector<ListedBond>> bond_pairs;
   /// Per material, whether its particles are held still and their drag (Material::fixed,
   /// Material::drag); empty: every material moves freely.
   std::vector<MaterialMotion> material_motion;

@@ -32,22 +32,31 @@ double smallest_rayleigh_time(const Scene& scene, const ParticleStore& particles
   return t;
 }
 
+/// ω² of a bond of table `b` between the particles i and j of `particles`.
+double bond_omega2(const BondSettings& b, const ParticleStore& particles, std::size_t i,
+                   std::size_t j) {
+  const BondParams p{b.young,          gpudem::shear_modulus(b.young, b.poisson),
+                     b.radius_factor,  b.tensile_strength,
+                     b.shear_strength, b.damping_ratio};
+  return bond_frequency_squared(
+      p, particles.position_radius[i].w, 1 / particles.velocity_inv_mass[i].w,
+      particles.position_radius[j].w, 1 / particles.velocity_inv_mass[j].w);
+}
+
 /// ω² of the stiffest bond the [[bond]] tables can make between the particles present, each
-/// material by its smallest particle; 0 without bonds.
+/// material by its smallest particle (a table of listed pairs: any two materials); 0 without
+/// bonds.
 double stiffest_bond(const Scene& scene, const ParticleStore& particles) {
   const std::vector<std::size_t> smallest = smallest_particle_per_material(scene, particles);
+  const std::size_t none = particles.size();
   double omega2 = 0;
-  for (const BondSettings& b : scene.bonds) {
-    const std::size_t i = smallest[b.a], j = smallest[b.b];
-    if (i == particles.size() || j == particles.size()) continue;
-    const BondParams p{b.young,          gpudem::shear_modulus(b.young, b.poisson),
-                       b.radius_factor,  b.tensile_strength,
-                       b.shear_strength, b.damping_ratio};
-    omega2 = std::max(omega2, bond_frequency_squared(p, particles.position_radius[i].w,
-                                                     1 / particles.velocity_inv_mass[i].w,
-                                                     particles.position_radius[j].w,
-                                                     1 / particles.velocity_inv_mass[j].w));
-  }
+  for (const BondSettings& b : scene.bonds)
+    for (std::size_t m = 0; m < smallest.size(); ++m)
+      for (std::size_t n = m; n < smallest.size(); ++n) {
+        const bool bonded = !b.pairs.empty() || (m == b.a && n == b.b) || (m == b.b && n == b.a);
+        if (bonded && smallest[m] != none && smallest[n] != none)
+          omega2 = std::max(omega2, bond_omega2(b, particles, smallest[m], smallest[n]));
+      }
   return omega2;
 }
 

@@ -285,6 +285,32 @@ TEST_P(BondedBeam, ClodsBondOnlyTheSpheresTheyHold) {
   EXPECT_EQ(engine->diagnostics().bond_count, expected);
 }
 
+/// The beam's spheres with a table of listed pairs: exactly the listed pairs are bonded, whatever
+/// their materials; a pair too far apart to be bonded is refused, naming the file and line.
+TEST_P(BondedBeam, ListedPairsAreBondedAndNoOthers) {
+  Scene scene = beam_scene({0, 0, 0}, 1e-6);
+  scene.bonds.resize(1);
+  ParticleStore p = beam_particles();
+  EngineSetup setup = make_engine_setup(scene, p);
+  setup.bonds[0].pairs = "pairs.csv";  // the file's name, for messages; its pairs below
+  setup.bond_pairs = {{{0, 1, 2}, {3, 4, 3}, {4, 5, 4}, {9, 10, 5}}};  // the clamp's too
+  auto engine = make_engine(setup);
+  engine->set_particles(p);
+  engine->create_bonds();
+  EXPECT_EQ(engine->diagnostics().bond_count, 4u);
+  setup.bond_pairs = {{{3, 4, 2}, {5, 7, 3}}};  // 5 and 7 are a sphere apart
+  auto refusing = make_engine(setup);
+  refusing->set_particles(p);
+  try {
+    refusing->create_bonds();
+    ADD_FAILURE() << "a pair two radii apart was bonded";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("pairs.csv:3: the pair 5, 7 was not bonded"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 /// The tip of the elastica under point loads P at a_k = k d: θ'' = −V(s) cos θ / EI with V(s)
 /// the loads beyond s, θ(0) = 0 (clamped) and θ'(L) = 0 (no moment at the free end), by shooting
 /// on θ'(0) (bisection between 0 and the straight beam's Σ P a_k / EI) with RK4 steps of d/100.

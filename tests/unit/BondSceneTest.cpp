@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "core/BondPairs.hpp"
 #include "core/InputError.hpp"
 #include "core/SceneLoader.hpp"
 #include "engine/BondClods.hpp"
@@ -167,6 +168,49 @@ TEST_F(BondScene, ClodsAreDrawnInTheirRegionWithoutOverlapTheSameEveryTime) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.key(), "bond[0].clods.count");
   }
+}
+
+TEST_F(BondScene, PairsAreReadOrderedAndBadRowsNamed) {
+  const auto write = [&](const std::string& name, const std::string& text) {
+    const std::string file = (dir_ / name).string();
+    std::ofstream(file) << text;
+    return file;
+  };
+  const std::vector<ListedBond> pairs =
+      read_bond_pairs(write("pairs.csv", "id_b,id_a\n7,3\n2,9\n\n3,5\n"));
+  ASSERT_EQ(pairs.size(), 3u);
+  EXPECT_EQ(pairs[0].lower, 2u);
+  EXPECT_EQ(pairs[0].higher, 9u);
+  EXPECT_EQ(pairs[0].line, 3);
+  EXPECT_EQ(pairs[1].lower, 3u);
+  EXPECT_EQ(pairs[1].higher, 5u);
+  EXPECT_EQ(pairs[2].higher, 7u);
+  const auto refused = [&](const std::string& text, int line, const std::string& phrase) {
+    const std::string file = write("bad.csv", text);
+    try {
+      read_bond_pairs(file);
+      ADD_FAILURE() << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), file);
+      EXPECT_EQ(e.line(), line) << e.what();
+      EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+    }
+  };
+  refused("a,b\n1,2\n", 1, "missing column 'id_a'");
+  refused("id_a,id_b\n1,2.5\n", 2, "not a particle id");
+  refused("id_a,id_b\n1,-2\n", 2, "not a particle id");
+  refused("id_a,id_b\n4,4\n", 2, "paired with itself");
+  refused("id_a,id_b\n1,2\n3,4\n2,1\n", 4, "listed twice (also on line 2)");
+}
+
+TEST_F(BondScene, ATableOfPairsTakesNoMaterialsGapOrClods) {
+  std::ofstream(dir_ / "pairs.csv") << "id_a,id_b\n0,1\n";
+  const Scene s = load("[[bond]]\npairs = \"pairs.csv\"\nyoung = 1e6\n");
+  EXPECT_EQ(s.bonds[0].pairs, (dir_ / "pairs.csv").string());
+  expect_refused("[[bond]]\npairs = \"pairs.csv\"\nmaterials = [\"soil\", \"soil\"]\nyoung = 1e6\n",
+                 21, "bond[0].materials", "takes no materials");
+  expect_refused("[[bond]]\npairs = \"pairs.csv\"\ngap = 0.001\nyoung = 1e6\n", 21, "bond[0].gap",
+                 "takes no gap");
 }
 
 TEST_F(BondScene, TheStiffestBondBoundsTheStep) {
