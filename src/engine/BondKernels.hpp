@@ -106,6 +106,24 @@ GPUDEM_HD inline bool rule_bonds(const BondRule& r, const BondKey* pairs, const 
   return match && gap <= r.gap && in_one_clod(r, clods, box, xa, xb);
 }
 
+/// The bond on list entry e of owned particle i, seen from its lower-id end a: its geometry, its
+/// [[bond]] table and whether i is a.
+template <class S>
+struct OrientedBond {
+  BondGeometry<S> geometry;
+  std::uint32_t type;
+  bool from_i;
+};
+
+template <class S, class P>
+GPUDEM_HD OrientedBond<S> oriented_bond(const BondRows<P>& rows, std::uint32_t i, std::uint32_t e,
+                                        const S* record) {
+  const std::uint32_t j = rows.neighbors[e];
+  const bool from_i = rows.id[i] < rows.id[j];
+  return {bond_geometry<S>(rows, from_i ? i : j, from_i ? j : i, record[bond_value::rest_length]),
+          static_cast<std::uint32_t>(record[bond_value::type]), from_i};
+}
+
 namespace bond_kernels {
 
 /// Makes, on each list entry of owned particle i, the bond of the first rule that bonds the
@@ -157,19 +175,14 @@ struct AddLoads {
     for (std::uint32_t e = rows.offsets[i]; e < rows.offsets[i + 1]; ++e) {
       S* record = records + std::size_t(e) * bond_value::width;
       if (record[bond_value::rest_length] == 0) continue;
-      const std::uint32_t j = rows.neighbors[e];
-      const bool first = rows.id[i] < rows.id[j];
-      const BondGeometry<S> g =
-          bond_geometry<S>(rows, first ? std::uint32_t(i) : j, first ? j : std::uint32_t(i),
-                           record[bond_value::rest_length]);
-      const auto type = static_cast<std::uint32_t>(record[bond_value::type]);
-      const BondLoad<S> load = evaluate_bond(types[type], g, record, dt);
+      const OrientedBond<S> b = oriented_bond(rows, std::uint32_t(i), e, record);
+      const BondLoad<S> load = evaluate_bond(types[b.type], b.geometry, record, dt);
       if (load.broken) {
         for (std::uint32_t v = 0; v < bond_value::width; ++v) record[v] = S{};
         continue;
       }
-      f += first ? load.force : -load.force;
-      t += first ? load.torque_a : load.torque_b;
+      f += b.from_i ? load.force : -load.force;
+      t += b.from_i ? load.torque_a : load.torque_b;
     }
     force[i] += f;
     torque[i] = torque_written ? torque[i] + t : t;
@@ -201,13 +214,8 @@ struct HalfEnergy {
     for (std::uint32_t e = rows.offsets[i]; e < rows.offsets[i + 1]; ++e) {
       const S* record = records + std::size_t(e) * bond_value::width;
       if (record[bond_value::rest_length] == 0) continue;
-      const std::uint32_t j = rows.neighbors[e];
-      const bool first = rows.id[i] < rows.id[j];
-      const BondGeometry<S> g =
-          bond_geometry<S>(rows, first ? std::uint32_t(i) : j, first ? j : std::uint32_t(i),
-                           record[bond_value::rest_length]);
-      const auto type = static_cast<std::uint32_t>(record[bond_value::type]);
-      energy += Real(0.5) * static_cast<Real>(bond_energy(types[type], g, record));
+      const OrientedBond<S> b = oriented_bond(rows, std::uint32_t(i), e, record);
+      energy += Real(0.5) * static_cast<Real>(bond_energy(types[b.type], b.geometry, record));
     }
     return energy;
   }

@@ -614,6 +614,21 @@ def continue_on_two_ranks(runner, label, scene, reference, checkpoint, stripped,
                     "cannot see it")
 
 
+def restart_sees(runner, label, scene, reference, time, records_of, strip, what):
+    """Checkpoints `scene` at `time` on 3 ranks, which must hold some of `what`
+    (records_of(file) counts them), and continues it on 2 ranks as continue_on_two_ranks does,
+    with a copy that strip(checkpoint, copy) leaves without them."""
+    checkpoint = checkpoint_on_three_ranks(runner, label, scene, time)
+    with h5py.File(checkpoint, "r") as f:
+        records = records_of(f)
+    print(f"{label}_restart: {records} {what} in the checkpoint")
+    if records == 0:
+        runner.fail(f"{label}_restart: the checkpoint holds no {what}")
+    stripped = runner.work / f"{label}_stripped.h5"
+    strip(checkpoint, stripped)
+    continue_on_two_ranks(runner, label, scene, reference, checkpoint, stripped, what)
+
+
 def tool(runner):
     scene = SCENES / "tool.toml"
     reference = runner.run("tool_n1", scene, 1)
@@ -624,16 +639,8 @@ def tool(runner):
     compare_layouts(runner, "tool", scene, reference, compare_tool_series,
                     (("slabs_n2", 2, "[2,1,1]"), ("slabs_n4", 4, "[4,1,1]"),
                      ("blocks_2x2", 4, "[2,2,1]")))
-    checkpoint = checkpoint_on_three_ranks(runner, "tool", scene, 0.09)
-    with h5py.File(checkpoint, "r") as f:
-        springs = f["mesh_owner"].shape[0]
-    print(f"tool_restart: {springs} mesh contact springs in the checkpoint")
-    if springs == 0:
-        runner.fail("tool_restart: the checkpoint holds no mesh contact springs")
-    stripped = runner.work / "without_mesh_springs.h5"
-    without_mesh_springs(checkpoint, stripped)
-    continue_on_two_ranks(runner, "tool", scene, reference, checkpoint, stripped,
-                          "the mesh springs")
+    restart_sees(runner, "tool", scene, reference, 0.09, lambda f: f["mesh_owner"].shape[0],
+                 without_mesh_springs, "mesh contact springs")
 
 
 # ---- piston -------------------------------------------------------------------------------------
@@ -757,15 +764,8 @@ def bonded(runner):
     compare_layouts(runner, "bonded", scene, reference, compare_bonded,
                     (("slabs_n2", 2, "[2,1,1]"), ("slabs_n3", 3, "[3,1,1]"),
                      ("blocks_2x2", 4, "[2,2,1]")))
-    checkpoint = checkpoint_on_three_ranks(runner, "bonded", scene, 0.03)
-    with h5py.File(checkpoint, "r") as f:
-        records = f["bond_owner"].shape[0]
-    print(f"bonded_restart: {records} bond records in the checkpoint")
-    if records == 0:
-        runner.fail("bonded_restart: the checkpoint holds no bond records")
-    stripped = runner.work / "without_bonds.h5"
-    without_bonds(checkpoint, stripped)
-    continue_on_two_ranks(runner, "bonded", scene, reference, checkpoint, stripped, "the bonds")
+    restart_sees(runner, "bonded", scene, reference, 0.03, lambda f: f["bond_owner"].shape[0],
+                 without_bonds, "bond records")
 
 
 # ---- adaptive -----------------------------------------------------------------------------------
