@@ -58,11 +58,11 @@ std::vector<Vec3> frame_displacements(const std::vector<Vec3>& nodes) {
     const double a = kYoung * area / l, b = 12 * kYoung * inertia / (l * l * l);
     const double m = 6 * kYoung * inertia / (l * l), q = 4 * kYoung * inertia / l;
     // Local stiffness (axial, transverse, rotation at each end) and the rotation to x–z.
-    const double local[6][6] = {{a, 0, 0, -a, 0, 0},       {0, b, m, 0, -b, m},
-                                {0, m, q, 0, -m, q / 2},   {-a, 0, 0, a, 0, 0},
-                                {0, -b, -m, 0, b, -m},     {0, m, q / 2, 0, -m, q}};
-    const double turn[6][6] = {{c, s, 0, 0, 0, 0},  {-s, c, 0, 0, 0, 0}, {0, 0, 1, 0, 0, 0},
-                               {0, 0, 0, c, s, 0},  {0, 0, 0, -s, c, 0}, {0, 0, 0, 0, 0, 1}};
+    const double local[6][6] = {{a, 0, 0, -a, 0, 0},     {0, b, m, 0, -b, m},
+                                {0, m, q, 0, -m, q / 2}, {-a, 0, 0, a, 0, 0},
+                                {0, -b, -m, 0, b, -m},   {0, m, q / 2, 0, -m, q}};
+    const double turn[6][6] = {{c, s, 0, 0, 0, 0}, {-s, c, 0, 0, 0, 0}, {0, 0, 1, 0, 0, 0},
+                               {0, 0, 0, c, s, 0}, {0, 0, 0, -s, c, 0}, {0, 0, 0, 0, 0, 1}};
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j) {
         double sum = 0;
