@@ -21,7 +21,8 @@
 /// dataset "rank", else 0), snapshot_fields (S u32: the set of kSnapshotFields it holds, bit k
 /// for field k), snapshot_precision (S u8: bytes per real value of its particle datasets, 8
 /// or 4), snapshot_bond_count (S u64: the bonds in its group /bonds/, 0 without; optional when
-/// read: 0). The last three are always written but optional when read: without them (a
+/// read: 0). snapshot_rank_field, snapshot_fields and snapshot_precision are always written but
+/// optional when read: without them (a
 /// checkpoint written before they existed) no snapshot has the rank field, and each holds
 /// every field in double precision. material_names (K fixed-length strings, written by rank 0:
 /// the writing scene's materials by index; optional when read: without it, a file written

@@ -14,6 +14,7 @@
 
 #include "comm/Hdf5Io.hpp"
 #include "core/ContactModel.hpp"
+#include "core/ExactDecimal.hpp"
 #include "core/InputError.hpp"
 #include "core/contact/ParallelBond.hpp"
 
@@ -391,6 +392,28 @@ std::string material_list(const Scene& scene) {
   return list;
 }
 
+/// Refuses bonds the scene's [[bond]] tables cannot continue: bonds without tables, tables
+/// without bonds, or a bond of a table the scene does not have.
+void check_bonds_fit(const Checkpoint& c, const std::string& path, const Scene& scene) {
+  if (c.bonds.width > 0 && scene.bonds.empty())
+    throw InputError(path, 0, "",
+                     "holds parallel bonds but the scene defines no [[bond]] table: a run "
+                     "continues with the bonds it was saved with");
+  if (c.bonds.width == 0 && !scene.bonds.empty())
+    throw InputError(path, 0, "",
+                     "holds no bonds but the scene defines [[bond]] tables, which make bonds only "
+                     "when a run starts from its sources: restart without them, or start anew");
+  for (std::size_t k = 0; k < c.bonds.pair_owner.size(); ++k) {
+    const Real type = c.bonds.pair_values[k * c.bonds.width + bond_value::type];
+    if (!(type >= 0 && type < Real(scene.bonds.size()) && type == std::floor(type)))
+      throw InputError(path, 0, "",
+                       "the bond of particles " + std::to_string(c.bonds.pair_owner[k]) + " and " +
+                           std::to_string(c.bonds.pair_partner[k]) + " is of [[bond]] table " +
+                           exact_decimal(type) + " but the scene defines " +
+                           std::to_string(scene.bonds.size()));
+  }
+}
+
 }  // namespace
 
 Checkpoint read_checkpoint(const std::string& path, FilePart part) {
@@ -455,19 +478,7 @@ void fit_checkpoint_to_scene(Checkpoint& c, const std::string& path, const Scene
                          std::to_string(c.history.mesh_owner.front()) + " with triangle " +
                          std::to_string(c.history.mesh_triangle.front()) +
                          ") but the scene defines no mesh");
-  if (c.bonds.width > 0 && scene.bonds.empty())
-    throw InputError(path, 0, "",
-                     "holds parallel bonds but the scene defines no [[bond]] table: a run "
-                     "continues with the bonds it was saved with");
-  for (std::size_t k = 0; k < c.bonds.pair_owner.size(); ++k) {
-    const Real type = c.bonds.pair_values[k * c.bonds.width + bond_value::type];
-    if (!(type >= 0 && type < Real(scene.bonds.size())))
-      throw InputError(path, 0, "",
-                       "the bond of particles " + std::to_string(c.bonds.pair_owner[k]) + " and " +
-                           std::to_string(c.bonds.pair_partner[k]) + " is of [[bond]] table " +
-                           std::to_string(type) + " but the scene defines " +
-                           std::to_string(scene.bonds.size()));
-  }
+  check_bonds_fit(c, path, scene);
   const std::uint32_t width = contact_history_width(scene.contact.model);
   if (c.history.width != width)
     throw InputError(path, 0, "",

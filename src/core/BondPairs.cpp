@@ -43,6 +43,7 @@ std::vector<ListedBond> read_bond_pairs(const std::string& path) {
                        "particle " + std::to_string(x) + " is paired with itself");
     pairs.push_back({std::min(x, y), std::max(x, y), csv.line()});
   }
+  if (pairs.empty()) throw InputError(path, csv.line(), "", "lists no pair to bond");
   std::sort(pairs.begin(), pairs.end(), [](const ListedBond& p, const ListedBond& q) {
     return std::tie(p.lower, p.higher, p.line) < std::tie(q.lower, q.higher, q.line);
   });

@@ -17,7 +17,7 @@ struct ListedBond {
 
 /// The pairs of `path`, ordered by (lower, higher). Throws InputError naming the file, line and
 /// column for a file that cannot be read, a missing column, an id that is not an integer >= 0,
-/// a particle paired with itself, or a pair listed twice (naming both lines).
+/// a particle paired with itself, a pair listed twice (naming both lines) or no pair at all.
 std::vector<ListedBond> read_bond_pairs(const std::string& path);
 
 }  // namespace gpudem

@@ -99,7 +99,7 @@ MeshSettings read_mesh(const TableReader& table, std::size_t index, const Scene&
 }  // namespace
 
 /// The [[mesh]] tables; names label force columns, so they differ from each other and from
-/// the walls' names, and name the mesh's output files.
+/// the walls' names, and name the mesh's output files (so not "bonds" beside [[bond]] tables).
 std::vector<MeshSettings> read_meshes(const TableReader& root, const Scene& scene) {
   std::vector<MeshSettings> meshes;
   const std::vector<TableReader> tables = root.array_of_tables("mesh");
@@ -108,6 +108,10 @@ std::vector<MeshSettings> read_meshes(const TableReader& root, const Scene& scen
     if (const char* problem = mesh_output_name_problem(mesh.name, kParticlesBasename))
       tables[i].fail("name", "name '" + mesh.name + "' " + problem +
                                  "; it names the mesh's output file <name>.xmf");
+    if (!scene.bonds.empty() && mesh.name == "bonds")
+      tables[i].fail("name",
+                     "name 'bonds' names the bonds' output file bonds.xmf in a scene "
+                     "with [[bond]] tables");
     bool taken = false;
     for (const WallSettings& w : scene.walls) taken = taken || w.name == mesh.name;
     for (const MeshSettings& m : meshes) taken = taken || m.name == mesh.name;

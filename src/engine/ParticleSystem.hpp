@@ -239,8 +239,8 @@ class ParticleSystem final : public StepEngine {
   /// What the bond kernels read: every particle array, the owned particles' list rows, the ids.
   BondRows<P> bond_rows() const;
 
-  /// Adds the bonds' loads to the owned particles' forces, the bonds advanced by the step.
-  void add_bond_loads();
+  /// Adds the bonds' loads to the owned particles' forces, the bonds advanced by dt.
+  void add_bond_loads(Real dt);
 
   /// Throws std::runtime_error when a bond has stretched so far that the next list may miss its
   /// partner: a surface gap of 0.9 skin or more. Collective.
@@ -278,7 +278,7 @@ class ParticleSystem final : public StepEngine {
   /// The forces of every owned particle, bonds included.
   void compute_forces() {
     compute_forces(nullptr, owned_);
-    add_bond_loads();
+    add_bond_loads(step_dt());
   }
 
   /// The forces of the owned particles list[0, count) (all of 0..count when list is null).

@@ -17,10 +17,9 @@ BondRows<P> ParticleSystem<Space, P, S>::bond_rows() const {
 }
 
 template <class Space, class P, class S>
-void ParticleSystem<Space, P, S>::add_bond_loads() {
+void ParticleSystem<Space, P, S>::add_bond_loads(Real dt) {
   if (bonds_.empty()) return;
-  bonds_.add_loads(bond_rows(), owned_, step_dt(), force_.data(), torque_.data(),
-                   law_->needs_spin());
+  bonds_.add_loads(bond_rows(), owned_, dt, force_.data(), torque_.data(), law_->needs_spin());
 }
 
 template <class Space, class P, class S>
@@ -28,9 +27,16 @@ void ParticleSystem<Space, P, S>::create_bonds() {
   if (bonds_.empty()) return;
   bonds_.create(bond_rows(), owned_);
   check_listed_bonds();
+  const double widest = domain_.group().max<double>(bonds_.widest_gap(bond_rows(), owned_));
+  if (widest > 0.5 * setup_.skin)
+    throw std::invalid_argument(
+        "a listed pair was bonded across a surface gap of " + std::to_string(widest) +
+        " m, more than half the neighbour skin (" + std::to_string(setup_.skin) +
+        " m) within which bonds hold: list closer pairs or raise neighbor.skin");
   bonds_made_ = static_cast<std::uint64_t>(
       std::llround(domain_.group().sum<double>(bonds_.half_count(neighbors_.offsets(), owned_))));
-  compute_forces();
+  compute_forces(nullptr, owned_);
+  add_bond_loads(0);  // the bonds' loads as they are made, nothing advanced
   measure_pistons();
 }
 

@@ -151,8 +151,11 @@ void ParticleSystem<Space, P, S>::append_owned(const MigratingParticles<S, P>& a
   const auto first_row = static_cast<std::uint32_t>(width_ > 0 ? carried_pairs_.rows().rows()
                                                                : bonds_.kept_rows().rows());
   parallel_for(Space{}, arrived.size(), IotaFrom{previous_index_.data() + first, first_row});
-  if (!bonds_.empty() && has_list_)
+  if (!bonds_.empty() && has_list_) {
+    if (bonds_.kept_rows().rows() != first_row)
+      throw std::logic_error("migration: the kept bond rows and pair rows differ in count");
     bonds_.kept_rows().append(arrived.bond_offsets, arrived.bond_partner, arrived.bond_values);
+  }
   if (width_ > 0) {
     upload_values<Space>(arrived.wall_history, wall_history_.data() + first * walls * width_);
     if (!has_list_) return;

@@ -123,7 +123,7 @@ void ParticleSystem<Space, P, S>::refresh_ghosts_computing_interior(Stopwatch& w
   times_.halo_bytes += ghosts_.refresh_bytes();
   ++times_.refreshes;
   compute_forces(ghost_rows_.boundary(), ghost_rows_.boundary_count());
-  add_bond_loads();
+  add_bond_loads(step_dt());
 }
 
 template <class Space, class P, class S>

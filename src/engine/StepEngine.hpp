@@ -194,8 +194,10 @@ class EngineIo : public SnapshotSource {
   virtual void set_contact_history(ContactHistory share) = 0;
 
   /// Makes the bonds of the [[bond]] tables between the particles present (each pair in the
-  /// neighbour list whose materials and gap a table names) and re-evaluates the forces; call
-  /// once when a new run starts, after the particles and their contact history are set.
+  /// neighbour list that a table bonds: by materials and gap, within its clods, or listed) and
+  /// re-evaluates the forces, the bonds' loads as made; call once when a new run starts, after
+  /// the particles and their contact history are set. Throws std::invalid_argument (on every
+  /// rank) for a listed pair it could not bond or bonded across more than half the skin.
   virtual void create_bonds() = 0;
   /// The records of the intact bonds of the owned particles (bond_value::width values each,
   /// each end's record, keyed by global ids as pair records) and the number of bonds made at

@@ -2,6 +2,7 @@
 /// What bounds a scene's time step (docs/input.md, "Time step"): the contact duration, Rayleigh
 /// time and stable step of its contact law, the step in which the fastest particle moves a
 /// fraction of the smallest radius, and the deepest overlap an impact reaches.
+#include <limits>
 #include <vector>
 
 #include "core/ParticleStore.hpp"
@@ -28,7 +29,7 @@ struct TimeStepLimits {
   /// π/ω of the stiffest parallel bond (bond_frequency_squared), over the [[bond]] tables with
   /// the smallest particle of each of their materials; +infinity without bonds. `stable` is
   /// also at most 2/ω.
-  double bond = 0;
+  double bond = std::numeric_limits<double>::infinity();
   /// v_max [m/s], the fastest a particle may close on another or on a wall (max_speed)
   double max_speed = 0;
   /// displacement_fraction × r_min / v_max: the step in which a particle at v_max moves that

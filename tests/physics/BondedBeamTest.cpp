@@ -298,17 +298,23 @@ TEST_P(BondedBeam, ListedPairsAreBondedAndNoOthers) {
   engine->set_particles(p);
   engine->create_bonds();
   EXPECT_EQ(engine->diagnostics().bond_count, 4u);
+  const auto refused = [&](const ParticleStore& particles, const std::string& phrase) {
+    auto refusing = make_engine(setup);
+    refusing->set_particles(particles);
+    try {
+      refusing->create_bonds();
+      ADD_FAILURE() << "accepted; expected: " << phrase;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+    }
+  };
   setup.bond_pairs = {{{3, 4, 2}, {5, 7, 3}}};  // 5 and 7 are a sphere apart
-  auto refusing = make_engine(setup);
-  refusing->set_particles(p);
-  try {
-    refusing->create_bonds();
-    ADD_FAILURE() << "a pair two radii apart was bonded";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("pairs.csv:3: the pair 5, 7 was not bonded"),
-              std::string::npos)
-        << e.what();
-  }
+  refused(p, "pairs.csv:3: the pair 5, 7 was not bonded");
+  ParticleStore apart = p;  // sphere 10 moved 0.3 mm (0.6 skin) beyond sphere 9
+  for (std::size_t i = 0; i < apart.size(); ++i)
+    if (apart.id[i] >= 10) apart.position_radius[i].x += 3e-4;
+  setup.bond_pairs = {{{9, 10, 2}}};
+  refused(apart, "more than half the neighbour skin");
 }
 
 /// The tip of the elastica under point loads P at a_k = k d: θ'' = −V(s) cos θ / EI with V(s)

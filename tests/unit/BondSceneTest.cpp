@@ -201,6 +201,7 @@ TEST_F(BondScene, PairsAreReadOrderedAndBadRowsNamed) {
   refused("id_a,id_b\n1,-2\n", 2, "not a particle id");
   refused("id_a,id_b\n4,4\n", 2, "paired with itself");
   refused("id_a,id_b\n1,2\n3,4\n2,1\n", 4, "listed twice (also on line 2)");
+  refused("id_a,id_b\n", 1, "lists no pair");
 }
 
 TEST_F(BondScene, ATableOfPairsTakesNoMaterialsGapOrClods) {
@@ -211,6 +212,17 @@ TEST_F(BondScene, ATableOfPairsTakesNoMaterialsGapOrClods) {
                  21, "bond[0].materials", "takes no materials");
   expect_refused("[[bond]]\npairs = \"pairs.csv\"\ngap = 0.001\nyoung = 1e6\n", 21, "bond[0].gap",
                  "takes no gap");
+}
+
+TEST_F(BondScene, NoMeshMayTakeTheBondsOutputName) {
+  std::ofstream(dir_ / "plate.stl") << "solid p\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+                                       "vertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+                                       "endsolid p\n";
+  const std::string mesh =
+      "[[mesh]]\nname = \"bonds\"\nfile = \"plate.stl\"\nmaterial = \"soil\"\n";
+  EXPECT_NO_THROW(load(mesh));
+  expect_refused("[[bond]]\nmaterials = [\"soil\", \"soil\"]\nyoung = 1e6\n" + mesh, 23,
+                 "mesh[0].name", "bonds.xmf");
 }
 
 TEST_F(BondScene, TheStiffestBondBoundsTheStep) {

@@ -26,6 +26,7 @@
 #include "comm/SnapshotWriter.hpp"
 #include "comm/TimeSeriesWriter.hpp"
 #include "core/InputError.hpp"
+#include "core/contact/ParallelBond.hpp"
 #include "support/CheckpointEdits.hpp"
 
 #include "support/MpiRank.hpp"
@@ -501,6 +502,39 @@ TEST_F(DamagedCheckpoint, WallMotionIsOptionalFiniteAndOfTheScenesWalls) {
   c = read_checkpoint(path());
   EXPECT_TRUE(c.wall_motion.empty());
   EXPECT_NO_THROW(fit_checkpoint_to_scene(c, path(), scene));
+}
+
+/// Bonds continue only with the scene's [[bond]] tables: a file without bonds refuses a scene
+/// with tables, a file with bonds a scene without, and a bond of a table the scene does not
+/// have (or of no whole table index) is refused.
+TEST_F(DamagedCheckpoint, BondsContinueOnlyWithTheScenesBondTables) {
+  Checkpoint c = read_checkpoint(path());
+  Scene scene;
+  scene.materials.resize(3);
+  scene.walls.resize(5);
+  scene.meshes.resize(1);
+  EXPECT_NO_THROW(fit_checkpoint_to_scene(c, path(), scene));
+  scene.bonds.resize(1);
+  const auto refused = [&](const std::string& phrase) {
+    try {
+      fit_checkpoint_to_scene(c, path(), scene);
+      ADD_FAILURE() << "accepted; expected: " << phrase;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+    }
+  };
+  refused("holds no bonds but the scene defines [[bond]] tables");
+  c.bonds.width = bond_value::width;
+  std::vector<Real> record(bond_value::width, 0.0);
+  record[bond_value::rest_length] = 2e-3;
+  c.bonds.add_pair(1, 2, record.data());
+  EXPECT_NO_THROW(fit_checkpoint_to_scene(c, path(), scene));
+  c.bonds.pair_values[bond_value::type] = 1;
+  refused("is of [[bond]] table 1");
+  c.bonds.pair_values[bond_value::type] = 0.5;
+  refused("is of [[bond]] table 0.5");
+  scene.bonds.clear();
+  refused("holds parallel bonds but the scene defines no [[bond]] table");
 }
 
 TEST_F(DamagedCheckpoint, MaterialWallOrMeshBeyondTheSceneIsRejected) {

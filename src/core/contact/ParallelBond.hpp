@@ -66,7 +66,8 @@ GPUDEM_HD void store_vec(S* v, const Vec3T<S>& a) {
 
 /// The values one end stores per bond: rest length L₀ (0: no bond), bond type (the index of
 /// its [[bond]] table), shear force F_s (3), bending moment M_b (3), twisting moment M_t, the
-/// loads being those on end a.
+/// loads being those on end a. They are in the law's scalar: in float L₀ is rounded, which
+/// leaves a bond a residual strain of at most 6e-8 when it forms.
 namespace bond_value {
 inline constexpr int rest_length = 0, type = 1, shear = 2, bending = 5, twist = 8;
 inline constexpr std::uint32_t width = 9;
@@ -76,7 +77,7 @@ inline constexpr std::uint32_t width = 9;
 template <class S>
 struct BondGeometry {
   Vec3T<S> normal;         ///< n, unit, from a to b
-  S stretch = 0;           ///< L − L₀, formed where L is known to full precision [m]
+  S stretch = 0;           ///< L − L₀, formed in Real from the stored L₀ [m]
   S arm_a = 0, arm_b = 0;  ///< L_a, L_b: distances of the contact point from a and b [m]
   S min_radius = 0;        ///< min(r_a, r_b) [m]
   Vec3T<S> velocity;       ///< of b w.r.t. a at the contact point [m/s]
@@ -201,10 +202,11 @@ inline BondReading read_bond(const BondParams& p, double min_radius, double stre
                                                load_vec(state + v::bending), state[v::twist])};
 }
 
-/// ω² bounding the fastest vibration of two spheres (radius r, mass m each) joined by a bond of
-/// rest length r_a + r_b [1/s²]: the trace of M⁻¹K of the pair's twelve degrees of freedom, which
-/// no eigenvalue exceeds, Σ over the ends of (k_n + 2k_s)/m + (k_t + 2k_b + 2k_s L_p²)/I, with
-/// I = 2/5 m r² and L_p the end's distance from the contact point.
+/// ω² bounding the fastest vibration of two spheres (radii r_a, r_b, masses m_a, m_b) joined
+/// by a bond of rest length r_a + r_b (a pair bonded while overlapping is stiffer) [1/s²]: the
+/// trace of M⁻¹K of the pair's twelve degrees of freedom, which no eigenvalue exceeds, Σ over the
+/// ends of (k_n + 2k_s)/m + (k_t + 2k_b + 2k_s L_p²)/I, with I = 2/5 m r² and L_p the end's
+/// distance from the contact point.
 inline double bond_frequency_squared(const BondParams& p, double ra, double ma, double rb,
                                      double mb) {
   const BondSection<double> a = BondSection<double>::of(p, ra < rb ? ra : rb);

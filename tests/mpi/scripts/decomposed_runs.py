@@ -718,11 +718,14 @@ def sticky(runner):
 
 
 def without_bonds(checkpoint, copy):
-    """A copy of `checkpoint` without its bond records: the clod continues uncemented."""
+    """A copy of `checkpoint` whose bond datasets hold no record (as if every bond had broken):
+    the clod continues uncemented."""
     shutil.copy(checkpoint, copy)
     with h5py.File(copy, "r+") as f:
         for name in ("bond_owner", "bond_partner", "bond_values"):
+            shape, dtype = f[name].shape, f[name].dtype
             del f[name]
+            f.create_dataset(name, shape=(0,) + shape[1:], dtype=dtype)
 
 
 def bond_counts(out):
