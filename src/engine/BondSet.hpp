@@ -58,6 +58,7 @@ class BondSet {
   const S* records() const { return empty_ ? nullptr : records_.data(); }
   S* records() { return empty_ ? nullptr : records_.data(); }
   DeviceArray<S, Space>& record_array() { return records_; }
+  const DeviceArray<S, Space>& record_array() const { return records_; }
 
   /// Makes the bonds of the rules on owned particles' list entries (each end its record).
   template <class P>

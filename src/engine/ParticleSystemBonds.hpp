@@ -11,6 +11,14 @@
 
 namespace gpudem {
 
+/// `slots` with its pair entries only: bond records are kept per neighbour-list entry.
+inline ContactSlots pair_slots_only(ContactSlots slots) {
+  slots.wall_count = 0;
+  slots.mesh_offsets.clear();
+  slots.mesh_triangles.clear();
+  return slots;
+}
+
 template <class Space, class P, class S>
 BondRows<P> ParticleSystem<Space, P, S>::bond_rows() const {
   return {state_view(), id_.data(), neighbors_.offsets(), neighbors_.neighbors(), setup_.box};
@@ -97,26 +105,17 @@ void ParticleSystem<Space, P, S>::get_bonds(ContactHistory& bonds, std::uint64_t
   if (bonds_.empty()) return;
   bonds.width = bond_value::width;
   if (!has_list_) return;
-  ContactSlots slots = contact_slots();
-  slots.wall_count = 0;
-  slots.mesh_offsets.clear();
   HistoryValues values;
-  std::vector<S> records;
-  download_values<Space>(bonds_.records(), neighbors_.pairs_kept() * bond_value::width)
-      .swap(records);
-  values.pair.assign(records.begin(), records.end());
-  bonds = collect_history(slots, bond_value::width, values);
+  values.pair = history_in_real(bonds_.record_array());
+  bonds = collect_history(pair_slots_only(contact_slots()), bond_value::width, values);
 }
 
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::set_bonds(ContactHistory share, std::uint64_t made) {
-  ContactSlots slots = contact_slots();
-  slots.wall_count = 0;
-  slots.mesh_offsets.clear();
-  slots.mesh_triangles.clear();
   const std::uint32_t width = bonds_.empty() ? 0 : bond_value::width;
   if (share.empty()) share.width = width;
-  const HistoryValues values = scatter_share(std::move(share), slots, width);
+  const HistoryValues values =
+      scatter_share(std::move(share), pair_slots_only(contact_slots()), width);
   bonds_made_ = made;
   if (!bonds_.empty()) upload_history(values.pair, bonds_.record_array());
 }
