@@ -43,7 +43,8 @@ if ((sanitize)); then
   # cannot read (it stops with "Tracer caught signal 11"); the solver uses neither.
   export HWLOC_COMPONENTS=-gl,-opencl
 fi
-scripts/setup.sh
+# Debian's Slurm for the test that runs the batch scripts under it (slurm_real)
+scripts/setup.sh slurm-wlm
 ((subset)) && targets=(gpudem_sanitize_subset)
 cmake --build "${BUILD_DIR:-build}" --target "${targets[@]}" -j "$(nproc)"
 source scripts/mpi-env.sh
