@@ -3,9 +3,11 @@
 # the benchmarks' settled periodic bed of 10^EXPONENT spheres (bench/SettledBed.hpp), and
 # WORK/scene.toml, the scene that runs it (Hooke, linear history, one floor, periodic in x and
 # y; time-series rows first and last only), with BUILD's binaries; sets lx and ly, the box [m].
+# EXPONENT may also be "TX TY": the 10^4 seed bed tiled TX x TY times.
 write_bench_scene() {
   local build=$1 work=$2 exponent=$3
-  read -r lx ly < <("$build"/bench/gpudem-bench-write-bed "$exponent" "$work/bed.csv" | tail -1)
+  # shellcheck disable=SC2086  # "TX TY" is two arguments
+  read -r lx ly < <("$build"/bench/gpudem-bench-write-bed $exponent "$work/bed.csv" | tail -1)
 cat > "$work/scene.toml" <<TOML
 [simulation]
 end_time = 1.0
