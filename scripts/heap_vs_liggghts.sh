@@ -32,8 +32,8 @@ OMP_NUM_THREADS=$NP "$BUILD"/gpudem-mpi --quiet inputs/heap/heap_lift.toml \
   --output-dir "$OUT/gpudem" --set "insert.0.bed=\"$OUT/fill/bed.h5\"" \
   --set simulation.dt=$DT "${overrides[@]}"
 echo "lift: gpudem-mpi, 1 rank x $NP OpenMP threads: $((SECONDS - start)) s"
-/usr/bin/python3 scripts/bed_to_liggghts.py "$OUT/fill/bed.h5" "$OUT/liggghts/bed.data" \
-  --density 2500 --box -0.12 0.12 -0.12 0.12 -0.01 0.45
+/usr/bin/python3 scripts/peers/particles.py data "$OUT/fill/bed.h5" "$OUT/liggghts/bed.data" \
+  --style liggghts --density 2500 --box -0.12 0.12 -0.12 0.12 -0.01 0.45
 start=$SECONDS
 (cd "$OUT/liggghts" && OMP_NUM_THREADS=1 mpirun -np "$NP" liggghts \
   -in "$OLDPWD/inputs/bench/liggghts_heap.in" -var bed bed.data \

@@ -42,8 +42,8 @@ for N in $COUNTS; do
   echo "$N grains: gpudem-mpi, 1 rank x $NP OpenMP threads: $((SECONDS - start)) s"
   ours+=("$dir/fill/bed.h5=$dir/gpudem")
   [[ $PEER = 0 ]] && continue
-  /usr/bin/python3 scripts/bed_to_liggghts.py "$dir/fill/bed.h5" "$dir/liggghts/bed.data" \
-    --density 2500 --box -0.003 0.043 -0.003 0.043 -0.012 0.32
+  /usr/bin/python3 scripts/peers/particles.py data "$dir/fill/bed.h5" "$dir/liggghts/bed.data" \
+    --style liggghts --density 2500 --box -0.003 0.043 -0.003 0.043 -0.012 0.32
   start=$SECONDS
   (cd "$dir/liggghts" && OMP_NUM_THREADS=1 mpirun -np "$NP" liggghts \
     -in "$OLDPWD/inputs/bench/liggghts_janssen.in" -var bed bed.data \

@@ -28,8 +28,8 @@ if [[ ! -f $BED ]]; then
   OMP_NUM_THREADS=$NP "$BUILD"/gpudem-mpi --quiet inputs/silo/silo_fill.toml \
     --output-dir "$(dirname "$BED")"
 fi
-/usr/bin/python3 scripts/bed_to_liggghts.py "$BED" "$OUT/bed.data" --density 2500 \
-  --box -0.001 0.121 -0.001 0.121 -0.02 0.25
+/usr/bin/python3 scripts/peers/particles.py data "$BED" "$OUT/bed.data" \
+  --style liggghts --density 2500 --box -0.001 0.121 -0.001 0.121 -0.02 0.25
 ours=() theirs=()
 for D in $DIAMETERS; do
   dir="$OUT/orifice-$D"

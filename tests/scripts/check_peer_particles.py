@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""Checks scripts/peers/particles.py, the particle files and observables of
+scripts/peers/compare.sh, on a lattice of known answers:
+- `csv` writes a snapshot's particles in id order (the snapshot lists them shuffled);
+- `data` writes LIGGGHTS (two atom types) and LAMMPS (one) data files with each sphere's
+  diameter, density, position and velocity, from the CSV or, with the spins, from the
+  snapshot;
+- `observe` gives, from the snapshot and from the same particles as a text dump, the count,
+  the bed height (highest top), the packing fraction of the lower half (the spheres whose
+  centres lie below half the height, over that half's volume) and the kinetic energy
+  sum(m v^2 / 2 + I w^2 / 2), all computed here by hand.
+
+Usage: check_peer_particles.py SOURCE_DIR WORK_DIR
+"""
+import math
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+DENSITY = 2000.0
+R = 0.01
+AREA = 0.1 * 0.1
+
+
+def lattice():
+    """5 x 5 x 4 spheres of radius R touching on a cubic lattice, in a 0.1 m x 0.1 m bin."""
+    g = np.arange(5) * 2 * R + R
+    x, y, z = np.meshgrid(g, g, np.arange(4) * 2 * R + R, indexing="ij")
+    xyz = np.column_stack([x.ravel(), y.ravel(), z.ravel()])
+    n = len(xyz)
+    v = np.column_stack([np.arange(n) * 1e-3, np.zeros(n), -np.ones(n) * 2e-3])
+    w = np.column_stack([np.zeros(n), np.ones(n) * 0.5, np.zeros(n)])
+    return xyz, v, w
+
+
+def main():
+    source, work = sys.argv[1], sys.argv[2]
+    os.makedirs(work, exist_ok=True)
+    script = [sys.executable, os.path.join(source, "scripts", "peers", "particles.py")]
+    xyz, v, w = lattice()
+    n = len(xyz)
+    shuffle = np.random.default_rng(3).permutation(n)
+    snapshot = os.path.join(work, "snapshot.h5")
+    with h5py.File(snapshot, "w") as f:
+        f["position"] = xyz[shuffle]
+        f["radius"] = np.full(n, R)
+        f["velocity"] = v[shuffle]
+        f["angular_velocity"] = w[shuffle]
+        f["id"] = np.arange(n, dtype=np.uint64)[shuffle]
+    dump = os.path.join(work, "particles.dump")
+    with open(dump, "w") as f:
+        f.write(f"ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n{n}\nITEM: ATOMS id x y z radius\n")
+        f.write("ITEM: TIMESTEP\n10\nITEM: ATOMS id x y z radius vx vy vz omegax omegay omegaz\n")
+        for i in shuffle:
+            f.write(" ".join(str(c) for c in [i + 1, *xyz[i], R, *v[i], *w[i]]) + "\n")
+
+    failures = []
+    mass = DENSITY * 4 / 3 * math.pi * R ** 3
+    height = 8 * R
+    lower = np.sum(xyz[:, 2] < height / 2)  # the two lowest layers
+    expected = [n, height, lower * 4 / 3 * math.pi * R ** 3 / (AREA * height / 2),
+                0.5 * mass * np.sum(v * v) + 0.5 * 0.4 * mass * R ** 2 * np.sum(w * w)]
+    for path in (snapshot, dump):
+        out = subprocess.run(script + ["observe", path, "--density", str(DENSITY), "--area",
+                                       str(AREA)], capture_output=True, text=True, check=True)
+        got = [float(x) for x in out.stdout.strip().split(",")]
+        for name, g, e in zip(("count", "height", "packing", "kinetic energy"), got, expected):
+            if abs(g - e) > 1e-5 * abs(e):
+                failures.append(f"{os.path.basename(path)}: {name} {g}, expected {e}")
+
+    csv = os.path.join(work, "particles.csv")
+    subprocess.run(script + ["csv", snapshot, csv], check=True)
+    rows = np.loadtxt(csv, delimiter=",", skiprows=1)
+    if not np.allclose(rows, np.column_stack([xyz, np.full(n, R), v]), rtol=0, atol=1e-15):
+        failures.append("the CSV is not the particles in id order")
+    for style, types in (("liggghts", 2), ("lammps", 1)):
+        data = os.path.join(work, f"{style}.data")
+        subprocess.run(script + ["data", csv, data, "--style", style, "--density",
+                                 str(DENSITY), "--box", "0", "0.1", "0", "0.1", "0", "0.2"],
+                       check=True)
+        text = open(data).read()
+        atoms = text.split("Atoms\n\n")[1].split("\n\nVelocities")[0].splitlines()
+        first = [float(x) for x in atoms[0].split()]
+        if f"{n} atoms\n{types} atom types" not in text or len(atoms) != n:
+            failures.append(f"{style}: header or atom count wrong")
+        if first != [1, 1, 2 * R, DENSITY, *xyz[0]]:
+            failures.append(f"{style}: first atom {first}")
+        velocity = text.split("Velocities\n\n")[1].splitlines()[n - 1].split()
+        if [float(x) for x in velocity[1:4]] != list(v[n - 1]):
+            failures.append(f"{style}: last velocity {velocity}")
+    data = os.path.join(work, "from_snapshot.data")
+    subprocess.run(script + ["data", snapshot, data, "--style", "liggghts", "--density",
+                             str(DENSITY), "--box", "0", "0.1", "0", "0.1", "0", "0.2"], check=True)
+    velocity = open(data).read().split("Velocities\n\n")[1].splitlines()[n - 1].split()
+    if [float(x) for x in velocity[1:]] != [*v[n - 1], *w[n - 1]]:
+        failures.append(f"from the snapshot: last velocity and spin {velocity}")
+    for f in failures:
+        print("FAILED:", f)
+    if not failures:
+        print("peer particles: observables, CSV and data files as computed by hand")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
