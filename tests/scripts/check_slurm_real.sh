@@ -72,53 +72,18 @@ done
 [[ $(sinfo -h -o %T 2> /dev/null) == idle ]] ||
   skip "the node did not come up: $(tail -n 3 "$work/log/slurmctld.log" "$work/log/slurmd.log")"
 
-# 200 grains settling on a floor, a checkpoint every second of simulated time; end_time is set
-# below so that the run steps for about 150 s on 2 ranks here.
-cat > "$work/scene.toml" <<'SCENE'
-[simulation]
-end_time = 1.0
-dt = 5e-5
-
-[domain]
-min = [0.0, 0.0, 0.0]
-max = [0.05, 0.05, 0.1]
-periodic = [true, true, false]
-
-[[material]]
-name = "sand"
-density = 2500.0
-young = 1e7
-restitution = 0.2
-friction = 0.8
-
-[contact]
-stiffness = 2000
-
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-material = "sand"
-
-[[insert]]
-region = { min = [0.0, 0.0, 0.0], max = [0.05, 0.05, 0.05] }
-count = 200
-radius = { mean = 0.0025, spread = 0.0005 }
-material = "sand"
-
-[output]
-every = 1000.0
-timeseries_every = 0.5
-
-[checkpoint]
-every = 1.0
-SCENE
+# The 200 grains of the stand-in test (slurm_scene.toml), a checkpoint every second of simulated
+# time; end_time is set below so that the run steps for about 150 s on 2 ranks here.
+cp "$source_dir/tests/scripts/slurm_scene.toml" "$work/scene.toml"
+settings=(--set checkpoint.every=1.0 --set output.timeseries_every=0.5 --set output.every=1000.0)
 
 for v in $(env | grep -Eo '^(OMPI|PMIX|OPAL)_[A-Za-z0-9_]*'); do unset "$v"; done
 source "$source_dir/scripts/mpi-env.sh"
 export OMP_NUM_THREADS=1
 cd "$work"
 # The stepping speed here ("done: N steps in T s" of a 1 s run) sets the run's length.
-done_line=$("$mpirun" -np 2 "$binary" scene.toml --quiet --output-dir probe | grep '^done:')
+done_line=$("$mpirun" -np 2 "$binary" scene.toml "${settings[@]}" --quiet --output-dir probe |
+  grep '^done:')
 end_time=$(echo "$done_line" |
   awk '{ t = int(150 * $2 / $5 * 5e-5); print t < 10 ? 10 : t }')
 echo "probe: $done_line; the run goes to t = $end_time s, about 150 s of stepping"
@@ -130,7 +95,7 @@ fail() {
 }
 ids=$(OUT=out/chain GPUDEM=$binary BACKEND=host \
   SBATCH_ARGS="--job-name=chain --gres=none --ntasks-per-node=2 --cpus-per-task=1 --time=1" \
-  bash "$source_dir/scripts/slurm/submit_chain.sh" 4 scene.toml \
+  bash "$source_dir/scripts/slurm/submit_chain.sh" 4 scene.toml "${settings[@]}" \
   --set simulation.end_time="$end_time")
 read -r -a jobs <<< "$(echo $ids)"
 ((${#jobs[@]} == 4)) || fail "submit_chain.sh printed '$ids'"
@@ -139,7 +104,7 @@ for ((wait = 0; wait < 900; wait += 5)); do
   sleep 5
 done
 [[ -z $(squeue -h 2> /dev/null) ]] || fail "jobs still queued after 15 minutes: $(squeue)"
-"$mpirun" -np 2 "$binary" scene.toml --quiet --output-dir out/straight \
+"$mpirun" -np 2 "$binary" scene.toml "${settings[@]}" --quiet --output-dir out/straight \
   --set simulation.end_time="$end_time" > straight.log 2>&1 || fail "the straight run failed"
 
 outputs=("${jobs[@]/#/chain-}")

@@ -29,44 +29,7 @@ echo "\$((100 + n));cluster"
 STUB
 chmod +x "$work/bin/srun" "$work/bin/sbatch"
 
-# 200 grains falling onto a floor; a checkpoint every 0.05 s
-cat > "$work/scene.toml" <<'SCENE'
-[simulation]
-end_time = 0.1
-dt = 5e-5
-
-[domain]
-min = [0.0, 0.0, 0.0]
-max = [0.05, 0.05, 0.1]
-periodic = [true, true, false]
-
-[[material]]
-name = "sand"
-density = 2500.0
-young = 1e7
-restitution = 0.2
-friction = 0.8
-
-[contact]
-stiffness = 2000
-
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-material = "sand"
-
-[[insert]]
-region = { min = [0.0, 0.0, 0.0], max = [0.05, 0.05, 0.05] }
-count = 200
-radius = { mean = 0.0025, spread = 0.0005 }
-material = "sand"
-
-[output]
-timeseries_every = 0.005
-
-[checkpoint]
-every = 0.05
-SCENE
+cp "$source_dir/tests/scripts/slurm_scene.toml" "$work/scene.toml"
 
 for v in $(env | grep -Eo '^(OMPI|PMIX|OPAL)_[A-Za-z0-9_]*'); do unset "$v"; done
 job() {  # one batch job of the run: gpudem.sbatch as sbatch would start it
