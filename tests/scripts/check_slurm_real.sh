@@ -19,6 +19,8 @@ for tool in slurmctld slurmd sbatch squeue sinfo scancel h5diff; do
   command -v "$tool" > /dev/null || skip "$tool not found (Debian's slurm-wlm and hdf5-tools)"
 done
 [[ $(id -u) -eq 0 ]] || skip "slurmd starts jobs as their user only when run as root"
+cores=$(getconf _NPROCESSORS_ONLN)  # not nproc, which follows OMP_NUM_THREADS
+((cores >= 2)) || skip "the jobs take 2 cores; this machine has $cores"
 
 rm -rf "$work"
 mkdir -p "$work/state" "$work/spool" "$work/log"
@@ -52,7 +54,7 @@ InactiveLimit=0
 JobCompType=jobcomp/none
 JobAcctGatherType=jobacct_gather/none
 AccountingStorageType=accounting_storage/none
-NodeName=$node CPUs=$(nproc) State=UNKNOWN
+NodeName=$node CPUs=$cores State=UNKNOWN
 PartitionName=gpu Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 CONF
 
@@ -81,9 +83,10 @@ for v in $(env | grep -Eo '^(OMPI|PMIX|OPAL)_[A-Za-z0-9_]*'); do unset "$v"; don
 source "$source_dir/scripts/mpi-env.sh"
 export OMP_NUM_THREADS=1
 cd "$work"
-# The stepping speed here ("done: N steps in T s" of a 1 s run) sets the run's length.
-done_line=$("$mpirun" -np 2 "$binary" scene.toml "${settings[@]}" --quiet --output-dir probe |
-  grep '^done:')
+# The stepping speed here ("done: N steps in T s" of a 1 s run, past the pour's first
+# collisions) sets the run's length.
+done_line=$("$mpirun" -np 2 "$binary" scene.toml "${settings[@]}" --quiet --output-dir probe \
+  --set simulation.end_time=1.0 | grep '^done:')
 end_time=$(echo "$done_line" |
   awk '{ t = int(150 * $2 / $5 * 5e-5); print t < 10 ? 10 : t }')
 echo "probe: $done_line; the run goes to t = $end_time s, about 150 s of stepping"
@@ -99,6 +102,14 @@ ids=$(OUT=out/chain GPUDEM=$binary BACKEND=host \
   --set simulation.end_time="$end_time")
 read -r -a jobs <<< "$(echo $ids)"
 ((${#jobs[@]} == 4)) || fail "submit_chain.sh printed '$ids'"
+for ((wait = 0; wait < 60; ++wait)); do
+  [[ $(squeue -h -j "${jobs[0]}" -o %T 2> /dev/null) == RUNNING ]] && break
+  sleep 1
+done
+if [[ $(squeue -h -j "${jobs[0]}" -o %T 2> /dev/null) != RUNNING ]]; then
+  echo "FAILED: job ${jobs[0]} did not start within 60 s: $(squeue -h -j "${jobs[0]}" -o '%T %r')"
+  exit 1
+fi
 for ((wait = 0; wait < 900; wait += 5)); do
   [[ -z $(squeue -h -j "$(IFS=,; echo "${jobs[*]}")" 2> /dev/null) ]] && break
   sleep 5
