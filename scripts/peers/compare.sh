@@ -9,6 +9,7 @@
 # particle-steps/s per core, the peak memory of all ranks, and the observables at the end of
 # each phase (bed height, packing fraction of the lower half of the bed, kinetic energy) with
 # their differences from ours. Run it on an otherwise idle machine: codes run one at a time.
+# Installs Debian's time (/usr/bin/time) for the memory figures.
 # Usage: scripts/peers/compare.sh [SETTLE (default 15000)] [SETTLED (default 2000)]
 # Environment: RANKS (default 2), BUILD_DIR (default build), OUT (default out/peers/compare).
 set -euo pipefail
@@ -21,7 +22,7 @@ if ((settle % 500 || settle < 500 || settled < 1)); then
   echo "usage: $0 [SETTLE (a multiple of 500)] [SETTLED (> 0)]" >&2
   exit 2
 fi
-scripts/setup.sh liggghts lammps > /dev/null
+scripts/setup.sh liggghts lammps time > /dev/null
 gpudem=$(cd "${BUILD_DIR:-build}" && pwd)/gpudem-mpi
 source scripts/mpi-env.sh
 export OMP_NUM_THREADS=1
@@ -52,7 +53,9 @@ ranks_run() {
   local dir=$1
   shift
   rm -f "$dir"/peak.*
-  (cd "$dir" && mpirun --bind-to core -np "$ranks" bash -c \
+  local binding=core
+  (($ranks > $(getconf _NPROCESSORS_ONLN))) && binding=none
+  (cd "$dir" && mpirun --bind-to "$binding" -np "$ranks" bash -c \
     'exec /usr/bin/time -o "peak.$OMPI_COMM_WORLD_RANK" -f %M "$@"' _ "$@")
 }
 peak_mb() {
