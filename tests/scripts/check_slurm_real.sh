@@ -22,6 +22,9 @@ done
 cores=$(getconf _NPROCESSORS_ONLN)  # not nproc, which follows OMP_NUM_THREADS
 ((cores >= 2)) || skip "the jobs take 2 cores; this machine has $cores"
 
+for daemon in slurmd slurmctld; do  # left running by an earlier run that was killed
+  [[ -f $work/$daemon.pid ]] && kill "$(cat "$work/$daemon.pid")" 2> /dev/null || true
+done
 rm -rf "$work"
 mkdir -p "$work/state" "$work/spool" "$work/log"
 work=$(cd "$work" && pwd)
