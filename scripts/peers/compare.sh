@@ -61,6 +61,9 @@ ranks_run() {
 peak_mb() {
   cat "$1"/peak.* | awk '{ s += $1 } END { printf "%.0f", s / 1024 }'
 }
+stepping_seconds() {  # the stepping time of gpudem-mpi's "done" line in log $1
+  sed -n 's/^done: [0-9]* steps in \([0-9.]*\) s.*/\1/p' "$1"
+}
 observe() {
   /usr/bin/python3 "$particles" observe "$1" --density "$density" --area "$area"
 }
@@ -76,7 +79,7 @@ failed() {
 ranks_run "$out/gpudem" "$gpudem" settle.toml --set simulation.end_time="$t_end" \
   --set preparation.check_after="$t_settle" --set preparation.bed_file="\"$out/gpudem/bed.h5\"" \
   > "$out/gpudem/settle.log" 2>&1 || failed "gpudem-mpi's settling" "$out/gpudem/settle.log"
-seconds[gpudem.settle]=$(sed -n 's/^done: [0-9]* steps in \([0-9.]*\) s.*/\1/p' "$out/gpudem/settle.log")
+seconds[gpudem.settle]=$(stepping_seconds "$out/gpudem/settle.log")
 memory[gpudem.settle]=$(peak_mb "$out/gpudem")
 state[gpudem.settle]=$(observe "$out/gpudem/bed.h5")
 t_settled=$(awk -v n="$settled" 'BEGIN { printf "%.10g", n * 1e-4 }')
@@ -92,7 +95,7 @@ timeseries_every = $t_settled
 TOML
 ranks_run "$out/gpudem" "$gpudem" settled.toml --set simulation.end_time="$t_settled" \
   > "$out/gpudem/settled.log" 2>&1 || failed "gpudem-mpi's settled run" "$out/gpudem/settled.log"
-seconds[gpudem.settled]=$(sed -n 's/^done: [0-9]* steps in \([0-9.]*\) s.*/\1/p' "$out/gpudem/settled.log")
+seconds[gpudem.settled]=$(stepping_seconds "$out/gpudem/settled.log")
 memory[gpudem.settled]=$(peak_mb "$out/gpudem")
 state[gpudem.settled]=$(observe "$(ls "$out"/gpudem/settled/particles_*.h5 | tail -n 1)")
 

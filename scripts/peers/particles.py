@@ -47,26 +47,24 @@ def read_dump(path):
     return rows[:, 1:5], rows[:, 5:8], rows[:, 8:11]
 
 
-def read_any(path):
-    return read_h5(path) if path.endswith(".h5") else read_dump(path)
-
-
 def write_csv(args):
     xr, v, _ = read_h5(args.snapshot)
     np.savetxt(args.out, np.column_stack([xr, v]), delimiter=",", fmt="%.17g",
                header="x,y,z,r,vx,vy,vz", comments="")
 
 
-def read_source(path):
-    """(x, y, z, r), velocity, spin of a CSV source (no spins) or an HDF5 file."""
+def read_particles(path):
+    """(x, y, z, r), velocity, spin of an HDF5 file, a CSV source (no spins) or a text dump."""
     if path.endswith(".h5"):
         return read_h5(path)
-    rows = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    return rows[:, :4], rows[:, 4:7], np.zeros((len(rows), 3))
+    if path.endswith(".csv"):
+        rows = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+        return rows[:, :4], rows[:, 4:7], np.zeros((len(rows), 3))
+    return read_dump(path)
 
 
 def write_data(args):
-    xr, v, w = read_source(args.source)
+    xr, v, w = read_particles(args.source)
     types = 2 if args.style == "liggghts" else 1
     box = args.box
     with open(args.out, "w") as out:
@@ -83,7 +81,7 @@ def write_data(args):
 
 
 def observe(args):
-    xr, v, w = read_any(args.file)
+    xr, v, w = read_particles(args.file)
     r = xr[:, 3]
     mass = args.density * 4 / 3 * np.pi * r ** 3
     inertia = 0.4 * mass * r ** 2
