@@ -68,7 +68,10 @@ struct Material {
   double viscoelastic_time = 0;  ///< A of the viscoelastic damping law [s], >= 0
   double cohesion_energy_density = 0;  ///< k_c of simplified JKR [J/m^3], >= 0
   double surface_energy = 0;  ///< γ of JKR, work of adhesion per contact area [J/m^2], >= 0
-  bool fixed = false;         ///< its particles are held still (v = 0, ω = 0), feeling every load
+  bool fixed = false;         ///< its particles move at `velocity` (ω = 0), feeling every load
+  /// With `fixed`: the constant velocity its particles move at [m/s] (zero: held still), e.g.
+  /// the moving grip of a tension test
+  Vec3 velocity{0, 0, 0};
   /// c [1/s]: a drag −c m v, −c I ω on its particles that brings quasi-static loading to rest
   /// (a numerical device, not a physical force), >= 0
   double drag = 0;

@@ -128,7 +128,7 @@ double dynamic_friction(const TableReader& table, const std::string& key, double
 Material read_material(const TableReader& table) {
   table.allow_only({"name", "density", "young", "poisson", "restitution", "friction",
                     "friction_dynamic", "rolling_friction", "rolling_damping", "viscoelastic_time",
-                    "cohesion_energy_density", "surface_energy", "fixed", "drag"});
+                    "cohesion_energy_density", "surface_energy", "fixed", "velocity", "drag"});
   Material m;
   m.name = table.string("name");
   m.density = table.number("density", positive("kg/m^3"));
@@ -144,6 +144,9 @@ Material read_material(const TableReader& table) {
       table.number("cohesion_energy_density", non_negative("J/m^3"), m.cohesion_energy_density);
   m.surface_energy = table.number("surface_energy", non_negative("J/m^2"), m.surface_energy);
   m.fixed = table.boolean("fixed", m.fixed);
+  m.velocity = table.vec3("velocity", "m/s", m.velocity);
+  if (!m.fixed && table.has("velocity"))
+    table.fail("velocity", "is given only with fixed = true (the velocity of held particles)");
   m.drag = table.number("drag", non_negative("1/s"), m.drag);
   return m;
 }

@@ -13,17 +13,18 @@
 
 namespace gpudem {
 
-/// How the kick treats the particles of one material (Material::fixed, Material::drag).
+/// How the kick treats the particles of one material (Material::fixed, ::velocity, ::drag).
 struct MaterialMotion {
-  std::uint32_t fixed = 0;  ///< 1: held still
+  std::uint32_t fixed = 0;  ///< 1: moved at `velocity`, whatever the loads
   Real drag = 0;            ///< c [1/s]
+  Vec3 velocity{};          ///< [m/s], of a fixed material
 };
 
 /// v += h·F/m and, when the contact law exerts torques (kRotate), ω += h·T/I, in Real from
 /// a state held in scalar P and forces and torques held in scalar S. With a material table
 /// (motion, per material; null: every material moves freely), a particle of a fixed material
-/// keeps v = 0 and ω = 0, and one of drag c is slowed by −c m v and −c I ω, taken implicitly:
-/// v ← (v + h F/m)/(1 + c h), stable for any c h.
+/// takes its material's velocity and ω = 0, and one of drag c is slowed by −c m v and
+/// −c I ω, taken implicitly: v ← (v + h F/m)/(1 + c h), stable for any c h.
 template <bool kRotate, class S, class P>
 struct Kick {
   Vec4T<P>* velocity_inv_mass;
@@ -38,7 +39,7 @@ struct Kick {
     Real4 v = vec4_cast<Real>(velocity_inv_mass[i]);
     const MaterialMotion m = motion ? motion[material[i]] : MaterialMotion{};
     if (m.fixed) {
-      velocity_inv_mass[i] = vec4_cast<P>(Real4{0, 0, 0, v.w});
+      velocity_inv_mass[i] = vec4_cast<P>(Real4{m.velocity.x, m.velocity.y, m.velocity.z, v.w});
       angular_velocity[i] = Vec3T<P>{};
       return;
     }

@@ -343,7 +343,8 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   for (const Material& m : scene.materials)
     if (m.fixed || m.drag > 0) s.material_motion.resize(scene.materials.size());
   for (std::size_t k = 0; k < s.material_motion.size(); ++k)
-    s.material_motion[k] = {scene.materials[k].fixed ? 1u : 0u, scene.materials[k].drag};
+    s.material_motion[k] = {scene.materials[k].fixed ? 1u : 0u, scene.materials[k].drag,
+                            scene.materials[k].velocity};
   require_meshes_meet_the_domain(scene, s.meshes, std::isfinite(r_min) ? 2 * r_min : 0.0);
   const TimeStepLimits limits = time_step_limits(scene, particles, s.meshes);
   require_stable_dt(scene, limits);

@@ -45,8 +45,8 @@ struct EngineSetup {
   std::vector<std::vector<Real4>> clods;  ///< per [[bond]] table, its clod spheres (BondClods)
   /// Per [[bond]] table, the pairs its CSV file lists (none: it bonds by materials and gap).
   std::vector<std::vector<ListedBond>> bond_pairs;
-  /// Per material, whether its particles are held still and their drag (Material::fixed,
-  /// Material::drag); empty: every material moves freely.
+  /// Per material, whether its particles move at a prescribed velocity, that velocity, and
+  /// their drag (Material::fixed, ::velocity, ::drag); empty: every material moves freely.
   std::vector<MaterialMotion> material_motion;
   std::uint64_t start_step = 0;  ///< base step the run starts at (a restart's): the clock
   /// This rank's part of the decomposed domain; null: a run on one rank. Must outlive the

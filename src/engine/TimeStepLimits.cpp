@@ -178,6 +178,14 @@ double fastest_piston(const Scene& scene) {
   return fastest;
 }
 
+/// The fastest prescribed velocity of a fixed material (Material::velocity), 0 without one.
+double fastest_grip(const Scene& scene) {
+  double fastest = 0;
+  for (const Material& m : scene.materials)
+    if (m.fixed) fastest = std::max(fastest, norm(m.velocity));
+  return fastest;
+}
+
 /// The contact of particles i and j (j = i allowed: two such particles) at impact speed v.
 ImpactPair particle_pair(const Scene& scene, const ParticleStore& particles, std::size_t i,
                          std::size_t j, double v) {
@@ -294,7 +302,7 @@ double impact_speed(const Scene& scene, const ParticleStore& particles) {
 double max_speed(const Scene& scene, const ParticleStore& particles,
                  const std::vector<MeshWallSetup>& meshes) {
   return fall_speed(scene) + fastest_particle(particles) + fastest_tool(scene, meshes) +
-         fastest_piston(scene);
+         fastest_piston(scene) + fastest_grip(scene);
 }
 
 double launch_speed(const Scene& scene, const ParticleStore& particles,

@@ -54,7 +54,8 @@ double impact_speed(const Scene& scene, const ParticleStore& particles);
 /// v_max [m/s]: √(2 |g| H) plus the largest particle speed (as impact_speed "auto") plus the
 /// fastest point of any mesh, |v| + |ω| ρ over its keyframes, ρ its farthest vertex from its
 /// rotation centre, plus the fastest piston, √(2 |P + M g·n| L / M) with L the domain's extent
-/// along its normal; 0 when all of these are 0.
+/// along its normal, plus the fastest velocity prescribed to a fixed material; 0 when all of
+/// these are 0.
 double max_speed(const Scene& scene, const ParticleStore& particles,
                  const std::vector<MeshWallSetup>& meshes);
 

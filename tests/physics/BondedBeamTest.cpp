@@ -213,6 +213,41 @@ TEST_P(BondedBeam, AxialPullStretchesAndRingsAtTheBarsWaveSpeed) {
   EXPECT_NEAR(speed, expected, 0.01 * expected);
 }
 
+/// The beam's last sphere made a grip (a fixed material moving at v along x): the grip moves
+/// exactly v t, and the bar's kNodes bonds in series, each of k̄_n A = EA/d, pull the clamp
+/// and the grip with EA/(kNodes d) · v t (drag keeps the pull quasi-static).
+TEST_P(BondedBeam, AGripPullsTheBarAtItsVelocity) {
+  const double dt = 2e-6, v = 1e-3;
+  const long steps = 20000;
+  Scene scene = beam_scene({0, 0, 0}, dt, 200);
+  Material grip = scene.materials[1];
+  grip.name = "grip";
+  grip.velocity = {v, 0, 0};
+  scene.materials.push_back(grip);
+  scene.bonds.push_back(bond_between(2, 0));
+  ParticleStore p = beam_particles();
+  p.material.back() = 2;
+  auto engine = make_engine(make_engine_setup(scene, p));
+  engine->set_particles(p);
+  engine->create_bonds();
+  EXPECT_EQ(engine->diagnostics().bond_count, std::uint64_t(kNodes));
+  for (long n = 0; n < steps; ++n) engine->step();
+  engine->get_particles(p);
+  const double pulled = v * dt * steps, tension = kYoung * area() / spacing() / kNodes * pulled;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.id[i] == ParticleId(kNodes)) {
+      EXPECT_NEAR(p.position_radius[i].x, kNodes * spacing() + pulled, 1e-12);
+      EXPECT_EQ(p.velocity_inv_mass[i].x, v);
+      EXPECT_EQ(norm(p.angular_velocity[i]), 0.0);
+      EXPECT_NEAR(p.force[i].x, -tension, 0.01 * tension);
+    }
+    if (p.id[i] == 0) {
+      EXPECT_NEAR(p.force[i].x, tension, 0.01 * tension);
+    }
+  }
+  EXPECT_EQ(engine->diagnostics().broken_bond_count, 0u);
+}
+
 /// Two free spheres bonded along x, flying apart at relative speed v, the bond breaking at
 /// stretch `breaking_stretch` (tensile strength k̄_n · stretch).
 TEST_P(BondedBeam, BondBreaksAtItsTensileStrengthAndTakesItsEnergy) {

@@ -1,6 +1,6 @@
-// [[bond]] tables and fixed materials in a scene: every key read, defaults, refusals that name
-// file, line and key, a gap the skin cannot hold refused at set-up, and the bond vibration in
-// the time-step limits.
+// [[bond]] tables and fixed materials (held, or moved at a velocity) in a scene: every key
+// read, defaults, refusals that name file, line and key, a gap the skin cannot hold refused at
+// set-up, and the bond vibration and a grip's speed in the time-step limits.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -241,6 +241,30 @@ TEST_F(BondScene, TheStiffestBondBoundsTheStep) {
   EXPECT_EQ(limits.critical(), limits.bond);  // far stiffer than the soil's contacts
   const Scene unbonded = load("");
   EXPECT_TRUE(std::isinf(time_step_limits(unbonded, p, {}).bond));
+}
+
+TEST_F(BondScene, AFixedMaterialMovesAtItsVelocityWhichBoundsTheStep) {
+  std::string text = kScene;
+  text.replace(text.find("fixed = true\n"), 13, "fixed = true\nvelocity = [0, 0, 0.5]\n");
+  std::ofstream(path()) << text;
+  const Scene moving = load_scene(path(), {});
+  EXPECT_EQ(moving.materials[1].velocity.z, 0.5);
+  EXPECT_EQ(norm(moving.materials[0].velocity), 0.0);
+  const ParticleStore p = two_spheres(0.005);
+  const double held = max_speed(load(""), p, {});
+  EXPECT_NEAR(max_speed(moving, p, {}), held + 0.5, 1e-12);
+
+  text = kScene;
+  text.replace(text.find("young = 2e6\n"), 12, "young = 2e6\nvelocity = [1, 0, 0]\n");
+  std::ofstream(path()) << text;
+  try {
+    load_scene(path(), {});
+    ADD_FAILURE() << "a velocity without fixed = true was taken";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 10) << e.what();
+    EXPECT_EQ(e.key(), "material[0].velocity") << e.what();
+    EXPECT_NE(std::string(e.what()).find("fixed = true"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
