@@ -57,18 +57,24 @@ void keep_particles(Checkpoint& c, const std::vector<char>& keep) {
   keep_rows(c.list_position_radius, keep);
 }
 
-/// Keeps the pair records of a kept owner whose partner (on any rank) was not removed and the
-/// wall records of kept particles; drops every mesh record (a bed starts other scenes, with
-/// tools of their own).
-void keep_history(ContactHistory& h, const std::unordered_set<ParticleId>& kept,
-                  const std::unordered_set<ParticleId>& removed) {
-  std::vector<char> pairs(h.pair_owner.size()), walls(h.wall_owner.size());
+/// Keeps the pair records of a kept owner whose partner (on any rank) was not removed.
+void keep_pairs(ContactHistory& h, const std::unordered_set<ParticleId>& kept,
+                const std::unordered_set<ParticleId>& removed) {
+  std::vector<char> pairs(h.pair_owner.size());
   for (std::size_t k = 0; k < pairs.size(); ++k)
     pairs[k] = kept.count(h.pair_owner[k]) && !removed.count(h.pair_partner[k]);
-  for (std::size_t k = 0; k < walls.size(); ++k) walls[k] = kept.count(h.wall_owner[k]);
   keep_rows(h.pair_owner, pairs);
   keep_rows(h.pair_partner, pairs);
   keep_rows(h.pair_values, pairs, h.width);
+}
+
+/// Keeps the pair records of the kept pairs (keep_pairs) and the wall records of kept
+/// particles; drops every mesh record (a bed starts other scenes, with tools of their own).
+void keep_history(ContactHistory& h, const std::unordered_set<ParticleId>& kept,
+                  const std::unordered_set<ParticleId>& removed) {
+  keep_pairs(h, kept, removed);
+  std::vector<char> walls(h.wall_owner.size());
+  for (std::size_t k = 0; k < walls.size(); ++k) walls[k] = kept.count(h.wall_owner[k]);
   keep_rows(h.wall_owner, walls);
   keep_rows(h.wall_index, walls);
   keep_rows(h.wall_values, walls, h.width);
@@ -119,7 +125,10 @@ TrimResult trim(const MpiContext& mpi, Checkpoint& c, Vec3 up, double remove_abo
   result.kept = kept.size();
   result.removed = removed.size();
   keep_particles(c, keep);
-  keep_history(c.history, kept, ids_of_all_ranks(mpi, removed));
+  const std::unordered_set<ParticleId> removed_anywhere = ids_of_all_ranks(mpi, removed);
+  keep_history(c.history, kept, removed_anywhere);
+  keep_pairs(c.bonds, kept, removed_anywhere);  // each end's record: two per bond
+  c.bonds_made = mpi.group().sum<std::uint64_t>(c.bonds.pair_owner.size()) / 2;
   return result;
 }
 
@@ -229,8 +238,11 @@ BedReader BedLoader::reader(const Scene& scene, FilePart part) {
   return [this, &scene, part](const std::string& path) {
     Checkpoint bed = read_checkpoint(path, part);
     map_materials_by_name(bed, path, scene);
+    require_bond_tables(bed, path, scene);
     path_ = path;
     history_ = std::move(bed.history);
+    if (bed.bonds.width > 0) bonds_ = std::move(bed.bonds);
+    bonds_made_ = bed.bonds_made;
     return std::move(bed.particles);
   };
 }
@@ -269,6 +281,21 @@ void BedLoader::apply_history(const Scene& scene, const MpiContext& mpi, StepEng
     throw InputError(path_, 0, "", e.what());
   }
   engine.rebuild_neighbors();
+}
+
+bool BedLoader::apply_bonds(const MpiContext& mpi, StepEngine& engine) {
+  if (!bonds_) return false;
+  ContactHistory bonds = std::move(*bonds_);
+  bonds_.reset();
+  try {
+    engine.continue_bonds(std::move(bonds), bonds_made_);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(path_, 0, "", e.what());
+  }
+  if (mpi.is_root())
+    std::printf("bed %s: its %llu bonds hold; the [[bond]] tables make no others\n", path_.c_str(),
+                static_cast<unsigned long long>(bonds_made_));
+  return true;
 }
 
 }  // namespace gpudem

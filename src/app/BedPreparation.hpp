@@ -53,22 +53,29 @@ void report_unsettled(const Scene& scene, const MpiContext& mpi, double time, co
 void save_bed(const Scene& scene, const MpiContext& mpi, Checkpoint state);
 
 /// Reads this rank's part of the bed file of a scene's bed source (for create_start_part) and
-/// keeps the contact history it read to give to the engine.
+/// keeps the contact history and bonds it read to give to the engine.
 class BedLoader {
  public:
   /// Reads the rows of `part` of a bed file (of the particles and of each kind of history
   /// record, as read_checkpoint), its particles' materials renumbered to those of the same
-  /// names in `scene` (map_materials_by_name); its errors are InputErrors naming the file.
+  /// names in `scene` (map_materials_by_name), its bonds checked against the scene's [[bond]]
+  /// tables (require_bond_tables); its errors are InputErrors naming the file.
   BedReader reader(const Scene& scene, FilePart part);
   /// Gives `engine` this rank's part of the bed's contact history when the scene's contact law
   /// keeps as many values per contact (otherwise says on rank 0 that the bed starts without
   /// history) and re-evaluates the forces with it, then frees it. Wall records are kept by wall
   /// index, for the walls the scene has. Nothing happens when no bed was read. Collective.
   void apply_history(const Scene& scene, const MpiContext& mpi, StepEngine& engine);
+  /// Gives `engine` this rank's part of the bed's bonds (StepEngine::continue_bonds) when the
+  /// bed holds bonds, says so on rank 0 and returns true; returns false (the scene's [[bond]]
+  /// tables make the run's bonds) when it holds none or no bed was read. Collective.
+  bool apply_bonds(const MpiContext& mpi, StepEngine& engine);
 
  private:
   std::string path_;
   std::optional<ContactHistory> history_;
+  std::optional<ContactHistory> bonds_;  ///< this rank's part; none when the bed holds none
+  std::uint64_t bonds_made_ = 0;         ///< the bed's intact bonds
 };
 
 }  // namespace gpudem

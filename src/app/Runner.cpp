@@ -267,6 +267,14 @@ void create_bonds(const Scene& scene, StepEngine& engine) {
   }
 }
 
+/// A new run's contact springs and bonds: the bed's springs, and its bonds or else those the
+/// [[bond]] tables make.
+void start_springs_and_bonds(const Scene& scene, const MpiContext& mpi, BedLoader& bed,
+                             StepEngine& engine) {
+  bed.apply_history(scene, mpi, engine);
+  if (!bed.apply_bonds(mpi, engine)) create_bonds(scene, engine);
+}
+
 /// Ends a bed preparation: saves the trimmed bed when it settled, else reports why not.
 int finish_preparation(const Scene& scene, const MpiContext& mpi, const StepEngine& engine,
                        const TimeLoop& loop, double dt) {
@@ -419,8 +427,7 @@ int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
   }
   std::unique_ptr<StepEngine> engine = make_engine(options.backend, mpi, setup);
   start_engine(*engine, share, options.restart_file);
-  if (!checkpoint) bed.apply_history(scene, mpi, *engine);
-  if (!checkpoint) create_bonds(scene, *engine);
+  if (!checkpoint) start_springs_and_bonds(scene, mpi, bed, *engine);
   const std::string tuning = engine->tune_launches();
   prepare_output_directory(scene.output.dir);
   const std::vector<MemoryUse> memory = memory_over_ranks(mpi, *engine);

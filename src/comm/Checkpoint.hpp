@@ -109,6 +109,10 @@ Checkpoint read_checkpoint(const std::string& path, FilePart part = {});
 /// a particle's index has no recorded name.
 void map_materials_by_name(Checkpoint& checkpoint, const std::string& path, const Scene& scene);
 
+/// Throws InputError naming `path` when `checkpoint` holds bonds that the [[bond]] tables of
+/// `scene` cannot continue: bonds without tables, or a bond of a table the scene lacks.
+void require_bond_tables(const Checkpoint& checkpoint, const std::string& path, const Scene& scene);
+
 /// map_materials_by_name, then throws InputError naming `path` when `checkpoint` refers to a
 /// material or a wall that `scene` does not define, holds the motion of another number of
 /// walls than the scene defines, or holds another number of history values

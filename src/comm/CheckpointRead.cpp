@@ -392,17 +392,23 @@ std::string material_list(const Scene& scene) {
   return list;
 }
 
-/// Refuses bonds the scene's [[bond]] tables cannot continue: bonds without tables, tables
-/// without bonds, or a bond of a table the scene does not have.
+/// Refuses bonds the scene's [[bond]] tables cannot continue (require_bond_tables), and
+/// tables without bonds, which make bonds only when a run starts.
 void check_bonds_fit(const Checkpoint& c, const std::string& path, const Scene& scene) {
-  if (c.bonds.width > 0 && scene.bonds.empty())
-    throw InputError(path, 0, "",
-                     "holds parallel bonds but the scene defines no [[bond]] table: a run "
-                     "continues with the bonds it was saved with");
+  require_bond_tables(c, path, scene);
   if (c.bonds.width == 0 && !scene.bonds.empty())
     throw InputError(path, 0, "",
                      "holds no bonds but the scene defines [[bond]] tables, which make bonds only "
                      "when a run starts from its sources: restart without them, or start anew");
+}
+
+}  // namespace
+
+void require_bond_tables(const Checkpoint& c, const std::string& path, const Scene& scene) {
+  if (c.bonds.width > 0 && scene.bonds.empty())
+    throw InputError(path, 0, "",
+                     "holds parallel bonds but the scene defines no [[bond]] table: a run "
+                     "continues with the bonds it was saved with");
   for (std::size_t k = 0; k < c.bonds.pair_owner.size(); ++k) {
     const Real type = c.bonds.pair_values[k * c.bonds.width + bond_value::type];
     if (!(type >= 0 && type < Real(scene.bonds.size()) && type == std::floor(type)))
@@ -413,8 +419,6 @@ void check_bonds_fit(const Checkpoint& c, const std::string& path, const Scene& 
                            std::to_string(scene.bonds.size()));
   }
 }
-
-}  // namespace
 
 Checkpoint read_checkpoint(const std::string& path, FilePart part) {
   const QuietHdf5 quiet;

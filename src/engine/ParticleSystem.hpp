@@ -87,18 +87,12 @@ class ParticleSystem final : public StepEngine {
   void create_bonds() override;
   void get_bonds(ContactHistory& bonds, std::uint64_t& made) const override;
   void set_bonds(ContactHistory bonds, std::uint64_t made) override;
+  void continue_bonds(ContactHistory bonds, std::uint64_t made) override;
   BondLines bond_lines() const override;
 
   std::vector<WallMotion> wall_motion() const override { return pistons_.motion(); }
 
-  void set_wall_motion(const std::vector<WallMotion>& motion) override {
-    if (motion.size() != setup_.walls.size())
-      throw std::invalid_argument("set_wall_motion: " + std::to_string(motion.size()) +
-                                  " walls given, the scene has " +
-                                  std::to_string(setup_.walls.size()));
-    pistons_.set_motion(motion);
-    walls_.upload(pistons_.walls());
-  }
+  void set_wall_motion(const std::vector<WallMotion>& motion) override;
 
   void get_list_positions(std::vector<Real4>& position_radius) const override {
     position_radius = download_in_real(position_at_build_);
@@ -249,6 +243,8 @@ class ParticleSystem final : public StepEngine {
   /// Throws std::invalid_argument, naming its file and line, for a pair a [[bond]] table lists
   /// that create_bonds did not bond by that table. Collective.
   void check_listed_bonds() const;
+  /// The forces, with the bonds' loads as they stand (not advanced), and the pistons' push.
+  void evaluate_with_bond_loads();
 
   /// Whether the particles' spins change: the law or the bonds exert torques.
   bool spins() const { return law_->needs_spin() || !bonds_.empty(); }

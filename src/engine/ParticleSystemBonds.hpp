@@ -43,8 +43,19 @@ void ParticleSystem<Space, P, S>::create_bonds() {
         " m) within which bonds hold: list closer pairs or raise neighbor.skin");
   bonds_made_ = static_cast<std::uint64_t>(
       std::llround(domain_.group().sum<double>(bonds_.half_count(neighbors_.offsets(), owned_))));
+  evaluate_with_bond_loads();
+}
+
+template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::continue_bonds(ContactHistory bonds, std::uint64_t made) {
+  set_bonds(std::move(bonds), made);
+  evaluate_with_bond_loads();
+}
+
+template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::evaluate_with_bond_loads() {
   compute_forces(nullptr, owned_);
-  add_bond_loads(0);  // the bonds' loads as they are made, nothing advanced
+  add_bond_loads(0);  // the bonds' loads as they stand, nothing advanced
   measure_pistons();
 }
 

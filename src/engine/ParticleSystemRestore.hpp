@@ -45,6 +45,16 @@ void ParticleSystem<Space, P, S>::get_contact_history(ContactHistory& history) c
 }
 
 template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::set_wall_motion(const std::vector<WallMotion>& motion) {
+  if (motion.size() != setup_.walls.size())
+    throw std::invalid_argument("set_wall_motion: " + std::to_string(motion.size()) +
+                                " walls given, the scene has " +
+                                std::to_string(setup_.walls.size()));
+  pistons_.set_motion(motion);
+  walls_.upload(pistons_.walls());
+}
+
+template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::set_contact_history(ContactHistory share) {
   const HistoryValues values = scatter_share(std::move(share), contact_slots(), width_);
   if (width_ > 0) {

@@ -206,6 +206,10 @@ class EngineIo : public SnapshotSource {
   /// Gives the bonds listed in `bonds` their records (as set_contact_history gives pair
   /// records, with its refusals) and continues the broken count from `made`.
   virtual void set_bonds(ContactHistory bonds, std::uint64_t made) = 0;
+  /// A new run's bonds from a bed that holds them (in place of create_bonds): gives them their
+  /// records as set_bonds does, `made` the bed's count, and re-evaluates the forces with their
+  /// loads as they stand; call once, after the particles and their contact history are set.
+  virtual void continue_bonds(ContactHistory bonds, std::uint64_t made) = 0;
 
   /// Every plane wall's motion (zero for the walls that stand still).
   virtual std::vector<WallMotion> wall_motion() const = 0;

@@ -4,7 +4,8 @@
 // file; a run that cannot settle in end_time exits 1 with no bed; a scene with
 // `[[insert]] bed = ...` starts from exactly the bed's particles; a missing bed or one whose
 // materials the scene lacks is refused with exit code 2 before anything is written. Resumed
-// (--resume), a preparation whose bed is written has nothing left to do.
+// (--resume), a preparation whose bed is written has nothing left to do. A bed prepared with
+// bonds keeps them, and a scene started from it continues them.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -331,6 +332,80 @@ TEST(BedHistory, AValueAppendedToEveryRecord) {
   EXPECT_TRUE(out.mesh_values.empty());
   EXPECT_EQ(out.pair_partner, h.pair_partner);
   EXPECT_TRUE(out.lengths_agree());
+}
+
+/// Grains cemented where their surfaces lie within 0.5 mm when they are poured (bonds that never
+/// break), with a skin that holds such a gap.
+const std::string kCement = R"([neighbor]
+skin = 0.002
+
+[[bond]]
+materials = ["sand", "sand"]
+gap = 0.0005
+young = 1e6
+)";
+
+/// A bed prepared with bonds keeps those between kept grains (each end's record, as the settle
+/// step's checkpoint holds them); a scene with the same [[bond]] table starts with exactly
+/// those bonds instead of making its own; one without [[bond]] tables is refused.
+TEST_F(BedPreparation, ABedKeepsItsBondsAndTheSceneContinuesThem) {
+  const fs::path prep = dir_ / "prep";
+  const test::RunResult made = test::run_binary(
+      scene(test::sand_bin_scene(0.6, 0.1, test::kSandGrains,
+                                 kCement + "[checkpoint]\nevery = 10.0\n\n[preparation]\n"
+                                           "kinetic_energy = 1e-9\nremove_above = 0.012\n")) +
+      " --quiet --output-dir " + prep.string());
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const Checkpoint b = read_checkpoint((prep / "bed.h5").string());
+  const Checkpoint settled = read_checkpoint((prep / "checkpoint.h5").string());
+  const std::set<ParticleId> kept(b.particles.id.begin(), b.particles.id.end());
+  std::vector<std::pair<ParticleId, ParticleId>> expected, held;
+  std::vector<Real> expected_values;
+  const ContactHistory& all = settled.bonds;
+  for (std::size_t k = 0; k < all.pair_owner.size(); ++k)
+    if (kept.count(all.pair_owner[k]) && kept.count(all.pair_partner[k])) {
+      expected.emplace_back(all.pair_owner[k], all.pair_partner[k]);
+      expected_values.insert(expected_values.end(), all.pair_values.begin() + k * all.width,
+                             all.pair_values.begin() + (k + 1) * all.width);
+    }
+  for (std::size_t k = 0; k < b.bonds.pair_owner.size(); ++k)
+    held.emplace_back(b.bonds.pair_owner[k], b.bonds.pair_partner[k]);
+  ASSERT_GT(expected.size(), 10u) << "the poured grains were cemented";
+  EXPECT_LT(expected.size(), all.pair_owner.size()) << "bonds of grains above were dropped";
+  EXPECT_EQ(held, expected);
+  EXPECT_EQ(b.bonds.pair_values, expected_values);
+  EXPECT_EQ(b.bonds_made, expected.size() / 2);
+
+  const std::string from_bed = replace(kFromBedScene, "BED", (prep / "bed.h5").string());
+  const fs::path out = dir_ / "out";
+  const test::RunResult r =
+      test::run_binary(scene(from_bed + kCement) + " --output-dir " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("its " + std::to_string(b.bonds_made) +
+                          " bonds hold; the [[bond]] tables make no others"),
+            std::string::npos)
+      << r.output;
+  const auto series = read_csv(out / "timeseries.csv");
+  EXPECT_EQ(series.at("bonds").front(), double(b.bonds_made));
+  EXPECT_EQ(series.at("broken_bonds").front(), 0.0);
+  const fs::path split = dir_ / "split";  // each of 2 ranks reads half the bed's bond records
+  const test::RunResult two = test::run_binary_on_ranks(
+      2, scene(from_bed + kCement) + " --quiet --output-dir " + split.string());
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  const auto split_series = read_csv(split / "timeseries.csv");
+  for (const char* column : {"bonds", "broken_bonds", "kinetic_translational", "potential_elastic"})
+    EXPECT_EQ(split_series.at(column), series.at(column)) << column;
+
+  const fs::path refused = dir_ / "refused";
+  const test::RunResult bare =
+      test::run_binary(scene(from_bed) + " --output-dir " + refused.string());
+  EXPECT_EQ(bare.exit_code, 2) << bare.output;
+  EXPECT_NE(
+      bare.output.find("key 'insert[0].bed': cannot read the bed: " + (prep / "bed.h5").string() +
+                       ": holds parallel bonds but the scene defines no [[bond]] table"),
+      std::string::npos)
+      << bare.output;
+  EXPECT_FALSE(fs::exists(refused));
 }
 
 TEST_F(BedPreparation, MissingBedIsRefused) {
