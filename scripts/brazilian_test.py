@@ -26,14 +26,18 @@ Writes DIR/strength.csv (per realisation: the strengths, sigma_B / sigma_t, the 
 over the tensile strength, sigma_t over the cement's sigma_c, the bar's strain at its peak and
 the share of its peak pull left at the end, the fall of the disc's load after its peak, the
 share of the disc's broken bonds within D/6 of the loaded diameter, and the bonds broken before
-the peak with the share of them nearer a flat than the centre), DIR/strength.png (stress
-against travel, tension and Brazilian) and a line per realisation, then the mean ratio. Each
+the peak with the share of them more than D/4 from the centre towards a flat),
+DIR/strength.png (stress against travel, tension and Brazilian) and a line per realisation,
+then the mean ratio. Each
 run's folder (DIR/<seed>-bar, -column, -disc) holds its scene, particles and output; a finished
-realisation (a line of strength.csv) is not run again, so a killed study continues where it
-stopped. Exit status 0, or 2 with a message for bad options (before any run) or a failed run.
+realisation (a line of strength.csv, which is replaced whole) is not run again, so a killed
+study continues where it stopped; DIR/settings.json records the size, rate, shear strength and
+grain modulus, and a folder of other settings is refused. Exit status 0, or 2 with a message
+for bad options (before any run) or a failed run.
 """
 import argparse
 import csv
+import json
 import math
 import pathlib
 import subprocess
@@ -55,7 +59,7 @@ RADIUS_MIN, RADIUS_MAX = 0.8e-3, 1.2e-3  # m
 PACKING = 0.58
 BOND_GAP = 0.1e-3  # m
 GRIP = 2e-3  # m: thickness of each grip layer
-BAR_TRAVEL = 0.02  # of the size: the grip's travel (the bar breaks near 0.6 % strain)
+BAR_TRAVEL = 0.02  # of the size: the grip's travel (the bar breaks near 0.7 % strain)
 COLUMN_TRAVEL = 0.04  # of the size: the grip's travel when it presses the bar
 DISC_TRAVEL = 0.05  # of the size: each platen's travel (the discs split at 0.015-0.04)
 FLAT_HALF_ANGLE = math.radians(15)  # alpha: the disc's poles are cut flat over 2 alpha
@@ -353,7 +357,8 @@ def broken_before(run_dir, time):
 
 
 def near_flats_share(run_dir, bonds, side):
-    """The share of `bonds` whose midpoint lies nearer a flat than the centre, |z| > D/4."""
+    """The share of `bonds` whose midpoint lies more than D/4 from the centre along the loaded
+    diameter (towards a flat, D/2 cos(alpha) away)."""
     if not bonds:
         return 0.0
     return float(np.mean(np.abs(bond_midpoints(run_dir, bonds, side)[:, 2]) > side / 4))
@@ -397,11 +402,40 @@ def realisation(args, seed):
             "before_peak_near_flats": f"{near_flats_share(disc_dir, early, side):.3f}"}
 
 
-def finished(table):
+SETTINGS = ("size", "rate", "shear_strength", "grain_young")
+
+
+def finished(out, args):
+    """The rows of the realisations already in DIR/strength.csv, by seed; refuses (exit 2) a
+    folder whose study was run with other settings (DIR/settings.json), and records them in a
+    new one."""
+    record = out / "settings.json"
+    mine = {key: getattr(args, key) for key in SETTINGS}
+    if record.exists():
+        theirs = json.loads(record.read_text())
+        for key in SETTINGS:
+            if theirs.get(key) != mine[key]:
+                fail(f"--{key.replace('_', '-')}: {out} holds a study run with "
+                     f"{theirs.get(key)}, not {mine[key]}; give another --out")
+    else:
+        out.mkdir(parents=True, exist_ok=True)
+        record.write_text(json.dumps(mine))
+    table = out / "strength.csv"
     if not table.exists():
         return {}
     with open(table) as f:
         return {int(row["seed"]): row for row in csv.DictReader(f)}
+
+
+def write_table(out, done):
+    """DIR/strength.csv with the rows of `done`, replaced whole (written aside, then renamed),
+    so that a kill leaves the previous table or the new one."""
+    aside = out / "strength.csv.partial"
+    with open(aside, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=COLUMNS)
+        writer.writeheader()
+        writer.writerows(done[s] for s in sorted(done))
+    aside.replace(out / "strength.csv")
 
 
 def plot(args, seeds):
@@ -445,26 +479,25 @@ def main():
     args = parser.parse_args()
     if args.realisations < 1:
         fail("--realisations: give at least 1")
-    if not 12 <= args.size <= 200:
-        fail("--size: give a diameter from 12 to 200 mm (at least 5 grains across the bar)")
-    if args.rate <= 0:
+    if args.seed < 0:
+        fail("--seed: give an integer >= 0")
+    if not 24 <= args.size <= 200:
+        fail("--size: give a diameter from 24 to 200 mm (at least 4 grains across the bar)")
+    if not 0 < args.rate < math.inf:
         fail("--rate: give a speed > 0")
-    if args.shear_strength <= 0 or args.grain_young <= 0:
+    if not (0 < args.shear_strength < math.inf and 0 < args.grain_young < math.inf):
         fail("--shear-strength and --grain-young: give values > 0")
+    if args.np < 1:
+        fail("--np: give at least 1 rank")
     if not pathlib.Path(args.solver).is_file():
         fail(f"--solver: {args.solver} does not exist")
     out = pathlib.Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    table = out / "strength.csv"
-    done = finished(table)
+    done = finished(out, args)
     seeds = range(args.seed, args.seed + args.realisations)
     for seed in seeds:
         if seed not in done:
             done[seed] = realisation(args, seed)
-            with open(table, "w", newline="") as f:
-                writer = csv.DictWriter(f, fieldnames=COLUMNS)
-                writer.writeheader()
-                writer.writerows(done[s] for s in sorted(done))
+            write_table(out, done)
         row = done[seed]
         print(f"seed {seed}: direct {float(row['tensile_direct_pa']) / 1e3:.2f} kPa, "
               f"Brazilian {float(row['tensile_brazilian_pa']) / 1e3:.2f} kPa, "

@@ -241,7 +241,7 @@ BedReader BedLoader::reader(const Scene& scene, FilePart part) {
     require_bond_tables(bed, path, scene);
     path_ = path;
     history_ = std::move(bed.history);
-    if (bed.bonds.width > 0) bonds_ = std::move(bed.bonds);
+    if (bed.bonds_made > 0) bonds_ = std::move(bed.bonds);  // a bed with no bond left has none
     bonds_made_ = bed.bonds_made;
     return std::move(bed.particles);
   };

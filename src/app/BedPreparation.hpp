@@ -67,8 +67,9 @@ class BedLoader {
   /// index, for the walls the scene has. Nothing happens when no bed was read. Collective.
   void apply_history(const Scene& scene, const MpiContext& mpi, StepEngine& engine);
   /// Gives `engine` this rank's part of the bed's bonds (StepEngine::continue_bonds) when the
-  /// bed holds bonds, says so on rank 0 and returns true; returns false (the scene's [[bond]]
-  /// tables make the run's bonds) when it holds none or no bed was read. Collective.
+  /// bed holds bonds (bonds_made > 0), says so on rank 0 and returns true; returns false (the
+  /// scene's [[bond]] tables make the run's bonds) when it holds none or no bed was read.
+  /// Collective.
   bool apply_bonds(const MpiContext& mpi, StepEngine& engine);
 
  private:

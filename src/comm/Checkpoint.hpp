@@ -38,7 +38,8 @@
 /// it was into the next base step, of how many; optional when read: 0 of 1), substeps (u32;
 /// the substeps of the last base step, dt = "adaptive"; optional when read: 1), dt_adaptive
 /// (u8: 1 when the run's dt was "adaptive"; optional when read: 0), bonds_made (u64; the bonds
-/// made at the run's start, written with the bond datasets).
+/// made at the run's start, or held by the bed it started from; in a bed, its intact bonds;
+/// written with the bond datasets).
 #include <mpi.h>
 
 #include <cstdint>
@@ -64,7 +65,7 @@ struct Checkpoint {
   ContactHistory history;
   /// Each end's record of each intact bond (pair records only; width 0 without bonds).
   ContactHistory bonds;
-  std::uint64_t bonds_made = 0;         ///< bonds made at the run's start
+  std::uint64_t bonds_made = 0;         ///< bonds the run started with (made or from a bed)
   std::vector<XdmfSnapshot> snapshots;  ///< snapshots written so far (SnapshotWriter::table)
   /// The names of the writing scene's materials, by index (none in files written before the
   /// names were recorded): a scene that lists its materials otherwise reads them by name.
@@ -110,7 +111,8 @@ Checkpoint read_checkpoint(const std::string& path, FilePart part = {});
 void map_materials_by_name(Checkpoint& checkpoint, const std::string& path, const Scene& scene);
 
 /// Throws InputError naming `path` when `checkpoint` holds bonds that the [[bond]] tables of
-/// `scene` cannot continue: bonds without tables, or a bond of a table the scene lacks.
+/// `scene` cannot continue: bonds (bonds_made > 0) without tables, or a bond of a table the
+/// scene lacks.
 void require_bond_tables(const Checkpoint& checkpoint, const std::string& path, const Scene& scene);
 
 /// map_materials_by_name, then throws InputError naming `path` when `checkpoint` refers to a

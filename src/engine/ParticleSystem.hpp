@@ -471,7 +471,7 @@ class ParticleSystem final : public StepEngine {
   NeighborList<Space> neighbors_;
   MeshWalls<Space, S> meshes_;
   BondSet<Space, S> bonds_;
-  std::uint64_t bonds_made_ = 0;          ///< bonds made at the run's start, on all ranks
+  std::uint64_t bonds_made_ = 0;          ///< bonds the run started with, on all ranks
   ParticleStaging<Space, P, S> staging_;  ///< snapshot copies (host memory)
   GhostExchange<Space, P, S> ghosts_;
   GhostRowSplit<Space> ghost_rows_;  ///< owned particles by whether their rows read ghosts

@@ -1,7 +1,8 @@
 #pragma once
 /// ParticleSystem's parallel bonds (ParticleSystem.hpp, which includes this file after the
-/// class; BondSet.hpp): made at a run's start, their loads added after the contact forces, their
-/// reach checked before each rebuild, read and set as keyed records for checkpoints.
+/// class; BondSet.hpp): made at a run's start or taken from its bed, their loads added after
+/// the contact forces, their reach checked before each rebuild, read and set as keyed records
+/// for checkpoints.
 #include <cstdio>
 #include <set>
 #include <string>

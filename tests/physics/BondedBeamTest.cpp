@@ -234,17 +234,21 @@ TEST_P(BondedBeam, AGripPullsTheBarAtItsVelocity) {
   for (long n = 0; n < steps; ++n) engine->step();
   engine->get_particles(p);
   const double pulled = v * dt * steps, tension = kYoung * area() / spacing() / kNodes * pulled;
+  int found = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.id[i] == ParticleId(kNodes)) {
+      ++found;
       EXPECT_NEAR(p.position_radius[i].x, kNodes * spacing() + pulled, 1e-12);
       EXPECT_EQ(p.velocity_inv_mass[i].x, v);
       EXPECT_EQ(norm(p.angular_velocity[i]), 0.0);
       EXPECT_NEAR(p.force[i].x, -tension, 0.01 * tension);
     }
     if (p.id[i] == 0) {
+      ++found;
       EXPECT_NEAR(p.force[i].x, tension, 0.01 * tension);
     }
   }
+  EXPECT_EQ(found, 2) << "the clamp and the grip";
   EXPECT_EQ(engine->diagnostics().broken_bond_count, 0u);
 }
 

@@ -16,8 +16,9 @@ strength tests of a brittle bonded specimen show:
   compression, only the cement tension);
 - the Brazilian strength lies within a factor of 3 of the direct one (the same cemented
   packing, measured two ways).
-A second call finds the realisation done and runs nothing; bad options are refused with exit
-status 2 before any run. Exit 0 when all holds, 1 otherwise.
+A second call finds the realisation done and runs nothing; the same folder with another grain
+modulus is refused; bad options are refused with exit status 2 before any run. Exit 0 when all
+holds, 1 otherwise.
 """
 import csv
 import pathlib
@@ -77,12 +78,16 @@ def main():
     if again.returncode != 0 or log.stat().st_mtime_ns != stamp:
         problems.append("the second call ran the finished realisation again")
     for bad, option in ((["--size", "5"], "--size"), (["--rate", "0"], "--rate"),
-                        (["--realisations", "0"], "--realisations")):
+                        (["--realisations", "0"], "--realisations"), (["--seed", "-1"], "--seed"),
+                        (["--np", "0"], "--np")):
         refused = run(script, solver, work / "refused", *bad)
         if refused.returncode != 2 or option not in refused.stderr:
             problems.append(f"{bad} was not refused naming {option}: {refused.stderr.strip()}")
         if (work / "refused").exists():
             problems.append(f"{bad} wrote output before refusing")
+    other = run(script, solver, out, "--grain-young", "2e8")
+    if other.returncode != 2 or "--grain-young" not in other.stderr:
+        problems.append(f"a study folder of other settings was not refused: {other.stderr.strip()}")
     print(first.stdout)
     for p in problems:
         print("FAIL:", p)

@@ -408,6 +408,28 @@ TEST_F(BedPreparation, ABedKeepsItsBondsAndTheSceneContinuesThem) {
   EXPECT_FALSE(fs::exists(refused));
 }
 
+/// A bed prepared under a [[bond]] table that bonded nothing (grains poured apart, gap 0) holds
+/// no bonds: a scene from it lets its own table cement the settled grains.
+TEST_F(BedPreparation, ABedWithoutBondsLetsTheTablesMakeThem) {
+  const fs::path prep = dir_ / "prep";
+  std::string cement = replace(kCement, "gap = 0.0005", "gap = 0.0");
+  const test::RunResult made =
+      test::run_binary(scene(test::sand_bin_scene(0.6, 0.1, test::kSandGrains,
+                                                  cement + "[preparation]\nkinetic_energy = 1e-9\n"
+                                                           "remove_above = 0.012\n")) +
+                       " --quiet --output-dir " + prep.string());
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  ASSERT_EQ(read_checkpoint((prep / "bed.h5").string()).bonds_made, 0u);
+  const fs::path out = dir_ / "out";
+  const test::RunResult r =
+      test::run_binary(scene(replace(kFromBedScene, "BED", (prep / "bed.h5").string()) + kCement) +
+                       " --output-dir " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("bonds hold"), std::string::npos) << r.output;
+  EXPECT_GT(read_csv(out / "timeseries.csv").at("bonds").front(), 10.0)
+      << "the table cemented the settled grains";
+}
+
 TEST_F(BedPreparation, MissingBedIsRefused) {
   const fs::path out = dir_ / "out";
   const std::string missing = (dir_ / "nowhere.h5").string();
