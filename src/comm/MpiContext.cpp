@@ -1,10 +1,11 @@
 #include "comm/MpiContext.hpp"
 
+#include "comm/MpiInit.hpp"
+
 namespace gpudem {
 
 MpiContext::MpiContext(int& argc, char**& argv) {
-  int provided = MPI_THREAD_SINGLE;
-  MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &provided);  // for a snapshot writer thread
+  init_mpi(argc, argv);
   world_.emplace(MPI_COMM_WORLD);
   MPI_Comm node;
   MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank(), MPI_INFO_NULL, &node);

@@ -3,9 +3,10 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include "comm/MpiInit.hpp"
+
 int main(int argc, char** argv) {
-  int provided = MPI_THREAD_SINGLE;
-  MPI_Init_thread(&argc, &argv, MPI_THREAD_MULTIPLE, &provided);  // as the program does
+  gpudem::init_mpi(argc, argv);  // as the program does
   ::testing::InitGoogleTest(&argc, argv);
   const int result = RUN_ALL_TESTS();
   MPI_Finalize();
