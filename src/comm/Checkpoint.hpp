@@ -111,8 +111,8 @@ Checkpoint read_checkpoint(const std::string& path, FilePart part = {});
 void map_materials_by_name(Checkpoint& checkpoint, const std::string& path, const Scene& scene);
 
 /// Throws InputError naming `path` when `checkpoint` holds bonds that the [[bond]] tables of
-/// `scene` cannot continue: bonds (bonds_made > 0) without tables, or a bond of a table the
-/// scene lacks.
+/// `scene` cannot continue: bonds (bonds_made > 0, or bond records) without tables, or a bond
+/// of a table the scene lacks.
 void require_bond_tables(const Checkpoint& checkpoint, const std::string& path, const Scene& scene);
 
 /// map_materials_by_name, then throws InputError naming `path` when `checkpoint` refers to a

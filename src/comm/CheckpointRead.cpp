@@ -405,7 +405,8 @@ void check_bonds_fit(const Checkpoint& c, const std::string& path, const Scene& 
 }  // namespace
 
 void require_bond_tables(const Checkpoint& c, const std::string& path, const Scene& scene) {
-  if (c.bonds.width > 0 && c.bonds_made > 0 && scene.bonds.empty())
+  const bool bonded = c.bonds.width > 0 && (c.bonds_made > 0 || !c.bonds.pair_owner.empty());
+  if (bonded && scene.bonds.empty())
     throw InputError(path, 0, "",
                      "holds parallel bonds but the scene defines no [[bond]] table: a run "
                      "continues with the bonds it was saved with");
