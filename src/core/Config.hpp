@@ -17,6 +17,15 @@
 #define GPUDEM_HD_CALLED
 #endif
 
+/// On a per-particle kernel body whose callees the host compiler should inline whole (the
+/// contact sweep: the law, the contact's description and its visitor), so that the contact's
+/// record stays in registers; device code inlines them anyway.
+#if defined(__CUDA_ARCH__) || !defined(__GNUC__)
+#define GPUDEM_HOST_FLATTEN
+#else
+#define GPUDEM_HOST_FLATTEN __attribute__((flatten))
+#endif
+
 namespace gpudem {
 
 /// Floating-point type of particle state and forces (double everywhere for now; the

@@ -46,8 +46,8 @@ struct ForceSum {
     if (wall_push && c.wall >= 0) wall_push[c.slot] = -dot(f.force, vec_cast<S>(c.point.normal));
     force += f.force;
     if constexpr (Law::needs_spin) torque += contact_torque(c, f);
-    const Real ratio = c.point.overlap / c.min_radius;
-    if (ratio > worst_overlap_ratio) worst_overlap_ratio = ratio;
+    if (c.point.overlap > worst_overlap_ratio * c.min_radius)  // divides only for a new worst
+      worst_overlap_ratio = c.point.overlap / c.min_radius;
   }
   /// A contact that opened forgets its history.
   GPUDEM_HD void separated(std::uint32_t slot) {
@@ -78,7 +78,7 @@ struct ComputeForces {
   Real* overlap_ratio;
   S* wall_push;  ///< per (particle, plane wall) slot, or null (ForceSum)
   const std::uint32_t* subset = nullptr;
-  GPUDEM_HD void operator()(std::size_t k) const {
+  GPUDEM_HD GPUDEM_HOST_FLATTEN void operator()(std::size_t k) const {
     const std::size_t i = subset ? subset[k] : k;
     ForceSum<Law> sum{history, dt, Vec3T<S>{}, Vec3T<S>{}, Real(0), wall_push};
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, sum);

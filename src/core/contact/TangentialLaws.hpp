@@ -35,13 +35,26 @@ struct NoTangential {
   }
 };
 
-/// ξ rotated into the tangent plane of `normal`, its length kept.
+/// ξ rotated into the tangent plane of `normal`, its length kept: the projection scaled by
+/// √(|ξ|² / |ξ_t|²), one root instead of two.
 template <class S>
 GPUDEM_HD Vec3T<S> rotate_into_plane(Vec3T<S> v, Vec3T<S> normal) {
-  const S length = norm(v);
+  const S length_sq = dot(v, v);
   v -= dot(v, normal) * normal;
-  const S projected = norm(v);
-  return projected > 0 ? (length / projected) * v : v;
+  const S projected_sq = dot(v, v);
+  return projected_sq > 0 ? square_root(length_sq / projected_sq) * v : v;
+}
+
+/// |v| > limit, from |v|² without a root (true for any v when the limit is negative).
+template <class S>
+GPUDEM_HD bool longer_than(const Vec3T<S>& v, S limit) {
+  return limit < 0 || dot(v, v) > limit * limit;
+}
+
+/// |v| ≥ limit, from |v|² without a root.
+template <class S>
+GPUDEM_HD bool at_least(const Vec3T<S>& v, S limit) {
+  return limit < 0 || dot(v, v) >= limit * limit;
 }
 
 /// `v` scaled to length `length` (unchanged when it is zero).
@@ -59,20 +72,20 @@ GPUDEM_HD Vec3T<S> coulomb_spring_force(const ContactPairParamsT<S>& p, const Co
   const Vec3T<S> vt = tangential_velocity(c);
   Vec3T<S> spring =
       rotate_into_plane(Vec3T<S>{history[0], history[1], history[2]}, c.normal) + dt * vt;
-  const S spring_force = stiffness * norm(spring);
+  const Vec3T<S> spring_force = stiffness * spring;
   const bool was_sliding = history[3] != 0;
   const bool sliding = dt == 0       ? was_sliding  // reading the stored state
-                       : was_sliding ? spring_force >= p.friction_dynamic * elastic_force
-                                     : spring_force > p.friction_static * elastic_force;
+                       : was_sliding ? at_least(spring_force, p.friction_dynamic * elastic_force)
+                                     : longer_than(spring_force, p.friction_static * elastic_force);
   Vec3T<S> force;
   if (sliding) {
     spring = with_length(spring, p.friction_dynamic * elastic_force / stiffness);
     force = -stiffness * spring;
   } else {
     const S gamma = Damping::template tangential_coefficient<Normal>(p, c, stiffness);
-    force = -stiffness * spring - gamma * vt;
+    force = -spring_force - gamma * vt;
     const S limit = p.friction_static * elastic_force;
-    if (norm(force) > limit) force = with_length(force, limit);
+    if (longer_than(force, limit)) force = with_length(force, limit);
   }
   history[0] = spring.x;
   history[1] = spring.y;
