@@ -39,22 +39,22 @@ struct NoTangential {
 /// √(|ξ|² / |ξ_t|²), one root instead of two.
 template <class S>
 GPUDEM_HD Vec3T<S> rotate_into_plane(Vec3T<S> v, Vec3T<S> normal) {
-  const S length_sq = dot(v, v);
+  const S length_sq = norm2(v);
   v -= dot(v, normal) * normal;
-  const S projected_sq = dot(v, v);
+  const S projected_sq = norm2(v);
   return projected_sq > 0 ? square_root(length_sq / projected_sq) * v : v;
 }
 
 /// |v| > limit, from |v|² without a root (true for any v when the limit is negative).
 template <class S>
 GPUDEM_HD bool longer_than(const Vec3T<S>& v, S limit) {
-  return limit < 0 || dot(v, v) > limit * limit;
+  return limit < 0 || norm2(v) > limit * limit;
 }
 
-/// |v| ≥ limit, from |v|² without a root.
+/// |v| ≥ limit, from |v|² without a root (true for any v when the limit is negative).
 template <class S>
 GPUDEM_HD bool at_least(const Vec3T<S>& v, S limit) {
-  return limit < 0 || dot(v, v) >= limit * limit;
+  return limit < 0 || norm2(v) >= limit * limit;
 }
 
 /// `v` scaled to length `length` (unchanged when it is zero).
