@@ -12,6 +12,16 @@
       omegax omegay omegaz): particles, bed height (highest top) [m], packing fraction (solid
       volume of the spheres whose centres lie in the lower half of the bed, over that half's
       volume), kinetic energy (translational and rotational) [J], as one CSV line
+  particles.py slot SOURCE OUT.csv --plate X Y0 Y1 Z0 Z1
+      the particles of SOURCE (as for data) with their spins as a CSV source, less those that
+      touch the plate: the rectangle Y0 <= y <= Y1, Z0 <= z <= Z1 in the plane x = X
+  particles.py plate OUT.stl --plate X Y0 Y1 Z0 Z1
+      that rectangle as an ASCII STL of two triangles
+  particles.py force FILE --column NAME --from T
+      mean and standard deviation of column NAME over the rows with time >= T, as one CSV
+      line, from a CSV with a header (gpudem-mpi's timeseries.csv) or a whitespace-separated
+      text file whose first line names the columns (a peer's fix print); both need a column
+      "time"
 """
 import argparse
 import sys
@@ -54,12 +64,16 @@ def write_csv(args):
 
 
 def read_particles(path):
-    """(x, y, z, r), velocity, spin of an HDF5 file, a CSV source (no spins) or a text dump."""
+    """(x, y, z, r), velocity, spin of an HDF5 file, a CSV source (zero where it has no
+    vx, vy, vz or wx, wy, wz column) or a text dump."""
     if path.endswith(".h5"):
         return read_h5(path)
     if path.endswith(".csv"):
-        rows = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-        return rows[:, :4], rows[:, 4:7], np.zeros((len(rows), 3))
+        c = read_table(path)
+        zero = np.zeros(len(c["x"]))
+        return (np.column_stack([c["x"], c["y"], c["z"], c["r"]]),
+                np.column_stack([c.get(k, zero) for k in ("vx", "vy", "vz")]),
+                np.column_stack([c.get(k, zero) for k in ("wx", "wy", "wz")]))
     return read_dump(path)
 
 
@@ -93,6 +107,61 @@ def observe(args):
     print(f"{len(r)},{height:.6g},{packing:.6g},{kinetic:.6g}")
 
 
+def plate_corners(plate):
+    x, y0, y1, z0, z1 = plate
+    return [(x, y0, z0), (x, y1, z0), (x, y1, z1), (x, y0, z1)]
+
+
+def touches_plate(xr, plate):
+    """Whether each sphere (x, y, z, r) reaches the rectangle of `plate` (X, Y0, Y1, Z0, Z1)."""
+    x, y0, y1, z0, z1 = plate
+    dy = np.maximum(np.maximum(y0 - xr[:, 1], xr[:, 1] - y1), 0.0)
+    dz = np.maximum(np.maximum(z0 - xr[:, 2], xr[:, 2] - z1), 0.0)
+    return (xr[:, 0] - x) ** 2 + dy ** 2 + dz ** 2 < xr[:, 3] ** 2
+
+
+def write_slot(args):
+    xr, v, w = read_particles(args.source)
+    keep = ~touches_plate(xr, args.plate)
+    np.savetxt(args.out, np.column_stack([xr, v, w])[keep], delimiter=",", fmt="%.17g",
+               header="x,y,z,r,vx,vy,vz,wx,wy,wz", comments="")
+    print(f"{int(np.sum(~keep))} of {len(xr)} particles touch the plate and are left out",
+          file=sys.stderr)
+
+
+def write_plate(args):
+    a, b, c, d = plate_corners(args.plate)
+    with open(args.out, "w") as out:
+        out.write("solid plate\n")
+        for triangle in ((a, b, c), (a, c, d)):
+            out.write("  facet normal 1 0 0\n    outer loop\n")
+            for vertex in triangle:
+                out.write("      vertex " + " ".join(f"{c:.9g}" for c in vertex) + "\n")
+            out.write("    endloop\n  endfacet\n")
+        out.write("endsolid plate\n")
+
+
+def read_table(path):
+    """The columns of a CSV or whitespace-separated file with a header line, by name."""
+    with open(path) as f:
+        header = f.readline().lstrip("#").strip()
+        comma = "," in header
+        names = header.split(",") if comma else header.split()
+        rows = np.loadtxt(f, delimiter="," if comma else None, ndmin=2)
+    return {name.strip(): rows[:, k] for k, name in enumerate(names)}
+
+
+def force(args):
+    columns = read_table(args.file)
+    for name in ("time", args.column):
+        if name not in columns:
+            sys.exit(f"particles.py: {args.file} has no column {name!r}")
+    values = columns[args.column][columns["time"] >= args.start - 1e-12]
+    if len(values) == 0:
+        sys.exit(f"particles.py: {args.file} has no row at time >= {args.start}")
+    print(f"{len(values)},{np.mean(values):.6g},{np.std(values):.6g}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
@@ -109,8 +178,20 @@ def main(argv=None):
     p.add_argument("file")
     p.add_argument("--density", type=float, required=True)
     p.add_argument("--area", type=float, required=True)
+    for name in ("slot", "plate"):
+        p = sub.add_parser(name)
+        if name == "slot":
+            p.add_argument("source")
+        p.add_argument("out")
+        p.add_argument("--plate", type=float, nargs=5, required=True,
+                       metavar=("X", "Y0", "Y1", "Z0", "Z1"))
+    p = sub.add_parser("force")
+    p.add_argument("file")
+    p.add_argument("--column", required=True)
+    p.add_argument("--from", dest="start", type=float, required=True, metavar="T")
     args = parser.parse_args(argv)
-    {"csv": write_csv, "data": write_data, "observe": observe}[args.command](args)
+    {"csv": write_csv, "data": write_data, "observe": observe, "slot": write_slot,
+     "plate": write_plate, "force": force}[args.command](args)
     return 0
 
 

@@ -8,7 +8,11 @@ scripts/peers/compare.sh, on a lattice of known answers:
 - `observe` gives, from the snapshot and from the same particles as a text dump, the count,
   the bed height (highest top), the packing fraction of the lower half (the spheres whose
   centres lie below half the height, over that half's volume) and the kinetic energy
-  sum(m v^2 / 2 + I w^2 / 2), all computed here by hand.
+  sum(m v^2 / 2 + I w^2 / 2), all computed here by hand;
+- `slot` leaves out exactly the 6 spheres that reach a plate (worked out by hand on the
+  lattice) and keeps the others' velocities and spins; `plate` writes that rectangle as two
+  triangles; `force` gives the mean and standard deviation of a column from a time on, in a
+  CSV and in a whitespace-separated file.
 
 Usage: check_peer_particles.py SOURCE_DIR WORK_DIR
 """
@@ -34,6 +38,43 @@ def lattice():
     v = np.column_stack([np.arange(n) * 1e-3, np.zeros(n), -np.ones(n) * 2e-3])
     w = np.column_stack([np.zeros(n), np.ones(n) * 0.5, np.zeros(n)])
     return xyz, v, w
+
+
+def check_plate(script, work, snapshot, xyz, v, w):
+    """`slot`, `plate` and `force` against answers worked out by hand."""
+    failures = []
+    # The plate x = 0.035, 0.02 <= y <= 0.06, 0 <= z <= 0.05 reaches the spheres of the column
+    # x = 0.03 (0.005 away) with y in {0.03, 0.05} and z in {0.01, 0.03, 0.05}; y = 0.01 and
+    # 0.07 lie sqrt(0.005^2 + 0.01^2) > R from its edges, x = 0.05 lies 0.015 > R away.
+    plate = ["--plate", "0.035", "0.02", "0.06", "0", "0.05"]
+    slot = os.path.join(work, "slot.csv")
+    subprocess.run(script + ["slot", snapshot, slot, *plate], check=True, capture_output=True)
+    rows = np.loadtxt(slot, delimiter=",", skiprows=1)
+    gone = ((np.isclose(xyz[:, 0], 3 * R) & np.isin(np.round(xyz[:, 1] / R), [3, 5]) &
+             np.isin(np.round(xyz[:, 2] / R), [1, 3, 5])))
+    if int(np.sum(gone)) != 6 or not np.array_equal(
+            rows, np.column_stack([xyz, np.full(len(xyz), R), v, w])[~gone]):
+        failures.append(f"slot: kept {len(rows)} rows, expected the {len(xyz) - 6} that do not "
+                        "reach the plate, with their velocities and spins")
+    stl = os.path.join(work, "plate.stl")
+    subprocess.run(script + ["plate", stl, *plate], check=True)
+    vertices = [tuple(float(c) for c in line.split()[1:]) for line in open(stl)
+                if line.strip().startswith("vertex")]
+    corners = {(0.035, 0.02, 0.0), (0.035, 0.06, 0.0), (0.035, 0.06, 0.05), (0.035, 0.02, 0.05)}
+    if len(vertices) != 6 or set(vertices) != corners:
+        failures.append(f"plate: vertices {vertices}")
+    series = [(0.0, 9.0), (0.1, 1.0), (0.2, 2.0), (0.3, 6.0)]  # from 0.1: mean 3, std sqrt(14/3)
+    for name, sep, head in (("series.csv", ",", "time,plate_fx"), ("series.txt", " ",
+                                                                   "# time plate_fx")):
+        path = os.path.join(work, name)
+        with open(path, "w") as f:
+            f.write(head + "\n" + "".join(f"{a}{sep}{b}\n" for a, b in series))
+        out = subprocess.run(script + ["force", path, "--column", "plate_fx", "--from", "0.1"],
+                             capture_output=True, text=True, check=True).stdout.split(",")
+        if (int(out[0]) != 3 or abs(float(out[1]) - 3.0) > 1e-9 or
+                abs(float(out[2]) - math.sqrt(14 / 3)) > 1e-5):
+            failures.append(f"force of {name}: {out}")
+    return failures
 
 
 def main():
@@ -97,6 +138,7 @@ def main():
     velocity = open(data).read().split("Velocities\n\n")[1].splitlines()[n - 1].split()
     if [float(x) for x in velocity[1:]] != [*v[n - 1], *w[n - 1]]:
         failures.append(f"from the snapshot: last velocity and spin {velocity}")
+    failures += check_plate(script, work, snapshot, xyz, v, w)
     for f in failures:
         print("FAILED:", f)
     if not failures:
