@@ -2,10 +2,13 @@
 the same particles (the CSV written from gpudem-mpi's insertion), settled for SETTLE steps and
 run SETTLED steps more. Pairs: ESyS-Particle's HertzMindlinVisco (Hertz normal spring from E
 and nu, its viscous damping for restitution e, Mindlin tangential spring with Coulomb
-friction). Walls: ESyS-Particle's plane walls are frictionless linear springs (the only wall
-law it has for spheres), normalK = 2,000 N/m, the Hertz wall contact's stiffness
-2 E* sqrt(R delta) at an overlap of 1 % of R (E* = E / (2 (1 - nu^2))). Same time step, skin,
-gravity and bin. Runs on WORKERS worker ranks (slabs along x) under one master rank
+friction). Walls: ESyS-Particle's plane walls are undamped, frictionless linear springs (the
+only wall law it has for spheres) of stiffness 5,000 N/m: a sphere of R = 8.5 mm falling 0.3 m
+onto it (2.4 m/s) overlaps it by 2.3 mm at most, as it overlaps a Hertz wall of the soil's own
+E* = E / (2 (1 - nu^2)) by 2.2 mm (in the settled bed, under about 0.4 N, it sinks 0.09 mm
+into the spring against 0.21 mm into the Hertz wall). ESyS-Particle multiplies a wall's normalK by pi R in 3D
+(measured: a sphere resting on the floor sinks m g / (pi R normalK)), so normalK is that
+stiffness over pi R. Same time step, skin, gravity and bin. Runs on WORKERS worker ranks (slabs along x) under one master rank
 (mpirun -np WORKERS+1 esysparticle). Each phase prints "Loop time of SECONDS on" and ends with
 a text dump (id x y z radius vx vy vz omegax omegay omegaz), as the LAMMPS-family peers do.
 
@@ -21,7 +24,7 @@ from esys.lsm.util import BoundingBox, Vec3
 
 DENSITY = 1850.0
 YOUNG, POISSON, FRICTION, RESTITUTION = 2.0e6, 0.38, 0.6, 0.5
-WALL_STIFFNESS = 1.0e4  # N/m, see above
+WALL_STIFFNESS = 5.0e3  # N/m, the wall spring's stiffness (see above)
 BIN = (1.0, 0.7)
 WALLS = (("floor", (0, 0, 0), (0, 0, 1)), ("left", (0, 0, 0), (1, 0, 0)),
          ("right", (BIN[0], 0, 0), (-1, 0, 0)), ("front", (0, 0, 0), (0, 1, 0)),
@@ -55,10 +58,11 @@ def build(rows, workers):
         name="pairs", youngsModulus=YOUNG, poissonsRatio=POISSON, dynamicMu=FRICTION,
         restitution=RESTITUTION))
     sim.createGravity(GravityPrms(name="gravity", acceleration=Vec3(0.0, 0.0, -9.81)))
+    r_mean = sum(row["r"] for row in rows) / len(rows)
     for name, point, normal in WALLS:
         sim.createWall(name=name, posn=Vec3(*point), normal=Vec3(*normal))
-        sim.createInteractionGroup(NRotElasticWallPrms(name=name + "_contact", wallName=name,
-                                                       normalK=WALL_STIFFNESS))
+        sim.createInteractionGroup(NRotElasticWallPrms(
+            name=name + "_contact", wallName=name, normalK=WALL_STIFFNESS / (math.pi * r_mean)))
     return sim
 
 

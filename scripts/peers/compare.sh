@@ -1,27 +1,30 @@
 #!/usr/bin/env bash
-# The side-by-side of gpudem-mpi, LIGGGHTS and LAMMPS on one machine, from one set of particles:
-# the bed of inputs/bench/peers_bed.toml (20,000 soil spheres poured into a 1.0 m x 0.7 m bin,
-# Hertz-Mindlin with history, dt = 1e-4 s, skin 4 mm). gpudem-mpi inserts the particles once;
-# each code then settles them for SETTLE steps and runs its own settled bed SETTLED steps more,
-# on RANKS MPI ranks of one thread each (the peers' input files: inputs/bench/liggghts_peers.in,
-# inputs/bench/lammps_peers.in, inputs/bench/esys_peers.py; ESyS-Particle runs RANKS workers
-# under one master rank). Then each code but ESyS-Particle, whose triangle walls are
-# frictionless linear springs, drags a plate through gpudem-mpi's settled bed
-# for PLATE steps: a vertical rectangle 0.2 m wide, from 0.04 m above the floor to above the
-# bed's top (0.14 m), starting at x = 0.25 m and moving along +x at 1 m/s, the particles that
-# touch its start left out (inputs/bench/liggghts_plate.in, lammps_plate.in). Installs Debian's
-# liggghts, lammps and esys-particle when missing. Prints two tables: the stepping time of each phase (the
-# peers' "Loop time", our "done" line), particle-steps/s per core, the peak memory of all
-# ranks, and the observables at the end of each phase (bed height, packing fraction of the
-# lower half of the bed, kinetic energy), or the plate's draft (the particles' force on it
-# against its travel) over the second half of the drag, mean and standard deviation, each with
-# its difference from ours. Run it on an otherwise idle machine: codes run one at a time.
-# Installs Debian's time (/usr/bin/time) for the memory figures.
+# The side-by-side of gpudem-mpi, LIGGGHTS, LAMMPS and ESyS-Particle on one machine, from one
+# set of particles: the bed of inputs/bench/peers_bed.toml (20,000 soil spheres poured into a
+# 1.0 m x 0.7 m bin, Hertz-Mindlin with history, dt = 1e-4 s, skin 4 mm). gpudem-mpi inserts
+# the particles once; each code then settles them for SETTLE steps and runs its own settled
+# bed SETTLED steps more, on RANKS MPI ranks of one thread each (the peers' inputs:
+# inputs/bench/liggghts_peers.in, lammps_peers.in, esys_peers.py; ESyS-Particle runs RANKS
+# workers under one master rank, which waits, and its particle-steps/s per core count the
+# workers). Then each code but ESyS-Particle, whose triangle walls are frictionless linear
+# springs, drags a plate through gpudem-mpi's settled bed for PLATE steps: a vertical
+# rectangle 0.2 m wide, from 0.04 m above the floor to above the bed's top (0.14 m), starting at
+# x = 0.25 m and moving along +x at 1 m/s, the particles that touch its start or the 2 mm
+# behind it left out (inputs/bench/liggghts_plate.in, lammps_plate.in; LAMMPS' plate is a 2 mm
+# block). Installs Debian's liggghts, lammps and esys-particle when missing. Prints two
+# tables: the stepping time of each phase (the peers' "Loop time", our "done" line),
+# particle-steps/s per core, the peak memory of all ranks, and the observables at the end of
+# each phase (bed height, packing fraction of the lower half of the bed, kinetic energy), or
+# the plate's draft (the particles' force on it against its travel) over the second half of
+# the drag, mean and standard deviation, each with its difference from ours. Run it on an
+# otherwise idle machine: codes run one at a time. Installs Debian's time (/usr/bin/time) for
+# the memory figures.
 # Usage: scripts/peers/compare.sh [SETTLE (default 15000)] [SETTLED (default 2000)]
 #        [PLATE (default 3000, even)]
 # Environment: RANKS (default 2), BUILD_DIR (default build), OUT (default out/peers/compare).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+unset PROCS  # set only for ESyS-Particle's run (ranks_run)
 settle=${1:-15000}
 settled=${2:-2000}
 drag=${3:-3000}
@@ -76,7 +79,7 @@ stepping_seconds() {  # the stepping time of gpudem-mpi's "done" line in log $1
 observe() {
   /usr/bin/python3 "$particles" observe "$1" --density "$density" --area "$area"
 }
-declare -A seconds memory state force particles
+declare -A seconds memory state force counts
 
 # gpudem-mpi: the settle run writes its bed at the last step; the settled run continues it.
 t_settle=$(awk -v n="$settle" 'BEGIN { printf "%.10g", n * 1e-4 }')
@@ -141,7 +144,7 @@ every=10                          # steps between force samples
 t_drag=$(awk -v n="$drag" 'BEGIN { printf "%.10g", n * 1e-4 }')
 t_half=$(awk -v n="$drag" 'BEGIN { printf "%.10g", n / 2 * 1e-4 }')
 /usr/bin/python3 "$particles" slot "$out/gpudem/bed.h5" "$out/gpudem/plate/particles.csv" \
-  --plate "${plate[@]}" 2> "$out/gpudem/plate/slot.log"
+  --plate "${plate[@]}" --thickness 0.002 2> "$out/gpudem/plate/slot.log"
 /usr/bin/python3 "$particles" plate "$out/gpudem/plate/plate.stl" --plate "${plate[@]}"
 for code in liggghts lammps; do
   /usr/bin/python3 "$particles" data "$out/gpudem/plate/particles.csv" "$out/$code/plate/bed.data" \
@@ -172,7 +175,7 @@ seconds[gpudem.plate]=$(stepping_seconds "$out/gpudem/plate/run.log")
 memory[gpudem.plate]=$(peak_mb "$out/gpudem/plate")
 force[gpudem]=$(/usr/bin/python3 "$particles" force "$out/gpudem/plate/run/timeseries.csv" \
   --column plate_fx --from "$t_half")
-particles[gpudem]=$(observe "$(ls "$out"/gpudem/plate/run/particles_*.h5 | tail -n 1)" | cut -d, -f1)
+counts[gpudem]=$(observe "$(ls "$out"/gpudem/plate/run/particles_*.h5 | tail -n 1)" | cut -d, -f1)
 run_plate() {  # code binary input, then the input's variables
   local code=$1 binary=$2 input=$3
   shift 3
@@ -183,7 +186,7 @@ run_plate() {  # code binary input, then the input's variables
   memory[$code.plate]=$(peak_mb "$out/$code/plate")
   force[$code]=$(/usr/bin/python3 "$particles" force "$out/$code/plate/plate_force.txt" \
     --column plate_fx --from "$t_half")
-  particles[$code]=$(observe "$out/$code/plate/plate.dump" | cut -d, -f1)
+  counts[$code]=$(observe "$out/$code/plate/plate.dump" | cut -d, -f1)
 }
 run_plate liggghts liggghts inputs/bench/liggghts_plate.in -var plate "$out/gpudem/plate/plate.stl"
 run_plate lammps lmp inputs/bench/lammps_plate.in -var x0 "${plate[0]}" -var y0 "${plate[1]}" \
@@ -212,7 +215,7 @@ IFS=, read -r _ f0 _ <<< "${force[gpudem]}"
 for code in gpudem liggghts lammps; do
   IFS=, read -r _ f s <<< "${force[$code]}"
   awk -v c="$code" -v st="$drag" -v sec="${seconds[$code.plate]}" -v r="$ranks" \
-    -v m="${memory[$code.plate]}" -v n="${particles[$code]}" -v f="$f" -v s="$s" -v f0="$f0" 'BEGIN {
+    -v m="${memory[$code.plate]}" -v n="${counts[$code]}" -v f="$f" -v s="$s" -v f0="$f0" 'BEGIN {
       printf "| %s | %d | %.3g | %.3g | %s | %d | %.1f ± %.1f | %+.1f %% |\n",
         c, st, sec, n * st / sec / r, m, n, -f, s, 100 * (f / f0 - 1) }'
 done

@@ -4,17 +4,18 @@
   particles.py csv SNAPSHOT.h5 OUT.csv
       the particles of a gpudem-mpi snapshot or checkpoint as a CSV source (x,y,z,r,vx,vy,vz)
   particles.py data IN OUT.data --style liggghts|lammps --density RHO --box X0 X1 Y0 Y1 Z0 Z1
-      the particles of a CSV source, or of a bed, checkpoint or snapshot (HDF5, with their
-      spins), as a data file: LIGGGHTS atom_style granular, LAMMPS atom_style sphere (atom
+      the particles of a CSV source, or of a bed, checkpoint or snapshot (HDF5), with their
+      spins (a CSV's wx, wy, wz columns), as a data file: LIGGGHTS atom_style granular, LAMMPS atom_style sphere (atom
       type 1; LIGGGHTS' type 2 is left to the walls)
   particles.py observe FILE --density RHO --area A
       from a gpudem-mpi HDF5 file or a LAMMPS/LIGGGHTS text dump (id x y z radius vx vy vz
       omegax omegay omegaz): particles, bed height (highest top) [m], packing fraction (solid
       volume of the spheres whose centres lie in the lower half of the bed, over that half's
       volume), kinetic energy (translational and rotational) [J], as one CSV line
-  particles.py slot SOURCE OUT.csv --plate X Y0 Y1 Z0 Z1
+  particles.py slot SOURCE OUT.csv --plate X Y0 Y1 Z0 Z1 [--thickness T]
       the particles of SOURCE (as for data) with their spins as a CSV source, less those that
-      touch the plate: the rectangle Y0 <= y <= Y1, Z0 <= z <= Z1 in the plane x = X
+      touch the plate: the box X - T <= x <= X, Y0 <= y <= Y1, Z0 <= z <= Z1 (T = 0: the
+      rectangle in the plane x = X)
   particles.py plate OUT.stl --plate X Y0 Y1 Z0 Z1
       that rectangle as an ASCII STL of two triangles
   particles.py force FILE --column NAME --from T
@@ -112,17 +113,19 @@ def plate_corners(plate):
     return [(x, y0, z0), (x, y1, z0), (x, y1, z1), (x, y0, z1)]
 
 
-def touches_plate(xr, plate):
-    """Whether each sphere (x, y, z, r) reaches the rectangle of `plate` (X, Y0, Y1, Z0, Z1)."""
+def touches_plate(xr, plate, thickness):
+    """Whether each sphere (x, y, z, r) reaches the box X - thickness <= x <= X, Y0 <= y <= Y1,
+    Z0 <= z <= Z1 of `plate` (X, Y0, Y1, Z0, Z1)."""
     x, y0, y1, z0, z1 = plate
+    dx = np.maximum(np.maximum(x - thickness - xr[:, 0], xr[:, 0] - x), 0.0)
     dy = np.maximum(np.maximum(y0 - xr[:, 1], xr[:, 1] - y1), 0.0)
     dz = np.maximum(np.maximum(z0 - xr[:, 2], xr[:, 2] - z1), 0.0)
-    return (xr[:, 0] - x) ** 2 + dy ** 2 + dz ** 2 < xr[:, 3] ** 2
+    return dx ** 2 + dy ** 2 + dz ** 2 < xr[:, 3] ** 2
 
 
 def write_slot(args):
     xr, v, w = read_particles(args.source)
-    keep = ~touches_plate(xr, args.plate)
+    keep = ~touches_plate(xr, args.plate, args.thickness)
     np.savetxt(args.out, np.column_stack([xr, v, w])[keep], delimiter=",", fmt="%.17g",
                header="x,y,z,r,vx,vy,vz,wx,wy,wz", comments="")
     print(f"{int(np.sum(~keep))} of {len(xr)} particles touch the plate and are left out",
@@ -182,6 +185,7 @@ def main(argv=None):
         p = sub.add_parser(name)
         if name == "slot":
             p.add_argument("source")
+            p.add_argument("--thickness", type=float, default=0.0, metavar="T")
         p.add_argument("out")
         p.add_argument("--plate", type=float, nargs=5, required=True,
                        metavar=("X", "Y0", "Y1", "Z0", "Z1"))

@@ -9,8 +9,8 @@ scripts/peers/compare.sh, on a lattice of known answers:
   the bed height (highest top), the packing fraction of the lower half (the spheres whose
   centres lie below half the height, over that half's volume) and the kinetic energy
   sum(m v^2 / 2 + I w^2 / 2), all computed here by hand;
-- `slot` leaves out exactly the 6 spheres that reach a plate (worked out by hand on the
-  lattice) and keeps the others' velocities and spins; `plate` writes that rectangle as two
+- `slot` leaves out exactly the 6 spheres that reach a plate, and the 12 that reach it made
+  0.02 m thick (worked out by hand on the lattice), and keeps the others' velocities and spins; `plate` writes that rectangle as two
   triangles; `force` gives the mean and standard deviation of a column from a time on, in a
   CSV and in a whitespace-separated file.
 
@@ -43,10 +43,10 @@ def lattice():
 def check_plate(script, work, snapshot, xyz, v, w):
     """`slot`, `plate` and `force` against answers worked out by hand."""
     failures = []
-    # The plate x = 0.035, 0.02 <= y <= 0.06, 0 <= z <= 0.05 reaches the spheres of the column
-    # x = 0.03 (0.005 away) with y in {0.03, 0.05} and z in {0.01, 0.03, 0.05}; y = 0.01 and
-    # 0.07 lie sqrt(0.005^2 + 0.01^2) > R from its edges, x = 0.05 lies 0.015 > R away.
-    plate = ["--plate", "0.035", "0.02", "0.06", "0", "0.05"]
+    # The plate x = 0.035, 0.021 <= y <= 0.059, 0 <= z <= 0.05 reaches the spheres of the
+    # column x = 0.03 (0.005 away) with y in {0.03, 0.05} and z in {0.01, 0.03, 0.05}; y = 0.01
+    # and 0.07 lie 0.011 > R from its edges, x = 0.05 lies 0.015 > R away.
+    plate = ["--plate", "0.035", "0.021", "0.059", "0", "0.05"]
     slot = os.path.join(work, "slot.csv")
     subprocess.run(script + ["slot", snapshot, slot, *plate], check=True, capture_output=True)
     rows = np.loadtxt(slot, delimiter=",", skiprows=1)
@@ -56,11 +56,21 @@ def check_plate(script, work, snapshot, xyz, v, w):
             rows, np.column_stack([xyz, np.full(len(xyz), R), v, w])[~gone]):
         failures.append(f"slot: kept {len(rows)} rows, expected the {len(xyz) - 6} that do not "
                         "reach the plate, with their velocities and spins")
+    # 0.02 thick, the box 0.015 <= x <= 0.035 also reaches the column x = 0.01 (0.005 away).
+    subprocess.run(script + ["slot", snapshot, slot, *plate, "--thickness", "0.02"], check=True,
+                   capture_output=True)
+    thick = np.loadtxt(slot, delimiter=",", skiprows=1)
+    gone |= (np.isclose(xyz[:, 0], R) & np.isin(np.round(xyz[:, 1] / R), [3, 5]) &
+             np.isin(np.round(xyz[:, 2] / R), [1, 3, 5]))
+    if int(np.sum(gone)) != 12 or not np.array_equal(
+            thick, np.column_stack([xyz, np.full(len(xyz), R), v, w])[~gone]):
+        failures.append(f"slot --thickness: kept {len(thick)} rows, expected {len(xyz) - 12}")
     stl = os.path.join(work, "plate.stl")
     subprocess.run(script + ["plate", stl, *plate], check=True)
     vertices = [tuple(float(c) for c in line.split()[1:]) for line in open(stl)
                 if line.strip().startswith("vertex")]
-    corners = {(0.035, 0.02, 0.0), (0.035, 0.06, 0.0), (0.035, 0.06, 0.05), (0.035, 0.02, 0.05)}
+    corners = {(0.035, 0.021, 0.0), (0.035, 0.059, 0.0), (0.035, 0.059, 0.05),
+               (0.035, 0.021, 0.05)}
     if len(vertices) != 6 or set(vertices) != corners:
         failures.append(f"plate: vertices {vertices}")
     series = [(0.0, 9.0), (0.1, 1.0), (0.2, 2.0), (0.3, 6.0)]  # from 0.1: mean 3, std sqrt(14/3)
