@@ -773,9 +773,14 @@ class Evaluator:
             return {point: self.spec.bed for point in todo.values()}
         folders = {p: self.out / "beds" / bed_name(self.spec, p) for p in todo.values()}
         jobs = {}
+        charged = {r["bed"] for r in self.results.records}
         for point, folder in folders.items():
-            if not (folder / "bed.json").is_file() and folder not in jobs:
-                jobs[folder] = bed_job(self.spec, folder, point)
+            if not (folder / "bed.json").is_file():
+                if folder not in jobs:
+                    jobs[folder] = bed_job(self.spec, folder, point)
+            elif str(folder.relative_to(self.out)) not in charged:  # made before a restart
+                made = json.loads((folder / "bed.json").read_text())
+                self.bed_seconds.setdefault(folder, made.get("seconds", 0.0))
         self.start_jobs(jobs.values())
         self.runner.run(list(jobs.values()), self.bed_finished)
         self.stop_on_failure()
@@ -786,7 +791,8 @@ class Evaluator:
             self.failures.append(failure_text(job, code))
             return
         self.bed_seconds[job.folder] = seconds
-        (job.folder / "bed.json").write_text(json.dumps({"arguments": job.arguments}) + "\n")
+        (job.folder / "bed.json").write_text(
+            json.dumps({"arguments": job.arguments, "seconds": round(seconds, 3)}) + "\n")
 
     def run(self, todo):
         beds = self.beds(todo)

@@ -13,7 +13,7 @@ number of rows its mean is m = 100 + 0.1 (ρ − 2000) + 200 (μ − 0.5) N and 
 standard deviation s = 5 + 20 μ N, μ = material.0.friction.
 Appends the output folder's name to $FAKE_SOLVER_LOG for each run (not for --check); sleeps when
 that name is $FAKE_SOLVER_HANG (to be killed) and fails with exit 3 when it is
-$FAKE_SOLVER_FAIL."""
+$FAKE_SOLVER_FAIL. A bed takes $FAKE_BED_SECONDS (default 0) to make."""
 import os
 import pathlib
 import sys
@@ -80,6 +80,7 @@ friction = setting("material.0.friction", scene["material"][0]["friction"])
 out.mkdir(parents=True, exist_ok=True)
 if "preparation" in scene:
     import h5py
+    time.sleep(float(os.environ.get("FAKE_BED_SECONDS", "0")))
     height = 0.1 - 2e-5 * (density - 1500)
     with h5py.File(setting("preparation.bed_file", "bed.h5"), "w") as bed:
         bed["position_radius"] = [[0.02 * i + 0.01, 0.02 * j + 0.01, height - 0.01, 0.01]
