@@ -45,6 +45,8 @@ unique or a ridge, writes OUT/sensitivity.json, and runs nothing.
 Bad input (an unknown option or spec key, empty or inverted bounds, a log-scale bound <= 0, a
 target the runs cannot give, a missing scene, bed or solver, a key gpudem-mpi refuses) exits 2
 before anything runs, naming the option, or the spec's file, line and key; a failed run exits 1.
+A run stopped as unstable (the solver's exit 3) is stored without targets, scored as the worst
+evaluation that ran through so far once its batch is done, and the calibration goes on.
 """
 import argparse
 import concurrent.futures
@@ -90,6 +92,9 @@ PLOT_EVERY_S = 60.0
 
 class CalibrationError(Exception):
     """Bad input, found before anything runs (exit 2)."""
+
+
+EXIT_UNSTABLE = 3  # gpudem-mpi's exit code for a run stopped as unstable (docs/input.md)
 
 
 class RunFailed(Exception):
@@ -504,6 +509,11 @@ def check_header(path, stored, wanted, spec_path):
                                    f"--{key} {old.get(key)}; give that or another --out")
 
 
+def ran_through(records):
+    """The records of runs that ran through (a run stopped as unstable has no targets)."""
+    return [r for r in records if r["targets"] is not None]
+
+
 class Results:
     """The append-only file of finished evaluations, looked up by point."""
 
@@ -529,7 +539,7 @@ class Results:
             self.by_point[tuple(record["point"])] = record
 
     def best(self):
-        return min(self.records, key=lambda r: r["objective"], default=None)
+        return min(ran_through(self.records), key=lambda r: r["objective"], default=None)
 
 
 # ------------------------------------------------------------------------------- the runs
@@ -745,6 +755,7 @@ class Evaluator:
         self.seconds = []
         self.version, self.commit = solver_identity(args.solver)
         self.failures = []
+        self.unstable = []
         self.bed_seconds = {}
         self.plotted = 0.0
 
@@ -811,6 +822,7 @@ class Evaluator:
 
         self.runner.run(pass_jobs, finished)
         self.stop_on_failure()
+        self.store_unstable()
 
     def start_jobs(self, jobs):
         for job in jobs:
@@ -820,6 +832,9 @@ class Evaluator:
 
     def pass_finished(self, job, code, seconds, number, point, bed):
         self.pending -= 1
+        if code == EXIT_UNSTABLE:
+            self.unstable.append((number, point, bed, job, seconds))
+            return
         try:
             if code != 0:
                 raise RunFailed(failure_text(job, code))
@@ -827,20 +842,44 @@ class Evaluator:
         except (RunFailed, OSError, ValueError, KeyError) as error:
             self.failures.append(str(error))
             return
+        self.store(number, point, bed, job, seconds, values, objective(self.spec, values))
+
+    def store(self, number, point, bed, job, seconds, values, value, unstable=None):
+        """Appends the record of evaluation `number`: its targets `values` (None for a run
+        stopped as unstable, whose reason `unstable` is kept) and objective `value`."""
         bed_seconds = self.bed_seconds.pop(bed.parent, 0.0) if self.spec.bed_scene else 0.0
         record = {"evaluation": number, "point": list(point),
                   "parameters": {p.name: p.value(u) for p, u in zip(self.spec.parameters, point)},
-                  "targets": values, "objective": objective(self.spec, values),
+                  "targets": values, "objective": value,
                   "wall_s": round(seconds + bed_seconds, 3),
                   "run": str(job.folder.relative_to(self.out)),
                   "bed": str(bed.parent.relative_to(self.out)) if self.spec.bed_scene else None,
                   "solver": self.version, "commit": self.commit}
+        if unstable:
+            record["unstable"] = unstable
         self.results.add(record)
         self.seconds.append(seconds + bed_seconds)
-        shown = ", ".join(f"{q} {v:.4g}" for q, v in values.items())
-        print(self.progress(f"evaluation {number}: objective {record['objective']:.4g} ({shown}, "
+        shown = ", ".join(f"{q} {v:.4g}" for q, v in values.items()) if values else \
+            "unstable, scored as the worst evaluation"
+        print(self.progress(f"evaluation {number}: objective {value:.4g} ({shown}, "
                             f"{seconds + bed_seconds:.0f} s)", self.requested - self.pending),
               flush=True)
+
+    def store_unstable(self):
+        """Stores the batch's runs that stopped as unstable with the objective of the worst
+        evaluation that ran through (taken once the batch is done, so a resumed calibration
+        scores them the same); the calibration goes on around them."""
+        if not self.unstable:
+            return
+        through = [r["objective"] for r in ran_through(self.results.records)]
+        if not through:
+            raise RunFailed("no evaluation has run through yet to score unstable runs by:\n" +
+                            "\n".join(failure_text(job, EXIT_UNSTABLE)
+                                       for *_, job, _ in self.unstable))
+        for number, point, bed, job, seconds in sorted(self.unstable, key=lambda u: u[0]):
+            self.store(number, point, bed, job, seconds, None, max(through),
+                       unstable=last_line(job.folder / "solver.log"))
+        self.unstable = []
 
     def progress(self, what, done):
         best = self.results.best()
@@ -859,6 +898,11 @@ class Evaluator:
     def stop_on_failure(self):
         if self.failures:
             raise RunFailed("\n".join(self.failures))
+
+
+def last_line(path):
+    lines = path.read_text().splitlines() if path.is_file() else []
+    return lines[-1] if lines else ""
 
 
 def failure_text(job, code):
@@ -1056,7 +1100,7 @@ def main(argv=None):
         spec, results_path = prepare(args)
         if args.sensitivity:
             _, records = read_results(pathlib.Path(args.out, RESULTS))
-            result = sensitivity(spec, records, args.neighbours)
+            result = sensitivity(spec, ran_through(records), args.neighbours)
     except CalibrationError as error:
         print(f"calibrate.py: {error}", file=sys.stderr)
         return 2

@@ -17,6 +17,9 @@ gives mean 100 + 0.1 (ρ − 2000) + 200 (μ − 0.5) N, spread 5 + 20 μ N and 
   the uninterrupted calibration's evaluations; the array script holds each run.
 - Refusals (exit 2, the option or the spec's file, line and key named, nothing run) and a failed
   run (exit 1, naming it; the other evaluation of its batch kept).
+- A run stopped as unstable (exit 3) is stored without targets, with the reason and the objective
+  of the worst evaluation of its batch or before that ran through, and the calibration goes on;
+  killed and resumed, it stores the same evaluations as one never stopped.
 - --sensitivity on stored evaluations of known linear targets: the gradients (per unit, on a
   linear and a log scale), the objective's Hessian eigenvalues, "unique" with two targets and
   "ridge" along the known direction with one.
@@ -96,11 +99,13 @@ def check_bed_times(out):
                             f"{made} s), took {r['wall_s']} s without the bed's time")
 
 
-def calibrate(*options, out="bo", spec=MAIN_SPEC, hang="", fail="", wait=True, path=None):
+def calibrate(*options, out="bo", spec=MAIN_SPEC, hang="", fail="", unstable="", wait=True,
+              path=None):
     command = ["/usr/bin/python3", str(project / "scripts" / "calibrate.py"), spec,
                "--solver", str(FAKE), "--out", str(work / out), *options]
     env = dict(os.environ, FAKE_SOLVER_LOG=str(LOG), FAKE_SOLVER_HANG=hang,
-               FAKE_SOLVER_FAIL=fail, FAKE_BED_SECONDS=str(BED_SECONDS), OMP_NUM_THREADS="1")
+               FAKE_SOLVER_FAIL=fail, FAKE_SOLVER_UNSTABLE=unstable,
+               FAKE_BED_SECONDS=str(BED_SECONDS), OMP_NUM_THREADS="1")
     if path:
         env["PATH"] = f"{path}:{env['PATH']}"
     if not wait:
@@ -137,7 +142,17 @@ def check_results(out, count):
     if [r["evaluation"] for r in entries] != list(range(count)):
         failures.append(f"{out}: evaluations {[r['evaluation'] for r in entries]}, wanted "
                         f"0..{count - 1}")
+    lines = (work / out / "evaluations.jsonl").read_text().splitlines()[1:]
+    in_file_order = [json.loads(line) for line in lines]
+    for k, r in enumerate(in_file_order):
+        if r["targets"] is None:
+            worst = max(s["objective"] for s in in_file_order[:k] if s["targets"] is not None)
+            if "unstable at step" not in r.get("unstable", "") or r["objective"] != worst:
+                failures.append(f"{out}: evaluation {r['evaluation']} stopped as unstable: "
+                                f"stored as {r}, not with the worst objective before it, {worst}")
     for r in entries:
+        if r["targets"] is None:
+            continue
         low_high = {"density": (1500, 2500), "friction": (0.2, 0.8)}
         for (name, (low, high)), u in zip(low_high.items(), r["point"]):
             if abs(r["parameters"][name] - (low + u * (high - low))) > 1e-9 * high:
@@ -158,7 +173,7 @@ def check_results(out, count):
             failures.append(f"{out}: evaluation {r['evaluation']}: solver, wall time, run or "
                             f"bed missing: {r}")
     best = json.loads((work / out / "best.json").read_text())
-    if best["objective"] != min(r["objective"] for r in entries):
+    if best["objective"] != min(r["objective"] for r in entries) or best["targets"] is None:
         failures.append(f"{out}: best.json holds objective {best['objective']}, not the least")
     for plot in ("convergence.png", "parameters.png", "best_draft.png"):
         if not (work / out / plot).is_file():
@@ -166,10 +181,10 @@ def check_results(out, count):
     return entries
 
 
-def kill_while_hanging(options, out, run):
+def kill_while_hanging(options, out, run, unstable=""):
     """Starts a calibration and kills it (SIGKILL to it and its runs) once `run` has started."""
     before = len(calls())
-    process = calibrate(*options, out=out, hang=run, wait=False)
+    process = calibrate(*options, out=out, hang=run, unstable=unstable, wait=False)
     deadline = time.monotonic() + 60
     while run not in calls()[before:] and time.monotonic() < deadline and process.poll() is None:
         time.sleep(0.05)
@@ -178,19 +193,19 @@ def kill_while_hanging(options, out, run):
     process.wait()
 
 
-def check_resume(options, out, run, count):
+def check_resume(options, out, run, count, unstable=""):
     """A calibration killed at `run` and resumed equals the uninterrupted one in out + "-whole"."""
-    code, text = calibrate(*options, out=out + "-whole")
+    code, text = calibrate(*options, out=out + "-whole", unstable=unstable)
     if code != 0:
         failures.append(f"{out}-whole: exit {code}: {text}")
         return
     whole = check_results(out + "-whole", count)
-    kill_while_hanging(options, out, run)
+    kill_while_hanging(options, out, run, unstable)
     stored = {f"e{r['evaluation']:05d}" for r in records(out)}
     with open(work / out / "evaluations.jsonl", "a") as results:
         results.write('{"evaluation": 99, "point": [0.5')  # a write cut short
     before = len(calls())
-    code, text = calibrate(*options, out=out)
+    code, text = calibrate(*options, out=out, unstable=unstable)
     rerun = stored & set(calls()[before:])
     if code != 0 or comparable(check_results(out, count)) != comparable(whole) or rerun:
         failures.append(f"{out}: resumed (exit {code}) unlike the uninterrupted calibration, or "
@@ -204,6 +219,9 @@ BO = ["--optimizer", "bo", "--evaluations", "10", "--batch", "2", "--jobs", "2"]
 DE = ["--optimizer", "de", "--population", "6", "--evaluations", "18", "--jobs", "3"]
 check_resume(BO, "bo", "e00007", 10)
 check_resume(DE, "de", "e00008", 12 + 6)
+check_resume(BO, "bo-unstable", "e00007", 10, unstable="e00003")
+if [r["evaluation"] for r in records("bo-unstable") if r["targets"] is None] != [3]:
+    failures.append("bo-unstable: evaluation 3, stopped as unstable, is not the one stored so")
 
 before = len(calls())
 code, text = calibrate(*BO[:2], "--evaluations", "14", *BO[4:], out="bo-whole")
@@ -320,7 +338,7 @@ if code != 0 or "valid" not in text or (work / "checked").exists():
     failures.append(f"--check: exit {code}, or it wrote {work / 'checked'}: {text}")
 
 code, text = calibrate(*BO, out="failing", fail="e00003")
-if code != 1 or "e00003 failed (exit 3)" not in text or "a failure made on purpose" not in text \
+if code != 1 or "e00003 failed (exit 1)" not in text or "a failure made on purpose" not in text \
         or [r["evaluation"] for r in records("failing")] != [0, 1, 2, 4, 5]:
     failures.append(f"a failed run: exit {code}, stored "
                     f"{[r['evaluation'] for r in records('failing')]}: {text!r}")

@@ -12,8 +12,9 @@ force on the mesh "sweep" travelling along +x: draft m + s (−1)^k on row k, so
 number of rows its mean is m = 100 + 0.1 (ρ − 2000) + 200 (μ − 0.5) N and its (population)
 standard deviation s = 5 + 20 μ N, μ = material.0.friction.
 Appends the output folder's name to $FAKE_SOLVER_LOG for each run (not for --check); sleeps when
-that name is $FAKE_SOLVER_HANG (to be killed) and fails with exit 3 when it is
-$FAKE_SOLVER_FAIL. A bed takes $FAKE_BED_SECONDS (default 0) to make."""
+that name is $FAKE_SOLVER_HANG (to be killed), fails with exit 1 when it is $FAKE_SOLVER_FAIL
+and stops as unstable (exit 3, as gpudem-mpi does) when it is $FAKE_SOLVER_UNSTABLE. A bed
+takes $FAKE_BED_SECONDS (default 0) to make."""
 import os
 import pathlib
 import sys
@@ -73,6 +74,9 @@ if out.name == os.environ.get("FAKE_SOLVER_HANG"):
     time.sleep(120)
 if out.name == os.environ.get("FAKE_SOLVER_FAIL"):
     print("gpudem-mpi: error: a failure made on purpose")
+    sys.exit(1)
+if out.name == os.environ.get("FAKE_SOLVER_UNSTABLE"):
+    print("gpudem-mpi: error: unstable at step 7 (made on purpose)")
     sys.exit(3)
 
 density = setting("material.0.density", scene["material"][0]["density"])
