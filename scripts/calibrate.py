@@ -934,6 +934,7 @@ def plot_convergence(path, records):
     ax.plot(numbers, values, ".", color="0.6", label="evaluation")
     ax.step(numbers, np.minimum.accumulate(values), where="post", color="C3", label="best so far")
     ax.set_yscale("symlog", linthresh=1.0)
+    ax.set_ylim(bottom=0)
     ax.set_xlabel("evaluation")
     ax.set_ylabel("objective Σ((sim − measured)/σ)²")
     ax.grid(alpha=0.3)
@@ -947,13 +948,18 @@ def plot_parameters(path, spec, records, best):
     columns = min(3, len(spec.parameters))
     rows = math.ceil(len(spec.parameters) / columns)
     fig, axes = plt.subplots(rows, columns, figsize=(4 * columns, 3.2 * rows), squeeze=False)
-    values = [r["objective"] for r in records]
+    through = ran_through(records)
+    unstable = [r for r in records if r["targets"] is None]
     for ax, p in zip(axes.flat, spec.parameters):
-        ax.plot([r["parameters"][p.name] for r in records], values, ".", color="0.5")
+        ax.plot([r["parameters"][p.name] for r in through], [r["objective"] for r in through],
+                ".", color="0.5")
+        ax.plot([r["parameters"][p.name] for r in unstable], [r["objective"] for r in unstable],
+                "x", color="0.5")
         ax.plot(best["parameters"][p.name], best["objective"], "*", color="C3", ms=12)
         ax.set_xscale("log" if p.log else "linear")
         ax.set_xlim(p.low, p.high)
         ax.set_yscale("symlog", linthresh=1.0)
+        ax.set_ylim(bottom=0)
         ax.set_xlabel(p.name)
         ax.grid(alpha=0.3)
     for ax in axes.flat[len(spec.parameters):]:
