@@ -137,7 +137,7 @@ memory[esys.settled]=${memory[esys.settle]}
 state[esys.settle]=$(observe "$out/esys/settle.dump")
 state[esys.settled]=$(observe "$out/esys/settled.dump")
 
-# The plate drag, from gpudem-mpi's settled bed in every code.
+# The plate drag, from gpudem-mpi's settled bed, in gpudem-mpi, LIGGGHTS and LAMMPS.
 plate=(0.25 0.25 0.45 0.04 0.30)  # X Y0 Y1 Z0 Z1 [m]: the plate's plane x = X at the start
 speed=1.0                         # m/s along +x
 every=10                          # steps between force samples
