@@ -5,8 +5,8 @@
       the particles of a gpudem-mpi snapshot or checkpoint as a CSV source (x,y,z,r,vx,vy,vz)
   particles.py data IN OUT.data --style liggghts|lammps --density RHO --box X0 X1 Y0 Y1 Z0 Z1
       the particles of a CSV source, or of a bed, checkpoint or snapshot (HDF5), with their
-      spins (a CSV's wx, wy, wz columns), as a data file: LIGGGHTS atom_style granular, LAMMPS atom_style sphere (atom
-      type 1; LIGGGHTS' type 2 is left to the walls)
+      spins (a CSV's wx, wy, wz columns), as a data file: LIGGGHTS atom_style granular,
+      LAMMPS atom_style sphere (atom type 1; LIGGGHTS' type 2 is left to the walls)
   particles.py observe FILE --density RHO --area A
       from a gpudem-mpi HDF5 file or a LAMMPS/LIGGGHTS text dump (id x y z radius vx vy vz
       omegax omegay omegaz): particles, bed height (highest top) [m], packing fraction (solid

@@ -10,8 +10,8 @@ scripts/peers/compare.sh, on a lattice of known answers:
   centres lie below half the height, over that half's volume) and the kinetic energy
   sum(m v^2 / 2 + I w^2 / 2), all computed here by hand;
 - `slot` leaves out exactly the 6 spheres that reach a plate, and the 12 that reach it made
-  0.02 m thick (worked out by hand on the lattice), and keeps the others' velocities and spins; `plate` writes that rectangle as two
-  triangles; `force` gives the mean and standard deviation of a column from a time on, in a
+  0.02 m thick (worked out by hand on the lattice), and keeps the others' velocities and
+  spins; `plate` writes that rectangle as two triangles; `force` gives the mean and standard deviation of a column from a time on, in a
   CSV and in a whitespace-separated file.
 
 Usage: check_peer_particles.py SOURCE_DIR WORK_DIR
