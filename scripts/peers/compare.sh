@@ -73,6 +73,9 @@ ranks_run() {
 peak_mb() {
   cat "$1"/peak.* | awk '{ s += $1 } END { printf "%.0f", s / 1024 }'
 }
+loop_seconds() {  # the peers' "Loop time of SECONDS on" lines in log $1, one per phase
+  sed -n 's/^Loop time of \([0-9.e+-]*\) on.*/\1/p' "$1"
+}
 stepping_seconds() {  # the stepping time of gpudem-mpi's "done" line in log $1
   sed -n 's/^done: [0-9]* steps in \([0-9.]*\) s.*/\1/p' "$1"
 }
@@ -116,7 +119,7 @@ run_peer() {  # code binary input
   ranks_run "$out/$code" "$binary" -in "$PWD/$input" -var bed bed.data -var settle "$settle" \
     -var settled "$settled" -log log.lammps > "$out/$code/run.log" 2>&1 ||
     failed "$code" "$out/$code/run.log"
-  mapfile -t loops < <(sed -n 's/^Loop time of \([0-9.e+-]*\) on.*/\1/p' "$out/$code/log.lammps")
+  mapfile -t loops < <(loop_seconds "$out/$code/log.lammps")
   seconds[$code.settle]=${loops[0]}
   seconds[$code.settled]=${loops[1]}
   memory[$code.settle]=$(peak_mb "$out/$code")
@@ -129,7 +132,7 @@ run_peer lammps lmp inputs/bench/lammps_peers.in
 PROCS=$((ranks + 1)) ranks_run "$out/esys" esysparticle "$PWD/inputs/bench/esys_peers.py" \
   "$out/particles.csv" "$settle" "$settled" "$ranks" > "$out/esys/run.log" 2>&1 ||
   failed esys-particle "$out/esys/run.log"
-mapfile -t loops < <(sed -n 's/^Loop time of \([0-9.e+-]*\) on.*/\1/p' "$out/esys/run.log")
+mapfile -t loops < <(loop_seconds "$out/esys/run.log")
 seconds[esys.settle]=${loops[0]}
 seconds[esys.settled]=${loops[1]}
 memory[esys.settle]=$(peak_mb "$out/esys")
@@ -182,7 +185,7 @@ run_plate() {  # code binary input, then the input's variables
   ranks_run "$out/$code/plate" "$binary" -in "$PWD/$input" -var bed bed.data -var speed "$speed" \
     -var steps "$drag" -var every "$every" "$@" -log log.lammps > "$out/$code/plate/run.log" 2>&1 ||
     failed "$code's plate drag" "$out/$code/plate/run.log"
-  seconds[$code.plate]=$(sed -n 's/^Loop time of \([0-9.e+-]*\) on.*/\1/p' "$out/$code/plate/log.lammps")
+  seconds[$code.plate]=$(loop_seconds "$out/$code/plate/log.lammps")
   memory[$code.plate]=$(peak_mb "$out/$code/plate")
   force[$code]=$(/usr/bin/python3 "$particles" force "$out/$code/plate/plate_force.txt" \
     --column plate_fx --from "$t_half")

@@ -139,7 +139,7 @@ def write_plate(args):
         for triangle in ((a, b, c), (a, c, d)):
             out.write("  facet normal 1 0 0\n    outer loop\n")
             for vertex in triangle:
-                out.write("      vertex " + " ".join(f"{c:.9g}" for c in vertex) + "\n")
+                out.write("      vertex " + " ".join(f"{x:.9g}" for x in vertex) + "\n")
             out.write("    endloop\n  endfacet\n")
         out.write("endsolid plate\n")
 
