@@ -6,7 +6,7 @@ of the bed, each with its measured uncertainty. One gpudem-mpi run per evaluatio
 Usage: scripts/calibrate.py SPEC [--out DIR] [--optimizer bo|de] [--evaluations N] [--seed S]
        [--population NP] [--mutation F] [--crossover CR] [--batch B] [--initial N]
        [--jobs J] [--np N] [--solver PATH] [--slurm [--sbatch-args TEXT] [--poll S]]
-       [--check | --sensitivity [--neighbours K]]
+       [--check | --sensitivity]
 
 SPEC is a TOML file (docs/input.md, "Calibration: scripts/calibrate.py"): a [calibration]
 table (the pass scene, the bed or the scene that makes it, the tool, the window, settings for
@@ -38,9 +38,10 @@ OUT/best.json are rewritten as it goes.
 
 --check validates the spec and the options (gpudem-mpi --check on the scenes with every
 parameter at its bounds) and exits. --sensitivity reads OUT/evaluations.jsonl, fits each
-target linearly and the objective quadratically over the --neighbours evaluations nearest the
-best, prints each target's sensitivity to each parameter at the best and whether the optimum is
-unique or a ridge, writes OUT/sensitivity.json, and runs nothing.
+target with a Gaussian process through the evaluations that ran through, prints each target's
+slope along each parameter at the best (with its standard deviation) and whether the optimum is
+unique or a ridge (the objective's Gauss–Newton Hessian), writes OUT/sensitivity.json, and runs
+nothing.
 
 Bad input (an unknown option or spec key, empty or inverted bounds, a log-scale bound <= 0, a
 target the runs cannot give, a missing scene, bed or solver, a key gpudem-mpi refuses) exits 2
@@ -362,8 +363,6 @@ def parse_args(argv=None):
     mode = parser.add_mutually_exclusive_group()
     mode.add_argument("--check", action="store_true", help="validate, run nothing")
     mode.add_argument("--sensitivity", action="store_true", help="analyse the stored runs")
-    add("--neighbours", type=int, metavar="K", help="--sensitivity: evaluations nearest the "
-        "best to fit (default: twice the quadratic's coefficients)")
     args = parser.parse_args(argv)
     if args.out is None:
         args.out = str(PROJECT / "out/calibration" / pathlib.Path(args.spec).stem)
@@ -375,7 +374,7 @@ def parse_args(argv=None):
 def check_options(args):
     positive = (("--evaluations", args.evaluations), ("--batch", args.batch),
                 ("--initial", args.initial), ("--jobs", args.jobs), ("--np", args.np),
-                ("--poll", args.poll), ("--neighbours", args.neighbours))
+                ("--poll", args.poll))
     for option, value in positive:
         if value is not None and value <= 0:
             raise CalibrationError(f"{option} takes a value > 0, got {value}")
@@ -997,73 +996,88 @@ def plot_best_draft(path, spec, folder, best):
 # -------------------------------------------------------------------------- the sensitivity
 
 FLAT_RISE = 1.0   # a direction is flat when half the range along it raises the objective less
+SLOPE_STEP = 0.05  # half the unit-cube span of the difference quotient of a fitted slope
 
 
-def quadratic_terms(z):
-    """The columns 1, z_i and z_i z_j (i <= j) of the points z (rows), and the pairs (i, j)."""
-    d = z.shape[1]
-    pairs = [(i, j) for i in range(d) for j in range(i, d)]
-    return np.hstack([np.ones((len(z), 1)), z, np.stack([z[:, i] * z[:, j] for i, j in pairs],
-                                                        1)]), pairs
+def axis_ends(at, step=SLOPE_STEP):
+    """The points at ± step along each unit axis from `at`, clipped to [0, 1]: rows 2i, 2i + 1."""
+    ends = np.repeat(np.atleast_2d(at), 2 * len(at), axis=0)
+    for i, x in enumerate(at):
+        ends[2 * i, i], ends[2 * i + 1, i] = min(1.0, x + step), max(0.0, x - step)
+    return ends
 
 
-def fitted_hessian(z, values):
-    """The Hessian of the least-squares quadratic through `values` at the points z."""
-    terms, pairs = quadratic_terms(z)
-    fit = np.linalg.lstsq(terms, values, rcond=None)[0]
-    d = z.shape[1]
-    hessian = np.zeros((d, d))
-    for c, (i, j) in zip(fit[1 + d:], pairs):
-        hessian[i, j] = hessian[j, i] = 2 * c if i == j else c
-    return hessian
+def fitted_slopes(points, values, at, seed):
+    """The slope along each unit axis at `at` of a Gaussian process fitted to `values` at the
+    points (its noise fitted too), as the difference quotient of the posterior mean over
+    axis_ends, with the posterior standard deviation of that quotient; and the fitted noise's
+    standard deviation."""
+    gp = optimizers.GaussianProcess(points, values).fit(np.random.default_rng(seed), restarts=5)
+    ends = axis_ends(at)
+    mean, covariance = gp.predict(ends)[0], gp.covariance(ends)
+    width = ends[0::2].diagonal() - ends[1::2].diagonal()
+    hi, lo = np.arange(0, len(ends), 2), np.arange(1, len(ends), 2)
+    slope = (mean[hi] - mean[lo]) / width * gp.scale
+    variance = (covariance[hi, hi] + covariance[lo, lo] - 2 * covariance[hi, lo]) / width ** 2
+    return slope, np.sqrt(np.maximum(variance, 0.0)) * gp.scale, gp.noise_sd()
 
 
-def fitted_gradient(z, values):
-    """The gradient of the least-squares plane through `values` at the points z."""
-    return np.linalg.lstsq(np.hstack([np.ones((len(z), 1)), z]), values, rcond=None)[0][1:]
-
-
-def sensitivity(spec, records, neighbours=None):
-    """Local fits over the evaluations nearest the best, in unit coordinates z = u − u_best:
-    each target linear (its gradient, also per unit of each parameter at the best), the
-    objective quadratic (its Hessian's eigenvalues; the flat directions)."""
+def sensitivity(spec, records, seed=1):
+    """Each target's slope along each parameter at the best evaluation, from a Gaussian process
+    fitted to every evaluation that ran through (fitted_slopes), per unit of the parameter and
+    across its range; the objective's Gauss–Newton Hessian in unit coordinates,
+    2 Σ_t g_t g_tᵀ / σ_t² (exact at an optimum that meets the targets), its eigenvalues and
+    the flat directions, along which half the range raises the objective by less than FLAT_RISE."""
     d = len(spec.parameters)
-    terms = 1 + d + d * (d + 1) // 2
-    if len(records) <= terms:
-        raise CalibrationError(f"--sensitivity: a quadratic in {d} parameters needs at least "
-                               f"{terms + 1} evaluations; there are {len(records)}")
+    if len(records) < 2 * d + 2:
+        raise CalibrationError(f"--sensitivity: a Gaussian process in {d} parameters needs at "
+                               f"least {2 * d + 2} evaluations that ran through; there are "
+                               f"{len(records)}")
     best = min(records, key=lambda r: r["objective"])
-    z = np.array([r["point"] for r in records]) - np.array(best["point"])
-    near = np.argsort(np.linalg.norm(z, axis=1))[:max(neighbours or 2 * terms, terms + 1)]
-    eigenvalues, vectors = np.linalg.eigh(
-        fitted_hessian(z[near], [records[i]["objective"] for i in near]))
-    targets = {}
+    points, at = np.array([r["point"] for r in records]), np.array(best["point"], dtype=float)
+    targets, hessian = {}, np.zeros((d, d))
     for t in spec.targets:
-        gradient = fitted_gradient(z[near], [records[i]["targets"][t.quantity] for i in near])
-        targets[t.quantity] = {
-            p.name: {"per_range": g,
-                     "per_unit": g / p.span() / (best["parameters"][p.name] if p.log else 1.0)}
-            for p, g in zip(spec.parameters, gradient)}
-    flat = [{"eigenvalue": float(v), "direction": dict(zip((p.name for p in spec.parameters),
-                                                            map(float, vectors[:, k])))}
-            for k, v in enumerate(eigenvalues) if 0.5 * v * 0.5 ** 2 < FLAT_RISE]
-    return {"best": best, "neighbours": len(near), "targets": targets,
-            "hessian_eigenvalues": [float(v) for v in eigenvalues],
-            "flat_directions": flat, "optimum": "ridge" if flat else "unique"}
+        slope, sd, noise = fitted_slopes(points, [r["targets"][t.quantity] for r in records],
+                                         at, seed)
+        hessian += 2 * np.outer(slope, slope) / t.sigma ** 2
+        per_unit = [1 / p.span() / (best["parameters"][p.name] if p.log else 1.0)
+                    for p in spec.parameters]
+        targets[t.quantity] = {"noise_sd": noise, "slopes": {
+            p.name: {"per_range": float(g), "per_range_sd": float(s),
+                     "per_unit": float(g * u), "per_unit_sd": float(s * u)}
+            for p, g, s, u in zip(spec.parameters, slope, sd, per_unit)}}
+    eigenvalues, vectors = np.linalg.eigh(hessian)
+    directions = [{"eigenvalue": float(v), "direction": dict(zip(
+        (p.name for p in spec.parameters), map(float, vectors[:, k])))}
+        for k, v in enumerate(eigenvalues)]
+    flat = [x for x in directions if 0.5 * x["eigenvalue"] * 0.5 ** 2 < FLAT_RISE]
+    return {"best": best, "evaluations": len(records), "targets": targets,
+            "hessian_eigenvalues": [float(v) for v in eigenvalues], "flat_directions": flat,
+            "fixed_directions": [x for x in directions if x not in flat],
+            "optimum": "ridge" if flat else "unique"}
 
 
 def print_sensitivity(spec, result):
     print(f"sensitivity at evaluation {result['best']['evaluation']} (objective "
-          f"{result['best']['objective']:.4g}), fitted on the {result['neighbours']} nearest:")
+          f"{result['best']['objective']:.4g}), a Gaussian process through the "
+          f"{result['evaluations']} evaluations that ran through:")
     for t in spec.targets:
         unit_name = QUANTITIES[t.quantity]
+        fit = result["targets"][t.quantity]
+        print(f"  {t.quantity}: the runs scatter by {fit['noise_sd']:.4g} {unit_name} (sd) "
+              "about the fit")
         for p in spec.parameters:
-            s = result["targets"][t.quantity][p.name]
-            print(f"  d {t.quantity} / d {p.name}: {s['per_unit']:.4g} {unit_name} per unit "
-                  f"at {result['best']['parameters'][p.name]:.4g} ({s['per_range']:.4g} "
-                  f"{unit_name} across the range{', log scale' if p.log else ''})")
+            s = fit["slopes"][p.name]
+            print(f"  d {t.quantity} / d {p.name}: {s['per_unit']:.4g} ± {s['per_unit_sd']:.2g} "
+                  f"{unit_name} per unit at {result['best']['parameters'][p.name]:.4g} "
+                  f"({s['per_range']:.4g} ± {s['per_range_sd']:.2g} {unit_name} across the "
+                  f"range{', log scale' if p.log else ''})")
     values = ", ".join(f"{v:.4g}" for v in result["hessian_eigenvalues"])
     print(f"  objective Hessian eigenvalues (unit coordinates): {values}")
+    for fixed in result["fixed_directions"]:
+        direction = ", ".join(f"{n} {c:+.3f}" for n, c in fixed["direction"].items())
+        print(f"  the targets fix the combination (eigenvalue {fixed['eigenvalue']:.4g}): "
+              f"{direction}")
     if result["optimum"] == "unique":
         print("  the optimum is unique: every direction raises the objective by more than "
               f"{FLAT_RISE:g} within half its range")
@@ -1106,7 +1120,7 @@ def main(argv=None):
         spec, results_path = prepare(args)
         if args.sensitivity:
             _, records = read_results(pathlib.Path(args.out, RESULTS))
-            result = sensitivity(spec, ran_through(records), args.neighbours)
+            result = sensitivity(spec, ran_through(records), args.seed)
     except CalibrationError as error:
         print(f"calibrate.py: {error}", file=sys.stderr)
         return 2

@@ -105,6 +105,16 @@ class GaussianProcess:
         self.values = np.append(self.values, standardised_value)
         self.condition()
 
+    def covariance(self, x):
+        """Posterior covariance, standardised, between the rows of x."""
+        x = np.atleast_2d(x)
+        v = solve_triangular(self.factor[0], self.kernel(x, self.points, self.theta).T, lower=True)
+        return self.kernel(x, x, self.theta) - v.T @ v
+
+    def noise_sd(self):
+        """The fitted noise's standard deviation, in the values' units."""
+        return float(np.sqrt(np.exp(self.theta[-1]))) * self.scale
+
     def predict(self, x):
         """Mean and standard deviation, standardised, at the rows of x."""
         k = self.kernel(np.atleast_2d(x), self.points, self.theta)

@@ -20,8 +20,9 @@ gives mean 100 + 0.1 (ρ − 2000) + 200 (μ − 0.5) N, spread 5 + 20 μ N and 
 - A run stopped as unstable (exit 3) is stored without targets, with the reason and the objective
   of the worst evaluation of its batch or before that ran through, and the calibration goes on;
   killed and resumed, it stores the same evaluations as one never stopped.
-- --sensitivity on stored evaluations of known linear targets: the gradients (per unit, on a
-  linear and a log scale), the objective's Hessian eigenvalues, "unique" with two targets and
+- --sensitivity on stored evaluations of known linear targets: the fitted slopes (per unit, on
+  a linear and a log scale) within their stated standard deviation, itself under 0.5 %, the
+  objective's Gauss–Newton Hessian eigenvalues within 0.1 %, "unique" with two targets and
   "ridge" along the known direction with one.
 usage: check_calibrate.py PROJECT_SOURCE_DIR WORK_DIR"""
 import contextlib
@@ -376,29 +377,30 @@ for out, slope, verdict in (("unique", 10, "unique"), ("ridge", 0, "ridge")):
     eigenvalues = np.linalg.eigvalsh(2 * rows.T @ rows)
     got = result.get("hessian_eigenvalues", [])
     if code != 0 or result.get("optimum") != verdict or len(got) != 2 or \
-            np.abs(np.array(got) - eigenvalues).max() > 1e-6 * eigenvalues.max():
+            np.abs(np.array(got) - eigenvalues).max() > 1e-3 * eigenvalues.max():
         failures.append(f"--sensitivity {out}: exit {code}, {result.get('optimum')} with "
                         f"eigenvalues {got}, wanted {verdict} with {eigenvalues}: {text}")
         continue
-    mean = result["targets"]["draft_mean"]
+    mean = result["targets"]["draft_mean"]["slopes"]
     wanted = {("density", "per_unit"): 60 / 1000, ("density", "per_range"): 60,
               ("friction", "per_range"): -17,
               ("friction", "per_unit"): -17 / (math.log(4) * 0.4)}
-    for (name, kind), value in wanted.items():
-        if abs(mean[name][kind] - value) > 1e-6 * abs(value):
+    for (name, kind), value in wanted.items():  # within its stated sd, itself under 0.5 %
+        got, sd = mean[name][kind], mean[name][kind + "_sd"]
+        if abs(got - value) > 2 * sd or sd > 5e-3 * abs(value):
             failures.append(f"--sensitivity {out}: d draft_mean / d {name} {kind} "
-                            f"{mean[name][kind]}, wanted {value}")
+                            f"{got} ± {sd}, wanted {value}")
     if {"unique": "the optimum is unique", "ridge": "the optimum is a ridge"}[verdict] not in text:
         failures.append(f"--sensitivity {out}: no verdict line in {text!r}")
     if verdict == "ridge":
         direction = np.array(list(result["flat_directions"][0]["direction"].values()))
         if len(result["flat_directions"]) != 1 or \
-                abs(abs(direction @ np.array([3.4, 12]) / math.hypot(3.4, 12)) - 1) > 1e-6:
+                abs(abs(direction @ np.array([3.4, 12]) / math.hypot(3.4, 12)) - 1) > 1e-3:
             failures.append(f"--sensitivity ridge: flat directions {result['flat_directions']}, "
                             "wanted one along (3.4, 12)")
 code, text = calibrate_here("--sensitivity", out="nothing")
-if code != 2 or "--sensitivity: a quadratic in 2 parameters needs at least 7 evaluations" \
-        not in text:
+if code != 2 or "--sensitivity: a Gaussian process in 2 parameters needs at least 6 " \
+        "evaluations that ran through; there are 0" not in text:
     failures.append(f"--sensitivity without evaluations: exit {code}: {text!r}")
 
 for failure in failures:
