@@ -21,8 +21,8 @@
 # Python 3 with h5py and numpy, default python3), TESTS (an extended regular expression: only
 # the tests whose whole name it matches, e.g. 'test_settling|mpi_.*'; default all), FIRST (a
 # regular expression: the tests it matches start first; default the host-versus-CUDA
-# comparisons, the CUDA unit tests, precision and the rank-count runs), BUDGET
-# (seconds for all parts, default 480, so that one device call of 540 s holds them: every
+# comparisons, the CUDA unit tests, the hard cases on CUDA, precision and the rank-count runs),
+# BUDGET (seconds for all parts, default 480, so that one device call of 540 s holds them: every
 # command is stopped when the budget runs out, and what it did not reach is listed as such),
 # TESTS_AT_ONCE (tests side by side, default one per 4 cores), WORK (scratch, default
 # /tmp/gpudem-work), BUNDLE (where the bundle is unpacked, default /tmp/gpudem-gpu).
@@ -34,7 +34,7 @@ WORK=${WORK:-/tmp/gpudem-work}
 BUNDLE=${BUNDLE:-/tmp/gpudem-gpu}
 PYTHON=${PYTHON:-python3}
 TESTS=${TESTS:-.*}
-FIRST=${FIRST:-mpi_cuda|test_backend_agreement|.*_cuda|test_portable_cuda|test_precision|mpi_.*}
+FIRST=${FIRST:-mpi_cuda|test_backend_agreement|.*_cuda|hard_cuda_.*|test_portable_cuda|test_precision|mpi_.*}
 BUDGET=${BUDGET:-480}
 LOGS=$WORK/logs
 rm -rf "$LOGS"
