@@ -6,7 +6,7 @@ of the bed, each with its measured uncertainty. One gpudem-mpi run per evaluatio
 Usage: scripts/calibrate.py SPEC [--out DIR] [--optimizer bo|de] [--evaluations N] [--seed S]
        [--population NP] [--mutation F] [--crossover CR] [--batch B] [--initial N]
        [--jobs J] [--np N] [--solver PATH] [--slurm [--sbatch-args TEXT] [--poll S]]
-       [--check | --sensitivity]
+       [--check | --sensitivity [--run-sd QUANTITY=SD]...]
 
 SPEC is a TOML file (docs/input.md, "Calibration: scripts/calibrate.py"): a [calibration]
 table (the pass scene, the bed or the scene that makes it, the tool, the window, settings for
@@ -41,7 +41,9 @@ parameter at its bounds) and exits. --sensitivity reads OUT/evaluations.jsonl, f
 target with a Gaussian process through the evaluations that ran through, prints each target's
 slope along each parameter at the best (with its standard deviation) and whether the optimum is
 unique or a ridge (the objective's Gauss–Newton Hessian), writes OUT/sensitivity.json, and runs
-nothing.
+nothing. --run-sd QUANTITY=SD gives a target's spread between runs that differ only in chance
+(bed realisations): the fit takes at least that much noise, and does not read the scatter of
+nearby evaluations that share one bed seed as the parameters' effect.
 
 Bad input (an unknown option or spec key, empty or inverted bounds, a log-scale bound <= 0, a
 target the runs cannot give, a missing scene, bed or solver, a key gpudem-mpi refuses) exits 2
@@ -363,12 +365,33 @@ def parse_args(argv=None):
     mode = parser.add_mutually_exclusive_group()
     mode.add_argument("--check", action="store_true", help="validate, run nothing")
     mode.add_argument("--sensitivity", action="store_true", help="analyse the stored runs")
+    add("--run-sd", action="append", default=[], metavar="QUANTITY=SD",
+        help="--sensitivity: the target's spread between runs that differ only in chance "
+             "(e.g. bed realisations), the least noise of its fit (repeatable)")
     args = parser.parse_args(argv)
     if args.out is None:
         args.out = str(PROJECT / "out/calibration" / pathlib.Path(args.spec).stem)
     if args.evaluations is None:
         args.evaluations = 2700 if args.optimizer == "de" else 100
     return args
+
+
+def run_sd(args, spec):
+    """--run-sd as {quantity: standard deviation}, each quantity a target of the spec."""
+    spreads = {}
+    targets = [t.quantity for t in spec.targets]
+    for text in args.run_sd:
+        quantity, _, value = text.partition("=")
+        try:
+            spreads[quantity] = float(value)
+        except ValueError:
+            raise CalibrationError(f"--run-sd {text}: takes QUANTITY=SD, SD a number") from None
+        if quantity not in targets:
+            raise CalibrationError(f"--run-sd {text}: {quantity} is not a target of the spec "
+                                   f"({', '.join(targets)})")
+        if not spreads[quantity] > 0:
+            raise CalibrationError(f"--run-sd {text}: SD takes a value > 0")
+    return spreads
 
 
 def check_options(args):
@@ -390,6 +413,8 @@ def check_options(args):
             raise CalibrationError(f"--crossover takes a value in [0, 1], got {args.crossover}")
     if args.sensitivity:
         return
+    if args.run_sd:
+        raise CalibrationError("--run-sd goes with --sensitivity")
     if not pathlib.Path(args.solver).is_file() or not os.access(args.solver, os.X_OK):
         raise CalibrationError(f"--solver: no executable file {args.solver}")
     args.solver = str(pathlib.Path(args.solver).resolve())
@@ -1007,12 +1032,13 @@ def axis_ends(at, step=SLOPE_STEP):
     return ends
 
 
-def fitted_slopes(points, values, at, seed):
+def fitted_slopes(points, values, at, seed, noise_floor=0.0):
     """The slope along each unit axis at `at` of a Gaussian process fitted to `values` at the
-    points (its noise fitted too), as the difference quotient of the posterior mean over
-    axis_ends, with the posterior standard deviation of that quotient; and the fitted noise's
-    standard deviation."""
-    gp = optimizers.GaussianProcess(points, values).fit(np.random.default_rng(seed), restarts=5)
+    points (its noise fitted too, at least noise_floor), as the difference quotient of the
+    posterior mean over axis_ends, with the posterior standard deviation of that quotient; and
+    the fitted noise's standard deviation."""
+    gp = optimizers.GaussianProcess(points, values).fit(np.random.default_rng(seed), restarts=5,
+                                                        noise_floor=noise_floor)
     ends = axis_ends(at)
     mean, covariance = gp.predict(ends)[0], gp.covariance(ends)
     width = ends[0::2].diagonal() - ends[1::2].diagonal()
@@ -1022,10 +1048,11 @@ def fitted_slopes(points, values, at, seed):
     return slope, np.sqrt(np.maximum(variance, 0.0)) * gp.scale, gp.noise_sd()
 
 
-def sensitivity(spec, records, seed=1):
+def sensitivity(spec, records, seed=1, run_sd=None):
     """Each target's slope along each parameter at the best evaluation, from a Gaussian process
-    fitted to every evaluation that ran through (fitted_slopes), per unit of the parameter and
-    across its range; the objective's Gauss–Newton Hessian in unit coordinates,
+    fitted to every evaluation that ran through (fitted_slopes; its noise at least run_sd[quantity],
+    the spread of the target between runs that differ only in chance), per unit of the parameter
+    and across its range; the objective's Gauss–Newton Hessian in unit coordinates,
     2 Σ_t g_t g_tᵀ / σ_t² (exact at an optimum that meets the targets), its eigenvalues and
     the flat directions, along which half the range raises the objective by less than FLAT_RISE."""
     d = len(spec.parameters)
@@ -1038,7 +1065,7 @@ def sensitivity(spec, records, seed=1):
     targets, hessian = {}, np.zeros((d, d))
     for t in spec.targets:
         slope, sd, noise = fitted_slopes(points, [r["targets"][t.quantity] for r in records],
-                                         at, seed)
+                                         at, seed, (run_sd or {}).get(t.quantity, 0.0))
         hessian += 2 * np.outer(slope, slope) / t.sigma ** 2
         per_unit = [1 / p.span() / (best["parameters"][p.name] if p.log else 1.0)
                     for p in spec.parameters]
@@ -1120,7 +1147,7 @@ def main(argv=None):
         spec, results_path = prepare(args)
         if args.sensitivity:
             _, records = read_results(pathlib.Path(args.out, RESULTS))
-            result = sensitivity(spec, ran_through(records), args.seed)
+            result = sensitivity(spec, ran_through(records), args.seed, run_sd(args, spec))
     except CalibrationError as error:
         print(f"calibrate.py: {error}", file=sys.stderr)
         return 2

@@ -78,14 +78,16 @@ class GaussianProcess:
         alpha = cho_solve(factor, self.values)
         return 0.5 * self.values @ alpha + np.log(np.diag(factor[0])).sum()
 
-    def fit(self, rng, restarts=3):
+    def fit(self, rng, restarts=3, noise_floor=0.0):
         """Maximum marginal likelihood over length scales 0.01–10, signal variance 0.05–20 and
-        noise variance 1e-6–1 (on standardised values), from the middle and `restarts` − 1
-        random starts."""
+        noise variance 1e-6–1 (on standardised values; at least noise_floor², noise_floor a
+        standard deviation in the values' units), from the middle and `restarts` − 1 random
+        starts."""
         d = self.points.shape[1]
+        floor = np.log(max(1e-6, (noise_floor / self.scale) ** 2))
         bounds = [(np.log(0.01), np.log(10.0))] * d + [(np.log(0.05), np.log(20.0)),
-                                                     (np.log(1e-6), 0.0)]
-        starts = [np.array([np.log(0.3)] * d + [0.0, np.log(1e-3)])]
+                                                     (floor, max(0.0, floor))]
+        starts = [np.array([np.log(0.3)] * d + [0.0, max(np.log(1e-3), floor)])]
         starts += [np.array([rng.uniform(lo, hi) for lo, hi in bounds])
                    for _ in range(restarts - 1)]
         fits = [scipy.optimize.minimize(self.negative_log_likelihood, s, method="L-BFGS-B",

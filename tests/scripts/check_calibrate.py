@@ -23,7 +23,8 @@ gives mean 100 + 0.1 (ρ − 2000) + 200 (μ − 0.5) N, spread 5 + 20 μ N and 
 - --sensitivity on stored evaluations of known linear targets: the fitted slopes (per unit, on
   a linear and a log scale) within their stated standard deviation, itself under 0.5 %, the
   objective's Gauss–Newton Hessian eigenvalues within 0.1 %, "unique" with two targets and
-  "ridge" along the known direction with one.
+  "ridge" along the known direction with one; --run-sd sets the fit's least noise, and its
+  refusals.
 usage: check_calibrate.py PROJECT_SOURCE_DIR WORK_DIR"""
 import contextlib
 import io
@@ -398,6 +399,25 @@ for out, slope, verdict in (("unique", 10, "unique"), ("ridge", 0, "ridge")):
                 abs(abs(direction @ np.array([3.4, 12]) / math.hypot(3.4, 12)) - 1) > 1e-3:
             failures.append(f"--sensitivity ridge: flat directions {result['flat_directions']}, "
                             "wanted one along (3.4, 12)")
+# --run-sd: the fit of noise-free values takes the least noise allowed, the given spread, and
+# its slopes stay within their (wider) standard deviation; refusals name the option.
+code, text = calibrate_here("--sensitivity", "--run-sd", "draft_mean=2", out="unique",
+                            spec=log_spec)
+fit = json.loads((work / "unique" / "sensitivity.json").read_text())["targets"]["draft_mean"] \
+    if code == 0 else {}
+if code != 0 or abs(fit["noise_sd"] - 2) > 1e-6 or "scatter by 2 N" not in text or \
+        abs(fit["slopes"]["density"]["per_range"] - 60) > 3 * fit["slopes"]["density"][
+            "per_range_sd"]:
+    failures.append(f"--sensitivity --run-sd draft_mean=2: exit {code}, {fit}: {text}")
+for options, message in ((["--sensitivity", "--run-sd", "repose=1"],
+                          "--run-sd repose=1: repose is not a target of the spec"),
+                         (["--sensitivity", "--run-sd", "draft_mean=-1"],
+                          "--run-sd draft_mean=-1: SD takes a value > 0"),
+                         (["--check", "--run-sd", "draft_mean=1"],
+                          "--run-sd goes with --sensitivity")):
+    code, text = calibrate_here(*options, out="unique", spec=log_spec)
+    if code != 2 or message not in text:
+        failures.append(f"{options}: exit {code}: {text!r}")
 code, text = calibrate_here("--sensitivity", out="nothing")
 if code != 2 or "--sensitivity: a Gaussian process in 2 parameters needs at least 6 " \
         "evaluations that ran through; there are 0" not in text:
