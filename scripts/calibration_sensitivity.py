@@ -35,16 +35,17 @@ def fitted_slopes(points, values, at, seed, noise_floor=0.0):
 
 def sensitivity(spec, records, seed=1, run_sd=None):
     """Each target's slope along each parameter at the best evaluation, from a Gaussian process
-    fitted to every evaluation that ran through (fitted_slopes; its noise at least run_sd[quantity],
-    the spread of the target between runs that differ only in chance), per unit of the parameter
-    and across its range; the objective's Gauss–Newton Hessian in unit coordinates,
-    2 Σ_t g_t g_tᵀ / σ_t² (exact at an optimum that meets the targets), its eigenvalues and
-    the flat directions, along which half the range raises the objective by less than FLAT_RISE."""
+    fitted to every evaluation that ran through (fitted_slopes; its noise at least
+    run_sd[quantity], the spread of the target between runs that differ only in chance), per
+    unit of the parameter and across its range; the objective's Gauss–Newton Hessian in unit
+    coordinates, 2 Σ_t g_t g_tᵀ / σ_t² (exact at an optimum that meets the targets), its
+    eigenvalues and the flat directions, along which half the range raises the objective by
+    less than FLAT_RISE."""
     d = len(spec.parameters)
     if len(records) < 2 * d + 2:
         raise ValueError(f"--sensitivity: a Gaussian process in {d} parameters needs at "
-                               f"least {2 * d + 2} evaluations that ran through; there are "
-                               f"{len(records)}")
+                         f"least {2 * d + 2} evaluations that ran through; there are "
+                         f"{len(records)}")
     best = min(records, key=lambda r: r["objective"])
     points, at = np.array([r["point"] for r in records]), np.array(best["point"], dtype=float)
     targets, hessian = {}, np.zeros((d, d))
