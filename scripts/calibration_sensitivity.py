@@ -48,13 +48,13 @@ def sensitivity(spec, records, seed=1, run_sd=None):
                          f"{len(records)}")
     best = min(records, key=lambda r: r["objective"])
     points, at = np.array([r["point"] for r in records]), np.array(best["point"], dtype=float)
+    per_unit = [1 / p.span() / (best["parameters"][p.name] if p.log else 1.0)
+                for p in spec.parameters]
     targets, hessian = {}, np.zeros((d, d))
     for t in spec.targets:
         slope, sd, noise = fitted_slopes(points, [r["targets"][t.quantity] for r in records],
                                          at, seed, (run_sd or {}).get(t.quantity, 0.0))
         hessian += 2 * np.outer(slope, slope) / t.sigma ** 2
-        per_unit = [1 / p.span() / (best["parameters"][p.name] if p.log else 1.0)
-                    for p in spec.parameters]
         targets[t.quantity] = {"noise_sd": noise, "slopes": {
             p.name: {"per_range": float(g), "per_range_sd": float(s),
                      "per_unit": float(g * u), "per_unit_sd": float(s * u)}
@@ -89,9 +89,8 @@ def print_sensitivity(spec, result, units):
     values = ", ".join(f"{v:.4g}" for v in result["hessian_eigenvalues"])
     print(f"  objective Hessian eigenvalues (unit coordinates): {values}")
     for fixed in result["fixed_directions"]:
-        direction = ", ".join(f"{n} {c:+.3f}" for n, c in fixed["direction"].items())
         print(f"  the targets fix the combination (eigenvalue {fixed['eigenvalue']:.4g}): "
-              f"{direction}")
+              f"{direction_text(fixed)}")
     if result["optimum"] == "unique":
         print("  the optimum is unique: every direction raises the objective by more than "
               f"{FLAT_RISE:g} within half its range")
@@ -99,5 +98,9 @@ def print_sensitivity(spec, result, units):
     print(f"  the optimum is a ridge: {len(result['flat_directions'])} direction(s) along "
           f"which half the range raises the objective by less than {FLAT_RISE:g}:")
     for flat in result["flat_directions"]:
-        direction = ", ".join(f"{n} {c:+.3f}" for n, c in flat["direction"].items())
-        print(f"    eigenvalue {flat['eigenvalue']:.4g}: {direction}")
+        print(f"    eigenvalue {flat['eigenvalue']:.4g}: {direction_text(flat)}")
+
+
+def direction_text(eigen):
+    """An eigenvector of sensitivity()'s Hessian as "name ±c, ..."."""
+    return ", ".join(f"{n} {c:+.3f}" for n, c in eigen["direction"].items())

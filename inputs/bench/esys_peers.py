@@ -9,8 +9,9 @@ E* = E / (2 (1 - nu^2)) by 2.2 mm (in the settled bed, under about 0.4 N, it sin
 into the spring against 0.21 mm into the Hertz wall). ESyS-Particle multiplies a wall's
 normalK by pi R in 3D (measured: a sphere resting on the floor sinks m g / (pi R normalK)), so
 normalK is that stiffness over pi R. Same time step, skin, gravity and bin. Runs on WORKERS
-worker ranks (slabs along x) under one master rank (mpirun -np WORKERS+1 esysparticle). Each phase prints "Loop time of SECONDS on" and ends with
-a text dump (id x y z radius vx vy vz omegax omegay omegaz), as the LAMMPS-family peers do.
+worker ranks (slabs along x) under one master rank (mpirun -np WORKERS+1 esysparticle). Each
+phase prints "Loop time of SECONDS on" and ends with a text dump (id x y z radius vx vy vz
+omegax omegay omegaz), as the LAMMPS-family peers do.
 
 Usage: mpirun -np WORKERS+1 esysparticle esys_peers.py CSV SETTLE SETTLED WORKERS
 """
