@@ -4,6 +4,7 @@
 /// launches of the law's functors. The history arrays the particle system stores as flat values
 /// are read as the law's records (ContactState: history_size values, nothing else). Include the
 /// backend's ParallelFor header first.
+#include <type_traits>
 #include <vector>
 
 #include "core/ContactParams.hpp"
@@ -13,6 +14,7 @@
 #include "engine/ForceCompute.hpp"
 #include "engine/HostCopies.hpp"
 #include "engine/LaunchTuning.hpp"
+#include "engine/PairOnceForces.hpp"
 
 namespace gpudem {
 
@@ -32,14 +34,31 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
   std::uint32_t history_width() const override { return Law::history_size; }
   bool needs_spin() const override { return Law::needs_spin; }
 
+  /// On the host the pair contacts' loads are summed as integers; over all particles each pair
+  /// is evaluated once (PairOnceForces.hpp).
   void compute(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,
                const ForceOutputs<S>& out, const std::uint32_t* subset,
                std::size_t count) const override {
+    constexpr bool host = std::is_same_v<Space, HostSpace>;
+    if constexpr (host) {
+      if (!subset) {
+        compute_pairs_once(in, gravity, dt, out, count);
+        return;
+      }
+    }
     parallel_for(
         Space{}, count,
-        ComputeForces<Law, P>{view(in), scene(in), gravity, dt, records(out.history), out.force,
-                              out.torque, out.overlap_ratio, out.wall_push, subset},
+        ComputeForces<Law, P, host>{view(in), scene(in), gravity, dt, records(out.history),
+                                    out.force, out.torque, out.overlap_ratio, out.wall_push, subset},
         LaunchSlot::forces);
+  }
+
+  void mirror_pair_history(const ContactInputs<P, S>& in, S* pair_history,
+                           std::size_t count) const override {
+    if constexpr (std::is_same_v<Space, HostSpace> && Law::history_size > 0)
+      host_ranges(count, ranges_,
+                  MirrorPairHistory<Law>{in.neighbor_offsets, in.neighbor_index,
+                                         reinterpret_cast<State*>(pair_history)});
   }
 
   void contact_terms(const ContactInputs<P, S>& in, std::size_t count,
@@ -74,6 +93,19 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
   /// The history values as the law's records, read.
   static const State* records(const S* values) { return reinterpret_cast<const State*>(values); }
 
+  void compute_pairs_once(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,
+                          const ForceOutputs<S>& out, std::size_t count) const {
+    ranges_ = host_thread_count();
+    if (pair_force_.size() < count) {
+      pair_force_.resize(count);
+      pair_torque_.resize(count);
+    }
+    host_ranges(count, ranges_,
+                PairOnceForces<Law, P>{view(in), scene(in), gravity, dt, records(out.history),
+                                       out.force, out.torque, out.overlap_ratio, out.wall_push,
+                                       pair_force_.data(), pair_torque_.data()});
+  }
+
   ContactScene<Law> scene(const ContactInputs<P, S>& in) const {
     return ContactScene<Law>{in.neighbor_offsets,
                              in.neighbor_index,
@@ -90,6 +122,11 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
   }
 
   DeviceArray<typename Law::Params, Space> pair_params_;
+  /// The host's pair-once sweep: the ranges it split the particles into (the mirror takes the
+  /// same) and the per-particle integer sums the partners leave.
+  mutable std::size_t ranges_ = 1;
+  mutable std::vector<ExactSum3> pair_force_;
+  mutable std::vector<ExactSum3> pair_torque_;
 };
 
 }  // namespace gpudem

@@ -381,52 +381,79 @@ GPUDEM_HD void visit_wall_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi,
   }
 }
 
-/// Calls visit(sample) for each contact of particle i: positive overlap, or, for a cohesion
-/// that holds contacts past touch (JKR), a formed contact within its pull-off gap.
+/// Particle i as a contact sweep reads it.
+struct SweptParticle {
+  Real4 x;  ///< position and radius
+  Real4 v;  ///< velocity and inverse mass
+  Vec3 w;   ///< spin (zero for a law without spin)
+  MaterialId material;
+};
+
+template <class Law, class P>
+GPUDEM_HD SweptParticle swept_particle(std::uint32_t i, const ParticleView<P>& p) {
+  SweptParticle q{p.position(i), p.velocity(i), Vec3{}, p.material[i]};
+  if constexpr (Law::needs_spin) q.w = p.spin(i);
+  return q;
+}
+
+/// Calls visit(sample) when particle i (`me`) and its partner on list entry k touch — positive
+/// overlap, or, for a cohesion that holds contacts past touch (JKR), a formed contact within
+/// its pull-off gap — and visit.separated(k) otherwise (or when the pair is bonded).
+template <class Law, class P, class Visitor>
+GPUDEM_HD void visit_pair_entry(const SweptParticle& me, std::uint32_t k, const ParticleView<P>& p,
+                                const ContactScene<Law>& s, Visitor& visit) {
+  const std::uint32_t j = s.neighbor_index[k];
+  if (s.bonded(k)) {
+    visit.separated(k);
+    return;
+  }
+  const Real4 xi = me.x;
+  const Real4 xj = p.position(j);
+  const Vec3 d = s.box.minimum_image(xyz(xj) - xyz(xi));
+  const Real dist2 = norm2(d);
+  const Real reach = xi.w + xj.w;
+  Real limit = reach;
+  if constexpr (Law::Cohesion::history_size > 0)
+    if (dist2 >= reach * reach)
+      limit += holding_gap<Law>(s.pair_params[me.material * s.material_count + p.material[j]],
+                                xi.w * xj.w / reach, s.pair_history[k]);
+  if (dist2 >= limit * limit || dist2 == 0) {
+    visit.separated(k);
+    return;
+  }
+  const Real dist = sqrt(dist2);
+  ContactSample<Law> c;
+  c.point.normal = (Real(1) / dist) * d;
+  c.point.overlap = reach - dist;
+  c.arm = xi.w - Real(0.5) * c.point.overlap;
+  Vec3 wj{};
+  if constexpr (Law::needs_spin) wj = p.spin(j);
+  describe_pair(c, xi, me.v, me.w, xj, p.velocity(j), wj);
+  c.min_radius = xi.w < xj.w ? xi.w : xj.w;
+  c.params = &s.pair_params[me.material * s.material_count + p.material[j]];
+  c.wall = -1;
+  c.slot = k;
+  if constexpr (Law::history_size > 0) c.state = s.pair_history[k];
+  visit(c);
+}
+
+/// The plane-wall and mesh contacts of particle i (after its pairs).
+template <class Law, class Visitor>
+GPUDEM_HD void visit_body_contacts(std::uint32_t i, const SweptParticle& me,
+                                   const ContactScene<Law>& s, Visitor& visit) {
+  visit_wall_contacts(i, me.x, me.v, me.w, me.material, s, visit);
+  if (s.mesh.mesh_count > 0) visit_mesh_contacts(i, me.x, me.v, me.w, me.material, s, visit);
+}
+
+/// Calls visit(sample) for each contact of particle i: its list entries in order
+/// (visit_pair_entry), then plane walls and meshes.
 template <class Law, class P, class Visitor>
 GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
                                 const ContactScene<Law>& s, Visitor& visit) {
-  const Real4 xi = p.position(i);
-  const Real4 vi = p.velocity(i);
-  Vec3 wi{};
-  if constexpr (Law::needs_spin) wi = p.spin(i);
-  const MaterialId mi = p.material[i];
-  for (std::uint32_t k = s.neighbor_offsets[i]; k < s.neighbor_offsets[i + 1]; ++k) {
-    const std::uint32_t j = s.neighbor_index[k];
-    if (s.bonded(k)) {
-      visit.separated(k);
-      continue;
-    }
-    const Real4 xj = p.position(j);
-    const Vec3 d = s.box.minimum_image(xyz(xj) - xyz(xi));
-    const Real dist2 = norm2(d);
-    const Real reach = xi.w + xj.w;
-    Real limit = reach;
-    if constexpr (Law::Cohesion::history_size > 0)
-      if (dist2 >= reach * reach)
-        limit += holding_gap<Law>(s.pair_params[mi * s.material_count + p.material[j]],
-                                  xi.w * xj.w / reach, s.pair_history[k]);
-    if (dist2 >= limit * limit || dist2 == 0) {
-      visit.separated(k);
-      continue;
-    }
-    const Real dist = sqrt(dist2);
-    ContactSample<Law> c;
-    c.point.normal = (Real(1) / dist) * d;
-    c.point.overlap = reach - dist;
-    c.arm = xi.w - Real(0.5) * c.point.overlap;
-    Vec3 wj{};
-    if constexpr (Law::needs_spin) wj = p.spin(j);
-    describe_pair(c, xi, vi, wi, xj, p.velocity(j), wj);
-    c.min_radius = xi.w < xj.w ? xi.w : xj.w;
-    c.params = &s.pair_params[mi * s.material_count + p.material[j]];
-    c.wall = -1;
-    c.slot = k;
-    if constexpr (Law::history_size > 0) c.state = s.pair_history[k];
-    visit(c);
-  }
-  visit_wall_contacts(i, xi, vi, wi, mi, s, visit);
-  if (s.mesh.mesh_count > 0) visit_mesh_contacts(i, xi, vi, wi, mi, s, visit);
+  const SweptParticle me = swept_particle<Law>(i, p);
+  for (std::uint32_t k = s.neighbor_offsets[i]; k < s.neighbor_offsets[i + 1]; ++k)
+    visit_pair_entry(me, k, p, s, visit);
+  visit_body_contacts(i, me, s, visit);
 }
 
 }  // namespace gpudem

@@ -47,6 +47,7 @@ void ParticleSystem<Space, P, S>::rebuild() {
 
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::keep_previous_rows() {
+  settle_pair_history();
   iota(previous_index_, owned_);
   if (!bonds_.empty() && has_list_) {
     check_bond_reach();

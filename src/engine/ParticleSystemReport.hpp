@@ -156,6 +156,7 @@ Diagnostics ParticleSystem<Space, P, S>::local_diagnostics(double& contact_share
   DeviceArray<Real, Space> contacts(n), energy(n);
   const std::uint32_t bodies = wall_count() + meshes_.count();
   DeviceArray<Vec3, Space> body_force(n * bodies), mesh_torque(n * meshes_.count());
+  settle_pair_history();
   law_->contact_terms(contact_inputs(), n,
                       {contacts.data(), energy.data(), body_force.data(), mesh_torque.data()});
   d.potential_elastic = reduce_sum(Space{}, n, ReadValue{energy.data()});
@@ -219,6 +220,7 @@ std::size_t ParticleSystem<Space, P, S>::carry_over_bytes() const {
   if (width_ == 0) return 0;
   if (!has_list_ || pair_history_.size() != neighbors_.pairs_kept() * width_)
     return carried_pairs_.bytes();
+  settle_pair_history();
   return carried_pairs_.bytes_to_keep(owned_, neighbors_.offsets(), pair_history_.data());
 }
 }  // namespace gpudem

@@ -36,6 +36,7 @@ void ParticleSystem<Space, P, S>::restore_particles(const ParticleStore& share,
 
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::get_contact_history(ContactHistory& history) const {
+  settle_pair_history();
   HistoryValues values;
   values.pair = history_in_real(pair_history_);
   values.wall = history_in_real(wall_history_);

@@ -75,6 +75,8 @@ struct JkrCohesion {
   static constexpr bool needs_contact_area = false;
   static constexpr bool needs_effective_radius = true;
   static constexpr int history_size = 1;
+  /// The formed flag is the same seen from either end.
+  static constexpr int negated_values = 0;
   /// With x = √(a/R*) and k = π γ/(8E* R*) (jkr_relative_radius): overlap a²/R* = R* x⁴ and
   /// pull √(8π γ E* a³) = 8 E* R*² √k x³, no root beyond those of the solve.
   template <class S>

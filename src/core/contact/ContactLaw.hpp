@@ -81,6 +81,16 @@ struct ContactLaw {
     return out;
   }
 
+  /// The history of the same contact seen from its other end: each slot's leading
+  /// negated_values (its springs) change sign, the rest (flags) are kept.
+  GPUDEM_HD static State mirrored(const State& s) {
+    State m = s;
+    negate_leading<Tangential>(m.value);
+    negate_leading<Rolling>(m.value + rolling_offset);
+    negate_leading<Cohesion>(m.value + formed_offset);
+    return m;
+  }
+
   /// True when the stored history says the contact has formed (a cohesion that holds contacts
   /// past touch keeps it; false for the others).
   GPUDEM_HD static bool has_formed(const Scalar* history) {
@@ -94,6 +104,12 @@ struct ContactLaw {
     const NormalResponse<Scalar> n = Normal::respond(p, e);
     return Normal::energy(p, e) + Tangential::energy(p, e, history) +
            Rolling::energy(p, e, n, history + rolling_offset) + Cohesion::energy(p, e);
+  }
+
+  template <class Slot>
+  GPUDEM_HD static void negate_leading(Scalar* values) {
+    if constexpr (Slot::history_size > 0)
+      for (int k = 0; k < Slot::negated_values; ++k) values[k] = -values[k];
   }
 
   /// Bytes one contact evaluation reads beyond the partner's position, radius, velocity and

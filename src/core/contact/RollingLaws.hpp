@@ -66,6 +66,8 @@ struct EpsdRolling {
   static constexpr const char* keyword = "epsd";
   static constexpr const char* material_keys = "rolling_friction rolling_damping";
   static constexpr int history_size = 3;
+  /// The spring torque changes sign seen from the other end.
+  static constexpr int negated_values = 3;
   static constexpr bool needs_spin = true;
   static constexpr bool needs_effective_radius = true;
   static constexpr bool needs_inertia = true;

@@ -110,6 +110,8 @@ struct LinearHistoryTangential {
   static constexpr double stiffness_ratio = 2.0 / 7.0;  ///< k_t / k_n
   static double peak_frequency_squared(const ImpactPair& p, double) { return p.stiffness / p.mass; }
   static constexpr int history_size = 4;
+  /// The spring (history 0–2) changes sign seen from the other end; the sliding flag does not.
+  static constexpr int negated_values = 3;
   static constexpr bool needs_spin = true;
   static constexpr bool needs_effective_radius = false;
   template <class Damping, class Normal, class S>
@@ -142,6 +144,8 @@ struct MindlinTangential {
     return 8 * p.shear * root / (2.0 / 7.0 * p.mass);
   }
   static constexpr int history_size = 4;
+  /// The spring (history 0–2) changes sign seen from the other end; the sliding flag does not.
+  static constexpr int negated_values = 3;
   static constexpr bool needs_spin = true;
   static constexpr bool needs_effective_radius = true;
   template <class S>

@@ -1,0 +1,34 @@
+#pragma once
+/// Host loops over contiguous ranges of particles, one range per thread: the pair-once force
+/// sweep and its history mirror (PairOnceForces.hpp) split the particles the same way.
+#include <cstddef>
+#include <cstdint>
+
+#if defined(GPUDEM_HAVE_OPENMP) && defined(_OPENMP)
+#include <omp.h>
+#endif
+
+namespace gpudem {
+
+/// Threads a host loop runs on.
+inline std::size_t host_thread_count() {
+#if defined(GPUDEM_HAVE_OPENMP) && defined(_OPENMP)
+  return static_cast<std::size_t>(omp_get_max_threads());
+#else
+  return 1;
+#endif
+}
+
+/// Calls f(begin, end) for each of `parts` contiguous ranges that split [0, n) in order, range r
+/// being [n·r/parts, n·(r+1)/parts), the ranges on the threads side by side.
+template <class F>
+void host_ranges(std::size_t n, std::size_t parts, const F& f) {
+  const std::int64_t count = static_cast<std::int64_t>(parts);
+#if defined(GPUDEM_HAVE_OPENMP) && defined(_OPENMP)
+#pragma omp parallel for schedule(static, 1)
+#endif
+  for (std::int64_t r = 0; r < count; ++r)
+    f(static_cast<std::uint32_t>(n * r / parts), static_cast<std::uint32_t>(n * (r + 1) / parts));
+}
+
+}  // namespace gpudem

@@ -1,0 +1,142 @@
+// The host backend evaluates each pair contact once, at one end, and sums every particle's
+// pair loads as integers (engine/PairOnceForces.hpp, engine/ExactSum.hpp). Which end evaluates a
+// pair depends on how the particles are split between threads, so a bed poured on 1 and 3
+// threads differs in which end advanced each history, yet must end in the same bits: positions,
+// velocities, spins, forces, torques and each contact's history on both its ends (the other
+// end's filled in from the evaluating end's, mirrored, before it is read). Run for every
+// contact law that keeps a history, over list rebuilds, in each precision policy.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+#include "core/ContactHistory.hpp"
+#include "core/ContactModel.hpp"
+#include "core/ParticleSources.hpp"
+#include "engine/SceneSetup.hpp"
+#include "engine/StepEngine.hpp"
+#include "support/SceneBuilder.hpp"
+
+namespace gpudem::test {
+namespace {
+
+/// What a run leaves, ordered by particle id and by (owner, partner).
+struct Outcome {
+  std::vector<double> particle_values;  ///< position, velocity, spin, force, torque by id
+  std::vector<double> history_values;   ///< each record's partner ids and values
+  std::size_t contacts = 0;
+  std::uint64_t rebuilds = 0;
+};
+
+Scene sticky_rolling_bed(const ContactModel& model) {
+  Scene scene = basic_scene({0, 0, 0}, {0.04, 0.04, 0.12}, 2000, 0.3, 0.6);
+  scene.domain.periodic = {true, true, false};
+  scene.materials[0].young = 5e6;
+  scene.materials[0].rolling_friction = 0.1;     // an EPSD spring has stiffness
+  scene.materials[0].surface_energy = 0.05;      // J/m²: JKR contacts hold past touch
+  scene.materials[0].cohesion_energy_density = 1e4;  // J/m³: sjkr pulls
+  scene.contact.model = model;
+  add_floor(scene);
+  add_box_source(scene, {0, 0, 0}, {0.04, 0.04, 0.05}, 160, 2.5e-3, 0.5e-3);
+  return scene;
+}
+
+/// The source's spheres grown by a third, so that they start pressed together, and moving and
+/// spinning: the bed springs apart, falls back and rebuilds its lists, and every spring loads.
+ParticleStore pressed_bed(const Scene& scene) {
+  ParticleStore particles;
+  create_particles(scene, particles);
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    particles.position_radius[i].w *= 1.3;
+    particles.velocity_inv_mass[i].x = 0.05 * static_cast<double>(i % 7) - 0.15;
+    particles.velocity_inv_mass[i].y = 0.03 * static_cast<double>(i % 5) - 0.06;
+    particles.angular_velocity[i] = {5.0 * static_cast<double>(i % 3) - 5, 3, 0};  // rad/s
+  }
+  return particles;
+}
+
+Outcome pour(const ContactModel& model, Precision precision, int threads) {
+#if defined(_OPENMP)
+  omp_set_num_threads(threads);
+#endif
+  const Scene scene = sticky_rolling_bed(model);
+  const ParticleStore particles = pressed_bed(scene);
+  EngineSetup setup = make_engine_setup(scene, particles);
+  setup.precision = precision;
+  auto engine = make_host_engine(setup);
+  engine->set_particles(particles);
+  for (int n = 0; n < 1000; ++n) engine->step();
+  Outcome out;
+  out.rebuilds = engine->rebuild_count();
+  ParticleStore p;
+  engine->get_particles(p);
+  std::vector<std::size_t> order(p.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return p.id[a] < p.id[b]; });
+  for (std::size_t i : order)
+    for (const double v : {p.position_radius[i].x, p.position_radius[i].y, p.position_radius[i].z,
+                           p.velocity_inv_mass[i].x, p.velocity_inv_mass[i].y,
+                           p.velocity_inv_mass[i].z, p.angular_velocity[i].x,
+                           p.angular_velocity[i].y, p.angular_velocity[i].z, p.force[i].x,
+                           p.force[i].y, p.force[i].z, p.torque[i].x, p.torque[i].y,
+                           p.torque[i].z})
+      out.particle_values.push_back(v);
+  gpudem::ContactHistory h;
+  engine->get_contact_history(h);
+  std::vector<std::size_t> records(h.pair_owner.size());
+  std::iota(records.begin(), records.end(), 0);
+  std::sort(records.begin(), records.end(), [&](auto a, auto b) {
+    return std::tie(h.pair_owner[a], h.pair_partner[a]) <
+           std::tie(h.pair_owner[b], h.pair_partner[b]);
+  });
+  for (std::size_t r : records) {
+    out.history_values.push_back(static_cast<double>(h.pair_owner[r]));
+    out.history_values.push_back(static_cast<double>(h.pair_partner[r]));
+    for (std::uint32_t k = 0; k < h.width; ++k)
+      out.history_values.push_back(h.pair_values[r * h.width + k]);
+  }
+  out.contacts = records.size();
+  return out;
+}
+
+/// Whether two arrays hold the same bits.
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+TEST(PairOnce, SameBitsOnOneAndThreeThreads) {
+#if !defined(_OPENMP)
+  GTEST_SKIP() << "built without OpenMP: the host sweep runs on one thread";
+#endif
+  int models = 0;
+  for (const ContactModel& model : valid_contact_models()) {
+    if (contact_history_width(model) == 0) continue;
+    ++models;
+    const std::string name = contact_model_name(model);
+    for (const Precision precision : {Precision::Double, Precision::Mixed}) {
+      const Outcome one = pour(model, precision, 1);
+      ASSERT_GT(one.contacts, 0u) << name << ": the bed should hold loaded contacts";
+      ASSERT_GT(one.rebuilds, 2u) << name << ": the pour should rebuild its lists";
+      for (const int threads : {3}) {
+        const Outcome many = pour(model, precision, threads);
+        EXPECT_TRUE(same_bits(one.particle_values, many.particle_values))
+            << name << ", " << threads << " threads: particles differ";
+        EXPECT_TRUE(same_bits(one.history_values, many.history_values))
+            << name << ", " << threads << " threads: histories differ (" << one.contacts
+            << " and " << many.contacts << " records)";
+      }
+    }
+  }
+  EXPECT_GT(models, 3);
+}
+
+}  // namespace
+}  // namespace gpudem::test
