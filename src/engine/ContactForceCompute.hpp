@@ -46,11 +46,11 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
         return;
       }
     }
-    parallel_for(
-        Space{}, count,
-        ComputeForces<Law, P, host>{view(in), scene(in), gravity, dt, records(out.history),
-                                    out.force, out.torque, out.overlap_ratio, out.wall_push, subset},
-        LaunchSlot::forces);
+    parallel_for(Space{}, count,
+                 ComputeForces<Law, P, host>{view(in), scene(in), gravity, dt, records(out.history),
+                                             out.force, out.torque, out.overlap_ratio,
+                                             out.wall_push, subset},
+                 LaunchSlot::forces);
   }
 
   void mirror_pair_history(const ContactInputs<P, S>& in, S* pair_history,

@@ -23,7 +23,7 @@ struct ExactTerm {
   std::int64_t fraction;
 };
 
-inline constexpr double exact_units_per_newton = 1048576.0;        // 2^20
+inline constexpr double exact_units_per_newton = 1048576.0;              // 2^20
 inline constexpr double exact_fractions_per_unit = 18014398509481984.0;  // 2^54
 
 inline ExactTerm exact_term(double x) {

@@ -101,11 +101,11 @@ struct PairOnceForces {
         pair_torque[j].add(exact_terms(sum.partner_torque(particles.position(j).w)));
       if (sum.ratio > overlap_ratio[j]) overlap_ratio[j] = sum.ratio;
     }
-    ForceSum<Law, true> bodies{history, dt, Vec3T<S>{}, Vec3T<S>{}, sum.worst_overlap_ratio,
+    ForceSum<Law, true> bodies{history,  dt, Vec3T<S>{}, Vec3T<S>{}, sum.worst_overlap_ratio,
                                wall_push};
     visit_body_contacts(i, me, scene, bodies);
-    force[i] = (sum.force.template value<S>() + bodies.force) +
-               vec_cast<S>((Real(1) / me.v.w) * gravity);
+    force[i] =
+        (sum.force.template value<S>() + bodies.force) + vec_cast<S>((Real(1) / me.v.w) * gravity);
     if constexpr (Law::needs_spin) torque[i] = sum.torque.template value<S>() + bodies.torque;
     overlap_ratio[i] = bodies.worst_overlap_ratio;
   }

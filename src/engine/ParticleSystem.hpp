@@ -282,26 +282,11 @@ class ParticleSystem final : public StepEngine {
   /// The step of the base step in progress: dt / substeps.
   Real step_dt() const { return setup_.dt / clock_.substeps; }
 
-  void compute_forces(const std::uint32_t* list, std::size_t count) {
-    if (list) settle_pair_history();
-    S* push = nullptr;
-    if (!pistons_.empty()) {
-      if (wall_push_.size() != owned_ * wall_count()) wall_push_.resize(owned_ * wall_count());
-      push = wall_push_.data();
-    }
-    law_->compute(contact_inputs(), setup_.gravity, step_dt(),
-                  {force_.data(), torque_.data(), overlap_ratio_.data(), history_pointers(), push},
-                  list, count);
-    if (!list && width_ > 0) pair_history_unsettled_ = true;
-  }
+  void compute_forces(const std::uint32_t* list, std::size_t count);
 
   /// Brings every list entry's history up to date after a pair-once sweep (ForceCompute::
   /// mirror_pair_history): called before the history is read, kept or the list changes.
-  void settle_pair_history() const {
-    if (!pair_history_unsettled_) return;
-    law_->mirror_pair_history(contact_inputs(), pair_history_.data(), owned_);
-    pair_history_unsettled_ = false;
-  }
+  void settle_pair_history() const;
 
   /// The forces of the current state written to `scratch`, the engine's state untouched.
   void compute_forces_into(ForceScratch& scratch) {
@@ -474,9 +459,8 @@ class ParticleSystem final : public StepEngine {
   // Per owned particle, besides the table's fields.
   DeviceArray<Real, Space> overlap_ratio_;
   DeviceArray<State4, Space> position_at_build_;
-  /// width_ per neighbour-list entry (empty: no history). Mutable: after the host's pair-once
-  /// sweep the entries at the pairs' other ends are filled in when first read
-  /// (settle_pair_history), which does not change the contacts' history.
+  /// width_ per neighbour-list entry (empty: no history); mutable: settle_pair_history fills in
+  /// the other ends of a pair-once sweep when first read, the contacts' history unchanged.
   mutable DeviceArray<S, Space> pair_history_;
   mutable bool pair_history_unsettled_ = false;  ///< a pair-once sweep ran since the last settle
   DeviceArray<S, Space> wall_history_;  ///< width_ per (particle, wall) (empty: no history)

@@ -40,8 +40,8 @@ Scene sticky_rolling_bed(const ContactModel& model) {
   Scene scene = basic_scene({0, 0, 0}, {0.04, 0.04, 0.12}, 2000, 0.3, 0.6);
   scene.domain.periodic = {true, true, false};
   scene.materials[0].young = 5e6;
-  scene.materials[0].rolling_friction = 0.1;     // an EPSD spring has stiffness
-  scene.materials[0].surface_energy = 0.05;      // J/m²: JKR contacts hold past touch
+  scene.materials[0].rolling_friction = 0.1;         // an EPSD spring has stiffness
+  scene.materials[0].surface_energy = 0.05;          // J/m²: JKR contacts hold past touch
   scene.materials[0].cohesion_energy_density = 1e4;  // J/m³: sjkr pulls
   scene.contact.model = model;
   add_floor(scene);
@@ -82,12 +82,11 @@ Outcome pour(const ContactModel& model, Precision precision, int threads) {
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](auto a, auto b) { return p.id[a] < p.id[b]; });
   for (std::size_t i : order)
-    for (const double v : {p.position_radius[i].x, p.position_radius[i].y, p.position_radius[i].z,
-                           p.velocity_inv_mass[i].x, p.velocity_inv_mass[i].y,
-                           p.velocity_inv_mass[i].z, p.angular_velocity[i].x,
-                           p.angular_velocity[i].y, p.angular_velocity[i].z, p.force[i].x,
-                           p.force[i].y, p.force[i].z, p.torque[i].x, p.torque[i].y,
-                           p.torque[i].z})
+    for (const double v :
+         {p.position_radius[i].x, p.position_radius[i].y, p.position_radius[i].z,
+          p.velocity_inv_mass[i].x, p.velocity_inv_mass[i].y, p.velocity_inv_mass[i].z,
+          p.angular_velocity[i].x, p.angular_velocity[i].y, p.angular_velocity[i].z, p.force[i].x,
+          p.force[i].y, p.force[i].z, p.torque[i].x, p.torque[i].y, p.torque[i].z})
       out.particle_values.push_back(v);
   gpudem::ContactHistory h;
   engine->get_contact_history(h);
@@ -130,8 +129,8 @@ TEST(PairOnce, SameBitsOnOneAndThreeThreads) {
         EXPECT_TRUE(same_bits(one.particle_values, many.particle_values))
             << name << ", " << threads << " threads: particles differ";
         EXPECT_TRUE(same_bits(one.history_values, many.history_values))
-            << name << ", " << threads << " threads: histories differ (" << one.contacts
-            << " and " << many.contacts << " records)";
+            << name << ", " << threads << " threads: histories differ (" << one.contacts << " and "
+            << many.contacts << " records)";
       }
     }
   }

@@ -82,7 +82,8 @@ struct ContactLaw {
   }
 
   /// The history of the same contact seen from its other end: each slot's leading
-  /// negated_values (its springs) change sign, the rest (flags) are kept.
+  /// negated_values (its springs) change sign, the rest (flags) are kept. A zero stays +0, so
+  /// that a blank record stays blank byte for byte (HistoryCarryOver's is_fresh).
   GPUDEM_HD static State mirrored(const State& s) {
     State m = s;
     negate_leading<Tangential>(m.value);
@@ -109,7 +110,7 @@ struct ContactLaw {
   template <class Slot>
   GPUDEM_HD static void negate_leading(Scalar* values) {
     if constexpr (Slot::history_size > 0)
-      for (int k = 0; k < Slot::negated_values; ++k) values[k] = -values[k];
+      for (int k = 0; k < Slot::negated_values; ++k) values[k] = Scalar(0) - values[k];  // 0 → +0
   }
 
   /// Bytes one contact evaluation reads beyond the partner's position, radius, velocity and
