@@ -1,63 +1,84 @@
 #pragma once
 /// Sums of contact loads that are the same bits in any order. Each term x (a force component
 /// [N], or a torque's [N m]) is rounded once to integers: y = x · 2^20 (units of 2^-20),
-/// whole = round(y), fraction = round((y − whole) · 2^54); the sum of the wholes and the sum of
-/// the fractions are exact in 64-bit integers, so the value, (Σ whole + Σ fraction · 2^-54) ·
-/// 2^-20, depends on the terms alone and not on their order. The resolution is 2^-74 (5 · 10^-23 N)
-/// and the range 2^42 (4 · 10^12 N) per term; up to 2^9 terms fit in the fractions' sum. A term
-/// and its negative round to exact negatives (rounding to nearest even is symmetric), so the
-/// load one end of a pair adds and the other end subtracts cancel exactly. Fixed-point force
-/// sums as in AMBER's SPFP (Le Grand, Götz & Walker 2013, Comput. Phys. Commun. 184, 374).
+/// whole = round(y), fraction = round((y − whole) · 2^44); the wholes and the fractions are
+/// summed modulo 2^64, which is exact and does not depend on the order, so the value,
+/// (Σ whole + Σ fraction · 2^-44) · 2^-20, depends on the terms alone. The resolution is 2^-64
+/// (5 · 10^-20 N). A term must be below 2^30 (10^9 N) in magnitude, and each sum's net value
+/// below 2^43 (8.8 · 10^12 N, e.g. any 8,192 terms at the limit); a term beyond the limit, or
+/// not finite, makes its whole sum NaN, as a plain sum of such a term would be. A term and its
+/// negative round to exact negatives (rounding to nearest even is symmetric), so the load one
+/// end of a pair adds and the other end subtracts cancel exactly. Fixed-point force sums as in
+/// AMBER's SPFP (Le Grand, Götz & Walker 2013, Comput. Phys. Commun. 184, 374).
 /// Host code: the CUDA backend sums in floating point.
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
 
 namespace gpudem {
 
-/// One term, rounded.
+/// One term, rounded; two's complement in unsigned words, whose sums wrap without overflow.
 struct ExactTerm {
-  std::int64_t whole;
-  std::int64_t fraction;
+  std::uint64_t whole;
+  std::uint64_t fraction;
 };
 
-inline constexpr double exact_units_per_newton = 1048576.0;              // 2^20
-inline constexpr double exact_fractions_per_unit = 18014398509481984.0;  // 2^54
+inline constexpr double exact_units_per_newton = 1048576.0;           // 2^20
+inline constexpr double exact_fractions_per_unit = 17592186044416.0;  // 2^44
+inline constexpr double exact_term_limit = 1073741824.0;              // 2^30 N (or N m)
 
-inline ExactTerm exact_term(double x) {
-  const double y = x * exact_units_per_newton;
-  const std::int64_t whole = std::llrint(y);
-  return {whole, std::llrint((y - static_cast<double>(whole)) * exact_fractions_per_unit)};
-}
-
-/// The terms of the three components of a vector.
+/// The terms of the three components of a vector, and whether all three are within the limit.
 struct ExactTerm3 {
   ExactTerm x, y, z;
+  bool representable;
 };
+
+namespace exact_detail {
+inline ExactTerm term(double x) {
+  const double y = x * exact_units_per_newton;
+  const std::int64_t whole = std::llrint(y);
+  const std::int64_t fraction =
+      std::llrint((y - static_cast<double>(whole)) * exact_fractions_per_unit);
+  return {static_cast<std::uint64_t>(whole), static_cast<std::uint64_t>(fraction)};
+}
+inline bool within_limit(double x) { return std::fabs(x) < exact_term_limit; }  // NaN: false
+}  // namespace exact_detail
 
 template <class S>
 ExactTerm3 exact_terms(const Vec3T<S>& v) {
-  return {exact_term(v.x), exact_term(v.y), exact_term(v.z)};
+  const double x = v.x, y = v.y, z = v.z;
+  using exact_detail::within_limit;
+  if (!(within_limit(x) && within_limit(y) && within_limit(z))) return {{}, {}, {}, false};
+  using exact_detail::term;
+  return {term(x), term(y), term(z), true};
 }
 
 /// A vector summed from rounded terms.
 struct ExactSum3 {
   ExactTerm x{0, 0}, y{0, 0}, z{0, 0};
+  bool representable = true;  ///< false once a term beyond the limit was added or subtracted
 
   void add(const ExactTerm3& t) {
     add_to(x, t.x);
     add_to(y, t.y);
     add_to(z, t.z);
+    representable = representable && t.representable;
   }
   void subtract(const ExactTerm3& t) {
     subtract_from(x, t.x);
     subtract_from(y, t.y);
     subtract_from(z, t.z);
+    representable = representable && t.representable;
   }
   template <class S>
   Vec3T<S> value() const {
+    if (!representable) {
+      const S nan = std::numeric_limits<S>::quiet_NaN();
+      return {nan, nan, nan};
+    }
     return {static_cast<S>(component(x)), static_cast<S>(component(y)),
             static_cast<S>(component(z))};
   }
@@ -72,8 +93,10 @@ struct ExactSum3 {
     sum.fraction -= t.fraction;
   }
   static double component(const ExactTerm& s) {
-    return (static_cast<double>(s.whole) +
-            static_cast<double>(s.fraction) * (1 / exact_fractions_per_unit)) *
+    const auto whole = static_cast<std::int64_t>(s.whole);        // two's complement (C++20 rule,
+    const auto fraction = static_cast<std::int64_t>(s.fraction);  // what every compiler does)
+    return (static_cast<double>(whole) +
+            static_cast<double>(fraction) * (1 / exact_fractions_per_unit)) *
            (1 / exact_units_per_newton);
   }
 };

@@ -1,0 +1,1 @@
+gpudem_add_test(test_exact_sum SOURCES unit/ExactSumTest.cpp LABELS unit)
