@@ -95,7 +95,13 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
 
   void compute_pairs_once(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,
                           const ForceOutputs<S>& out, std::size_t count) const {
-    ranges_ = host_thread_count();
+    const std::size_t ranges = host_thread_count();
+    if (ranges != ranges_) {
+      // The ranges regroup the pairs: the old ranges' other ends are filled in first (a no-op
+      // on settled records), so that no end of a regrouped pair starts from a stale record.
+      mirror_pair_history(in, out.history.pair, count);
+      ranges_ = ranges;
+    }
     if (pair_force_.size() < count) {
       pair_force_.resize(count);
       pair_torque_.resize(count);
