@@ -34,31 +34,28 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
   std::uint32_t history_width() const override { return Law::history_size; }
   bool needs_spin() const override { return Law::needs_spin; }
 
-  /// On the host the pair contacts' loads are summed as integers; over all particles each pair
-  /// is evaluated once (PairOnceForces.hpp).
+  /// On the host each pair is evaluated once and the pair loads are summed as integers
+  /// (PairOnceForces.hpp).
   void compute(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,
                const ForceOutputs<S>& out, const std::uint32_t* subset,
                std::size_t count) const override {
-    constexpr bool host = std::is_same_v<Space, HostSpace>;
-    if constexpr (host) {
-      if (!subset) {
-        compute_pairs_once(in, gravity, dt, out, count);
-        return;
-      }
+    if constexpr (std::is_same_v<Space, HostSpace>) {
+      pair_once_.run(
+          PairOnceForces<Law, P>{view(in), scene(in), gravity, dt, records(out.history), out.force,
+                                 out.torque, out.overlap_ratio, out.wall_push, subset},
+          count, in.owned, in.neighbor_offsets, in.neighbor_index);
+    } else {
+      parallel_for(
+          Space{}, count,
+          ComputeForces<Law, P>{view(in), scene(in), gravity, dt, records(out.history), out.force,
+                                out.torque, out.overlap_ratio, out.wall_push, subset},
+          LaunchSlot::forces);
     }
-    parallel_for(Space{}, count,
-                 ComputeForces<Law, P, host>{view(in), scene(in), gravity, dt, records(out.history),
-                                             out.force, out.torque, out.overlap_ratio,
-                                             out.wall_push, subset},
-                 LaunchSlot::forces);
   }
 
-  void mirror_pair_history(const ContactInputs<P, S>& in, S* pair_history,
-                           std::size_t count) const override {
-    if constexpr (std::is_same_v<Space, HostSpace> && Law::history_size > 0)
-      host_ranges(count, ranges_,
-                  MirrorPairHistory<Law>{in.neighbor_offsets, in.neighbor_index,
-                                         reinterpret_cast<State*>(pair_history)});
+  void mirror_pair_history(const ContactInputs<P, S>& in) const override {
+    if constexpr (std::is_same_v<Space, HostSpace>)
+      pair_once_.mirror(in.neighbor_offsets, in.neighbor_index, in.owned);
   }
 
   void contact_terms(const ContactInputs<P, S>& in, std::size_t count,
@@ -93,25 +90,6 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
   /// The history values as the law's records, read.
   static const State* records(const S* values) { return reinterpret_cast<const State*>(values); }
 
-  void compute_pairs_once(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,
-                          const ForceOutputs<S>& out, std::size_t count) const {
-    const std::size_t ranges = host_thread_count();
-    if (ranges != ranges_) {
-      // The ranges regroup the pairs: the old ranges' other ends are filled in first (a no-op
-      // on settled records), so that no end of a regrouped pair starts from a stale record.
-      mirror_pair_history(in, out.history.pair, count);
-      ranges_ = ranges;
-    }
-    if (pair_force_.size() < count) {
-      pair_force_.resize(count);
-      pair_torque_.resize(count);
-    }
-    host_ranges(count, ranges_,
-                PairOnceForces<Law, P>{view(in), scene(in), gravity, dt, records(out.history),
-                                       out.force, out.torque, out.overlap_ratio, out.wall_push,
-                                       pair_force_.data(), pair_torque_.data()});
-  }
-
   ContactScene<Law> scene(const ContactInputs<P, S>& in) const {
     return ContactScene<Law>{in.neighbor_offsets,
                              in.neighbor_index,
@@ -128,11 +106,7 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
   }
 
   DeviceArray<typename Law::Params, Space> pair_params_;
-  /// The host's pair-once sweep: the ranges it split the particles into (the mirror takes the
-  /// same) and the per-particle integer sums the partners leave.
-  mutable std::size_t ranges_ = 1;
-  mutable std::vector<ExactSum3> pair_force_;
-  mutable std::vector<ExactSum3> pair_torque_;
+  mutable PairOnceSweep<Law, P> pair_once_;  ///< the host's sweeps (unused on CUDA)
 };
 
 }  // namespace gpudem

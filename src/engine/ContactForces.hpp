@@ -2,11 +2,8 @@
 /// Per-particle force, torque and worst overlap: one thread per particle sums all its
 /// contacts from the full neighbour list (no atomics), walls and gravity, and advances the
 /// contact history it owns (its own neighbour-list entries and wall slots). Forces and torques
-/// are summed in the law's scalar; with exact_pairs (the host backend) the pair contacts' loads
-/// are summed as integers (ExactSum.hpp), so that a sweep evaluating each pair once
-/// (PairOnceForces.hpp) gives the same bits.
+/// are summed in the law's scalar.
 #include "engine/ContactVisitor.hpp"
-#include "engine/ExactSum.hpp"
 
 namespace gpudem {
 
@@ -32,9 +29,7 @@ struct HistoryArrays {
   }
 };
 
-/// The loads on particle i from its contacts; with exact_pairs those of pair contacts are
-/// summed as integers, apart from the walls' and meshes' (total_force, total_torque).
-template <class Law, bool exact_pairs = false>
+template <class Law>
 struct ForceSum {
   using S = typename Law::Scalar;
   HistoryArrays<Law> history;
@@ -45,40 +40,14 @@ struct ForceSum {
   /// Per (particle, plane wall) slot: the push −F·n_c of the particle on the wall along the
   /// contact normal n_c (towards the wall) [N]; null: not wanted.
   S* wall_push = nullptr;
-  ExactSum3 pair_force{};
-  ExactSum3 pair_torque{};
   GPUDEM_HD void operator()(ContactSample<Law>& c) {
     const typename Law::Force f = evaluate_contact(c, c.state.value, dt);
     if constexpr (Law::history_size > 0) history.of(c)[c.slot] = c.state;
     if (wall_push && c.wall >= 0) wall_push[c.slot] = -dot(f.force, vec_cast<S>(c.point.normal));
-    if constexpr (exact_pairs) {
-      if (c.wall < 0 && c.mesh < 0) {
-        pair_force.add(exact_terms(f.force));
-        if constexpr (Law::needs_spin) pair_torque.add(exact_terms(contact_torque(c, f)));
-      } else {
-        sum_in_scalar(c, f);
-      }
-    } else {
-      sum_in_scalar(c, f);
-    }
-    if constexpr (exact_pairs) {  // the largest ratio, whatever the order of the contacts
-      const Real ratio = c.point.overlap / c.min_radius;
-      if (ratio > worst_overlap_ratio) worst_overlap_ratio = ratio;
-    } else if (c.point.overlap > worst_overlap_ratio * c.min_radius) {  // divides for a new worst
-      worst_overlap_ratio = c.point.overlap / c.min_radius;
-    }
-  }
-  GPUDEM_HD void sum_in_scalar(const ContactSample<Law>& c, const typename Law::Force& f) {
     force += f.force;
     if constexpr (Law::needs_spin) torque += contact_torque(c, f);
-  }
-  GPUDEM_HD Vec3T<S> total_force() const {
-    if constexpr (exact_pairs) return pair_force.value<S>() + force;
-    return force;
-  }
-  GPUDEM_HD Vec3T<S> total_torque() const {
-    if constexpr (exact_pairs) return pair_torque.value<S>() + torque;
-    return torque;
+    if (c.point.overlap > worst_overlap_ratio * c.min_radius)  // divides only for a new worst
+      worst_overlap_ratio = c.point.overlap / c.min_radius;
   }
   /// A contact that opened forgets its history.
   GPUDEM_HD void separated(std::uint32_t slot) {
@@ -96,7 +65,7 @@ struct ForceSum {
 /// F_i = m_i g + Σ contacts, T_i = Σ (arm × F + rolling torque) (one thread per particle), from
 /// a state held in scalar P; thread k computes particle subset[k], or particle k when subset is
 /// null (one kernel for both launches: each law's force kernel is compiled once per backend).
-template <class Law, class P, bool exact_pairs = false>
+template <class Law, class P>
 struct ComputeForces {
   using S = typename Law::Scalar;
   ParticleView<P> particles;
@@ -111,10 +80,10 @@ struct ComputeForces {
   const std::uint32_t* subset = nullptr;
   GPUDEM_HD GPUDEM_HOST_FLATTEN void operator()(std::size_t k) const {
     const std::size_t i = subset ? subset[k] : k;
-    ForceSum<Law, exact_pairs> sum{history, dt, Vec3T<S>{}, Vec3T<S>{}, Real(0), wall_push};
+    ForceSum<Law> sum{history, dt, Vec3T<S>{}, Vec3T<S>{}, Real(0), wall_push};
     for_each_contact(static_cast<std::uint32_t>(i), particles, scene, sum);
-    force[i] = sum.total_force() + vec_cast<S>((Real(1) / particles.velocity(i).w) * gravity);
-    if constexpr (Law::needs_spin) torque[i] = sum.total_torque();
+    force[i] = sum.force + vec_cast<S>((Real(1) / particles.velocity(i).w) * gravity);
+    if constexpr (Law::needs_spin) torque[i] = sum.torque;
     overlap_ratio[i] = sum.worst_overlap_ratio;
   }
 };

@@ -32,6 +32,7 @@ struct HistoryPointers {
 template <class P, class S>
 struct ContactInputs {
   ParticleView<P> particles;
+  std::size_t owned;                      ///< particles with a list row
   const std::uint32_t* neighbor_offsets;  ///< CSR offsets, owned + 1
   const std::uint32_t* neighbor_index;    ///< full neighbour list
   std::uint32_t material_count;
@@ -79,12 +80,12 @@ class ForceCompute {
   virtual void compute(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,
                        const ForceOutputs<S>& out, const std::uint32_t* subset,
                        std::size_t count) const = 0;
-  /// After compute() over all of 0..count on the host, which evaluates each pair once and
-  /// advances only that end's history: copies it, mirrored, to the other end, so that every
-  /// list entry holds its contact's history (nothing on the CUDA backend, whose sweeps advance
-  /// both ends). Call before anything else reads the pair history or the list changes.
-  virtual void mirror_pair_history(const ContactInputs<P, S>& in, S* pair_history,
-                                   std::size_t count) const = 0;
+  /// After compute() on the host, which evaluates each pair once and advances only that end's
+  /// history: copies it, mirrored, to the other end, so that every list entry holds its
+  /// contact's history. Call, with the list those sweeps read, before anything else reads the
+  /// history they wrote or the list changes. Nothing when nothing is pending (always on CUDA,
+  /// whose sweeps advance both ends).
+  virtual void mirror_pair_history(const ContactInputs<P, S>& in) const = 0;
   /// The diagnostics' contact terms of particles [0, count), the history read, not advanced.
   virtual void contact_terms(const ContactInputs<P, S>& in, std::size_t count,
                              const ContactTermOutputs& out) const = 0;

@@ -1,16 +1,20 @@
 #pragma once
-/// The host backend's force sweep that evaluates each pair contact once. The owned particles
-/// are split into one contiguous range per thread (parallel_ranges). Within a range a pair is
-/// evaluated at its lower index: that end adds the pair's load to its own sum and subtracts it
-/// from the partner's accumulator, whose turn is still to come; a pair across ranges (or with
-/// a ghost) is evaluated at both ends, each writing only its own. Loads are summed as integers
-/// (ExactSum.hpp), so each particle's force and torque are the same bits as ComputeForces<Law,
-/// P, true> gives, on any number of threads or ranks: the two ends of a pair evaluate to exact
-/// mirrors (n, v_rel and the history change sign, every other input is symmetric), a term and
-/// its negative round to exact negatives, and integer sums do not depend on their order.
-/// Only the evaluating end's history advances: MirrorPairHistory copies it to the other end
-/// before anything else reads the history. Host code only.
+/// The host backend's force sweep, which evaluates each pair contact once. The particles of a
+/// sweep (all owned ones, or a subset: the interior or boundary rows of a decomposed run) are
+/// split into one contiguous range per thread, and each particle is tagged with its range's
+/// group (the sweep's generation and the range's first particle). A pair whose two ends are in
+/// the same group is evaluated at its lower index: that end adds the pair's load to its own sum
+/// and subtracts it from the partner's accumulator, whose turn is still to come (a subset lists
+/// its particles in ascending order); any other pair (across ranges or sweeps, or with a ghost)
+/// is evaluated at both ends, each writing only its own. Loads are summed as integers
+/// (ExactSum.hpp), so each particle's force and torque are the same bits on any number of
+/// threads or ranks: the two ends of a pair evaluate to exact mirrors (n, v_rel and the history
+/// change sign, every other input is symmetric), a term and its negative round to exact
+/// negatives, and integer sums do not depend on their order. Only the evaluating end's history
+/// advances; PairOnceSweep::mirror copies it to the other end before anything reads it.
+/// Host code only.
 #include <cstdint>
+#include <vector>
 
 #include "engine/ContactForces.hpp"
 #include "engine/ExactSum.hpp"
@@ -61,6 +65,33 @@ struct PairOnceSum {
   }
 };
 
+/// The particle a sweep visits at position k: subset[k], or k without a subset.
+inline std::uint32_t swept_index(const std::uint32_t* subset, std::uint32_t k) {
+  return subset ? subset[k] : k;
+}
+
+/// Tags each particle of a range with the range's group and clears what its partners will add.
+struct GroupRange {
+  const std::uint32_t* subset;
+  std::uint64_t generation;
+  std::uint64_t* group;
+  ExactSum3* pair_force;
+  ExactSum3* pair_torque;
+  Real* overlap_ratio;
+
+  void operator()(std::uint32_t begin, std::uint32_t end) const {
+    if (begin == end) return;
+    const std::uint64_t tag = generation << 32 | swept_index(subset, begin);
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const std::uint32_t i = swept_index(subset, k);
+      group[i] = tag;
+      pair_force[i] = ExactSum3{};
+      pair_torque[i] = ExactSum3{};
+      overlap_ratio[i] = 0;
+    }
+  }
+};
+
 template <class Law, class P>
 struct PairOnceForces {
   using S = typename Law::Scalar;
@@ -71,38 +102,37 @@ struct PairOnceForces {
   HistoryArrays<Law> history;
   Vec3T<S>* force;
   Vec3T<S>* torque;
-  Real* overlap_ratio;  ///< also the partners' worst ratio so far, within a range
+  Real* overlap_ratio;  ///< also the partners' worst ratio so far, within a group
   S* wall_push;
-  ExactSum3* pair_force;   ///< per particle: the loads its range's lower partners left
-  ExactSum3* pair_torque;  ///< idem, torques
+  const std::uint32_t* subset;  ///< null: particles 0..count
+  // Filled in by PairOnceSweep::run.
+  std::uint32_t owned = 0;               ///< particles with a list row; the others are ghosts
+  const std::uint64_t* group = nullptr;  ///< per owned particle (GroupRange)
+  ExactSum3* pair_force = nullptr;       ///< per particle: what its group's lower partners left
+  ExactSum3* pair_torque = nullptr;      ///< idem, torques
 
-  /// The particles [begin, end) of one range, in order.
+  /// The particles at positions [begin, end) of the sweep, in order.
   GPUDEM_HOST_FLATTEN void operator()(std::uint32_t begin, std::uint32_t end) const {
-    for (std::uint32_t i = begin; i < end; ++i) {
-      pair_force[i] = ExactSum3{};
-      pair_torque[i] = ExactSum3{};
-      overlap_ratio[i] = 0;
-    }
-    for (std::uint32_t i = begin; i < end; ++i) particle(i, begin, end);
+    for (std::uint32_t k = begin; k < end; ++k) particle(swept_index(subset, k));
   }
 
-  GPUDEM_HOST_FLATTEN void particle(std::uint32_t i, std::uint32_t begin, std::uint32_t end) const {
+  GPUDEM_HOST_FLATTEN void particle(std::uint32_t i) const {
     const SweptParticle me = swept_particle<Law>(i, particles);
+    const std::uint64_t mine = group[i];
     PairOnceSum<Law> sum{history, dt, pair_force[i], pair_torque[i], overlap_ratio[i]};
     for (std::uint32_t k = scene.neighbor_offsets[i]; k < scene.neighbor_offsets[i + 1]; ++k) {
       const std::uint32_t j = scene.neighbor_index[k];
-      const bool in_range = j >= begin && j < end;
-      if (in_range && j < i) continue;  // evaluated at j's turn
+      const bool grouped = j < owned && group[j] == mine;
+      if (grouped && j < i) continue;  // evaluated at j's turn
       sum.touched = false;
       visit_pair_entry(me, k, particles, scene, sum);
-      if (!sum.touched || !in_range) continue;
+      if (!sum.touched || !grouped) continue;
       pair_force[j].subtract(sum.force_term);
       if constexpr (Law::needs_spin)
         pair_torque[j].add(exact_terms(sum.partner_torque(particles.position(j).w)));
       if (sum.ratio > overlap_ratio[j]) overlap_ratio[j] = sum.ratio;
     }
-    ForceSum<Law, true> bodies{history,  dt, Vec3T<S>{}, Vec3T<S>{}, sum.worst_overlap_ratio,
-                               wall_push};
+    ForceSum<Law> bodies{history, dt, Vec3T<S>{}, Vec3T<S>{}, sum.worst_overlap_ratio, wall_push};
     visit_body_contacts(i, me, scene, bodies);
     force[i] =
         (sum.force.template value<S>() + bodies.force) + vec_cast<S>((Real(1) / me.v.w) * gravity);
@@ -111,24 +141,84 @@ struct PairOnceForces {
   }
 };
 
-/// Copies, for each pair evaluated once in the last PairOnceForces sweep of the same ranges,
-/// the evaluating end's history (the lower index) to the other end, mirrored (Law::mirrored).
+/// Copies, for each pair the last sweeps evaluated once, the evaluating end's history (the
+/// lower index) to the other end, mirrored (Law::mirrored).
 template <class Law>
 struct MirrorPairHistory {
   const std::uint32_t* offsets;
   const std::uint32_t* index;
+  const std::uint64_t* group;
   typename Law::State* history;
 
   void operator()(std::uint32_t begin, std::uint32_t end) const {
     for (std::uint32_t i = begin; i < end; ++i)
       for (std::uint32_t k = offsets[i]; k < offsets[i + 1]; ++k) {
         const std::uint32_t j = index[k];
-        if (j < begin || j >= i) continue;  // i evaluated this pair itself
+        if (j >= i || group[j] != group[i]) continue;  // i evaluated this pair itself
         std::uint32_t m = offsets[j];
         while (index[m] != i) ++m;  // j's entry for i (the list is symmetric)
         history[k] = Law::mirrored(history[m]);
       }
   }
+};
+
+/// The state of the host's pair-once sweeps: the particles' groups, the partners' integer sums,
+/// and the history the last sweeps left with only one end of some pairs advanced.
+template <class Law, class P>
+class PairOnceSweep {
+ public:
+  using S = typename Law::Scalar;
+  using State = typename Law::State;
+
+  /// Runs `kernel` (its subset, group and sums filled in here) over positions [0, count) of
+  /// its subset; `owned` particles have list rows.
+  void run(PairOnceForces<Law, P> kernel, std::size_t count, std::size_t owned,
+           const std::uint32_t* offsets, const std::uint32_t* index) {
+    const Grouping grouping{host_thread_count(), kernel.subset != nullptr};
+    if (grouping.ranges != grouping_.ranges || grouping.split != grouping_.split) {
+      // A regrouping: no end of a regrouped pair may start from a record left behind.
+      mirror(offsets, index, owned);
+      grouping_ = grouping;
+    }
+    if (group_.size() < owned) {
+      group_.resize(owned);
+      pair_force_.resize(owned);
+      pair_torque_.resize(owned);
+    }
+    ++generation_;
+    host_ranges(count, grouping_.ranges,
+                GroupRange{kernel.subset, generation_, group_.data(), pair_force_.data(),
+                           pair_torque_.data(), kernel.overlap_ratio});
+    kernel.owned = static_cast<std::uint32_t>(owned);
+    kernel.group = group_.data();
+    kernel.pair_force = pair_force_.data();
+    kernel.pair_torque = pair_torque_.data();
+    host_ranges(count, grouping_.ranges, kernel);
+    if constexpr (Law::history_size > 0) pending_ = kernel.history.pair;
+  }
+
+  /// Fills in the other ends of the pairs the sweeps since the last call evaluated once, in the
+  /// history they wrote; the list must be the one they swept. Nothing when none is pending.
+  void mirror(const std::uint32_t* offsets, const std::uint32_t* index, std::size_t owned) {
+    if constexpr (Law::history_size > 0) {
+      if (!pending_) return;
+      host_ranges(owned, host_thread_count(),
+                  MirrorPairHistory<Law>{offsets, index, group_.data(), pending_});
+      pending_ = nullptr;
+    }
+  }
+
+ private:
+  struct Grouping {
+    std::size_t ranges = 0;
+    bool split = false;  ///< sweeps over subsets
+  };
+  Grouping grouping_;
+  std::uint32_t generation_ = 0;  ///< of the last sweep; tags of older sweeps never match
+  std::vector<std::uint64_t> group_;
+  std::vector<ExactSum3> pair_force_;
+  std::vector<ExactSum3> pair_torque_;
+  State* pending_ = nullptr;  ///< the history the last sweeps wrote, other ends not filled in
 };
 
 }  // namespace gpudem

@@ -192,7 +192,6 @@ class ParticleSystem final : public StepEngine {
   }
 
   void zero_history() {
-    pair_history_unsettled_ = false;
     parallel_for(Space{}, pair_history_.size(), Fill<S>{pair_history_.data(), S{}});
     parallel_for(Space{}, wall_history_.size(), Fill<S>{wall_history_.data(), S{}});
   }
@@ -220,6 +219,7 @@ class ParticleSystem final : public StepEngine {
   /// What the contact law reads: the state, the lists, the walls and meshes, the history.
   ContactInputs<LawView, S> contact_inputs() const {
     return ContactInputs<LawView, S>{contact_view<S>(state_view()),
+                                     owned_,
                                      neighbors_.offsets(),
                                      neighbors_.neighbors(),
                                      setup_.material_count,
@@ -284,9 +284,10 @@ class ParticleSystem final : public StepEngine {
 
   void compute_forces(const std::uint32_t* list, std::size_t count);
 
-  /// Brings every list entry's history up to date after a pair-once sweep (ForceCompute::
-  /// mirror_pair_history): called before the history is read, kept or the list changes.
-  void settle_pair_history() const;
+  /// Brings every list entry's history up to date after pair-once sweeps (ForceCompute::
+  /// mirror_pair_history, which writes the records the law holds pending): called before the
+  /// history is read, kept or freed, and before the list or the particles change.
+  void settle_pair_history() const { law_->mirror_pair_history(contact_inputs()); }
 
   /// The forces of the current state written to `scratch`, the engine's state untouched.
   void compute_forces_into(ForceScratch& scratch) {
@@ -297,6 +298,7 @@ class ParticleSystem final : public StepEngine {
                    scratch.overlap_ratio.data(),
                    {scratch.pair.data(), scratch.wall.data(), scratch.mesh.data()}},
                   nullptr, owned_);
+    settle_pair_history();  // into the scratch, before it is freed
   }
 
   /// Refreshes the ghosts' per-step fields while the forces of the owned particles whose rows
@@ -459,10 +461,7 @@ class ParticleSystem final : public StepEngine {
   // Per owned particle, besides the table's fields.
   DeviceArray<Real, Space> overlap_ratio_;
   DeviceArray<State4, Space> position_at_build_;
-  /// width_ per neighbour-list entry (empty: no history); mutable: settle_pair_history fills in
-  /// the other ends of a pair-once sweep when first read, the contacts' history unchanged.
-  mutable DeviceArray<S, Space> pair_history_;
-  mutable bool pair_history_unsettled_ = false;  ///< a pair-once sweep ran since the last settle
+  DeviceArray<S, Space> pair_history_;  ///< width_ per neighbour-list entry (empty: no history)
   DeviceArray<S, Space> wall_history_;  ///< width_ per (particle, wall) (empty: no history)
   // Rebuild scratch.
   DeviceArray<std::uint32_t, Space> previous_index_;      ///< row of each particle's previous list

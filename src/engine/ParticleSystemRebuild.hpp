@@ -46,13 +46,6 @@ void ParticleSystem<Space, P, S>::rebuild() {
 }
 
 template <class Space, class P, class S>
-void ParticleSystem<Space, P, S>::settle_pair_history() const {
-  if (!pair_history_unsettled_) return;
-  law_->mirror_pair_history(contact_inputs(), pair_history_.data(), owned_);
-  pair_history_unsettled_ = false;
-}
-
-template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::keep_previous_rows() {
   settle_pair_history();
   iota(previous_index_, owned_);

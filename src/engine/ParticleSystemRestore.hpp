@@ -8,6 +8,7 @@ namespace gpudem {
 
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::set_particles(const ParticleStore& share) {
+  settle_pair_history();    // while the list it was swept with is still here
   upload_particles(share);  // the first rebuild migrates each particle to its owner
   count_particles(share.id);
   has_list_ = false;
@@ -23,6 +24,7 @@ void ParticleSystem<Space, P, S>::restore_particles(const ParticleStore& share,
   if (list_positions.size() != share.size() || share.force.size() != share.size() ||
       share.torque.size() != share.size())
     throw std::invalid_argument("restore_particles: arrays differ in length");
+  settle_pair_history();  // while the list it was swept with is still here
   count_particles(share.id);
   list_build_clock_ = list_build;
   if (domain_.ranks() == 1) {
@@ -57,6 +59,7 @@ void ParticleSystem<Space, P, S>::set_wall_motion(const std::vector<WallMotion>&
 
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::set_contact_history(ContactHistory share) {
+  settle_pair_history();  // nothing left pending to write over the records set here
   const HistoryValues values = scatter_share(std::move(share), contact_slots(), width_);
   if (width_ > 0) {
     upload_history(values.pair, pair_history_);

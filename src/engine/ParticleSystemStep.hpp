@@ -8,7 +8,6 @@ namespace gpudem {
 
 template <class Space, class P, class S>
 void ParticleSystem<Space, P, S>::compute_forces(const std::uint32_t* list, std::size_t count) {
-  if (list) settle_pair_history();  // a subset's sweep reads both ends of its pairs
   S* push = nullptr;
   if (!pistons_.empty()) {
     if (wall_push_.size() != owned_ * wall_count()) wall_push_.resize(owned_ * wall_count());
@@ -17,7 +16,6 @@ void ParticleSystem<Space, P, S>::compute_forces(const std::uint32_t* list, std:
   law_->compute(contact_inputs(), setup_.gravity, step_dt(),
                 {force_.data(), torque_.data(), overlap_ratio_.data(), history_pointers(), push},
                 list, count);
-  if (!list && width_ > 0) pair_history_unsettled_ = true;
 }
 
 template <class Space, class P, class S>

@@ -227,7 +227,7 @@ class EngineIo : public SnapshotSource {
   /// set_particles it keeps the forces and torques of `share` (evaluated from half-step
   /// velocities that the saved state no longer holds) and builds the neighbour list at the
   /// positions of the saved engine's last build, so that the list and the next rebuild follow
-  /// the saved run (every sum runs in partner-id order, whatever the particle order), with the
+  /// the saved run (the sums do not depend on the particle order), with the
   /// meshes at their pose of `list_build`. Springs are zero until set_contact_history;
   /// removed_count() continues from `removed`.
   virtual void restore_particles(const ParticleStore& share,

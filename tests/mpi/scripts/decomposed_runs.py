@@ -7,8 +7,8 @@ CASE is one of:
   same-physics  tests/mpi/scenes/settle.toml at N = 1 and then at N = 2, 3, 4 with slabs, 2 x 2
                 blocks, a periodic axis cut into 2 and 4 blocks, "auto" dims and METIS: the
                 particle count and id set are identical and the final positions, velocities,
-                spins and forces are equal bit for bit (every force sum runs in partner-id
-                order, so the summation order does not depend on the ranks); the kinetic-energy
+                spins and forces are equal bit for bit (no force sum depends on the ranks:
+                the host sums pair loads as integers, CUDA in partner-id order); the kinetic-energy
                 series agree to 1e-12 relative (their sums do run in another order). The same
                 in the float precision policy at N = 3 slabs and 2 x 2 blocks against its N = 1.
   restart       the same scene run straight at N = 1 against a run checkpointed half-way at
