@@ -6,7 +6,7 @@ measures each setting's wall time, particle-steps per second and the error of th
 observables against a reference run, plots the Pareto front of error against speed and picks
 the cheapest setting within each tolerance.
 
-Usage: scripts/speed_vs_error.py SCENE_TYPE [--scene TOML] [--bed BED_H5] [--out DIR]
+Usage: scripts/speed_vs_error.py SCENE_TYPE [--scene TOML] [--bed BED_H5 ...] [--out DIR]
        [--dt-fraction F ...] [--precision P ...] [--skin M|auto ...] [--integrator I ...]
        [--scale S ...] [--step auto|adaptive ...] [--full] [--repeat N] [--tolerance T ...]
        [--rank-by wall|rate]
@@ -31,6 +31,15 @@ SCENE_TYPE, its scene (--scene overrides it) and the observables each run yields
 - silo (inputs/accuracy/silo_discharge.toml from --bed, default out/accuracy/silo-fill/bed.h5,
   which `gpudem-mpi inputs/accuracy/silo_fill.toml` makes): discharge_rate_per_s, grains per
   second, the least-squares slope of `removed` from 0.1 s to the end (scripts/beverloo_fit.py).
+
+Several beds (tillage and silo: --bed with more than one file, e.g. the same bed recipe
+poured with other simulation.seed values): every grid point runs on every bed, and each
+observable of a point is the mean over the beds of its median over the repeats; a point's
+error is that of its mean against the reference's mean. The beds average out what one bed's
+packing adds to an observable (the tillage draft and the silo's rate move by several per cent
+between runs that differ only in their last digits), and the table gives, per observable, the
+standard error of that error: the spread over the beds of the paired difference x_b − x_ref,b
+over √(beds), relative to |x_ref|. The grid is checked on the first bed.
 
 The grid: each axis option lists its values (defaults per scene type, printed at the start).
 Its centre is the scene's own setting on each axis (dt_fraction 0.1 unless the scene gives
@@ -63,7 +72,8 @@ max_error, the largest. For each --tolerance (default 0.01 0.05) the recommended
 the cheapest row whose every error is within it: the least median wall time, or with
 --rank-by rate the most particle-steps/s. The reference always qualifies.
 
-Output in OUT (default out/speed-vs-error/SCENE_TYPE): runs/POINT-rK (repeat K) with the
+Output in OUT (default out/speed-vs-error/SCENE_TYPE): runs/POINT-rK (repeat K; POINT-bJ-rK
+on bed J, from 1, with several beds) with the
 solver's output, solver.log, run.json (its command line, written first) and result.json
 (wall time, steps, particles and observables, written last: the mark of a finished run);
 table.csv (one row per grid point with a finished run, rewritten after each run),
@@ -164,11 +174,13 @@ class Point:
 
 @dataclasses.dataclass
 class Run:
-    """Repeat `repeat` of `point`; `name` is its folder under OUT/runs."""
+    """Repeat `repeat` of `point` on bed number `bed` (1 without beds); `name` is its folder
+    under OUT/runs."""
     point: Point
     repeat: int
     name: str
     solver_args: list
+    bed: int = 1
 
 
 def parse_args():
@@ -177,7 +189,7 @@ def parse_args():
     add("scene_type", choices=sorted(SCENE_TYPES), metavar="SCENE_TYPE",
         help="one of " + ", ".join(sorted(SCENE_TYPES)))
     add("--scene", metavar="TOML", help="default: the scene type's")
-    add("--bed", metavar="BED_H5", help="tillage and silo: the prepared bed")
+    add("--bed", nargs="+", metavar="BED_H5", help="tillage and silo: the prepared bed(s)")
     add("--out", metavar="DIR", help="default out/speed-vs-error/SCENE_TYPE")
     add("--dt-fraction", nargs="+", type=float, metavar="F")
     add("--precision", nargs="+", metavar="P")
@@ -199,7 +211,7 @@ def fill_defaults(args, scene_type):
     """The scene type's defaults for what the options leave out."""
     args.scene = args.scene or str(PROJECT / scene_type.scene)
     if scene_type.bed and not args.bed:
-        args.bed = str(PROJECT / scene_type.bed)
+        args.bed = [str(PROJECT / scene_type.bed)]
     args.out = args.out or str(PROJECT / "out/speed-vs-error" / args.scene_type)
     args.dt_fraction = args.dt_fraction or list(scene_type.dt_fractions)
     args.precision = args.precision or list(PRECISIONS)
@@ -224,13 +236,16 @@ def check_axes(args, scene_type):
 
 def check_files_and_sets(args, scene_type):
     files = [(args.scene, "--scene"), (args.solver, "--solver")]
-    for path, option in files + ([(args.bed, "--bed")] if scene_type.bed else []):
+    beds = [(bed, "--bed") for bed in args.bed] if scene_type.bed else []
+    for path, option in files + beds:
         if not pathlib.Path(path).is_file():
             raise StudyError(f"{option}: no file {path}")
     if not os.access(args.solver, os.X_OK):
         raise StudyError(f"--solver: {args.solver} is not executable")
     if args.bed and not scene_type.bed:
         raise StudyError(f"--bed: the {args.scene_type} scene starts without a bed")
+    if args.bed and len(set(map(os.path.realpath, args.bed))) < len(args.bed):
+        raise StudyError("--bed: a bed given twice")
     if args.np > 1 and not shutil.which("mpirun"):
         raise StudyError("--np: more than one rank needs mpirun, which is not on the PATH")
     for setting in args.set:
@@ -306,10 +321,9 @@ def scale_settings(scene, scale):
 
 def scene_context(args, scene):
     """What the scene type needs beyond the grid: {'settings': [...], 'tool', 'window'}."""
-    context = {"settings": [], "scene": scene}
+    context = {"settings": [], "scene": scene, "bed_insert": None}
     if args.scene_type in ("tillage", "silo"):
-        bed = pathlib.Path(args.bed).resolve()
-        context["settings"].append(f"insert.{bed_insert_index(scene, args.scene)}.bed=\"{bed}\"")
+        context["bed_insert"] = bed_insert_index(scene, args.scene)
     if args.scene_type == "tillage":
         try:
             tool = find_tool(scene, args.scene, "sweep")
@@ -322,9 +336,11 @@ def scene_context(args, scene):
     return context
 
 
-def solver_args(args, context, point, out_dir):
-    """The command-line arguments (after the executable) of a run of `point`."""
-    settings = [*context["settings"], f'simulation.dt="{point.step}"',
+def solver_args(args, context, point, out_dir, bed=None):
+    """The command-line arguments (after the executable) of a run of `point` on `bed`."""
+    beds = [] if bed is None else \
+        [f'insert.{context["bed_insert"]}.bed="{pathlib.Path(bed).resolve()}"']
+    settings = [*beds, *context["settings"], f'simulation.dt="{point.step}"',
                 f"simulation.dt_fraction={point.dt_fraction!r}",
                 f'simulation.precision="{point.precision}"',
                 f'simulation.integrator="{point.integrator}"',
@@ -337,7 +353,8 @@ def solver_args(args, context, point, out_dir):
 def check_point(args, context, point, middle):
     """Runs gpudem-mpi --check on `point`: {'dt_s', 'steps', 'particles'}; refuses a point
     the solver refuses, naming its options."""
-    words = solver_args(args, context, point, pathlib.Path(args.out, "check"))
+    words = solver_args(args, context, point, pathlib.Path(args.out, "check"),
+                        args.bed[0] if args.bed else None)
     env = dict(os.environ, OMP_NUM_THREADS=os.environ.get("OMP_NUM_THREADS", "1"))
     result = subprocess.run([args.solver, *words, "--check"], capture_output=True, text=True,
                             env=env)
@@ -369,10 +386,12 @@ def plan(args):
     reference, points = grid(args, middle)
     checks = {point.name: check_point(args, context, point, middle) for point in points}
     runs = []
-    for repeat, point in itertools.product(range(1, args.repeat + 1), points):
-        name = f"{point.name}-r{repeat}"
+    beds = list(enumerate(args.bed or [None], 1))
+    for repeat, (number, bed), point in itertools.product(range(1, args.repeat + 1), beds, points):
+        name = f"{point.name}-b{number}-r{repeat}" if len(beds) > 1 else f"{point.name}-r{repeat}"
         out_dir = pathlib.Path(args.out, "runs", name).resolve()
-        runs.append(Run(point, repeat, name, solver_args(args, context, point, out_dir)))
+        runs.append(Run(point, repeat, name, solver_args(args, context, point, out_dir, bed),
+                        number))
     check_earlier_runs(runs, args.out)
     return context, middle, reference, points, checks, runs
 
@@ -511,32 +530,57 @@ def relative_errors(values, reference):
             for key, ref in reference.items()}
 
 
-def point_row(point, results, check):
-    """The table row of `point` from its finished repeats `results`, errors left out."""
+def point_row(point, by_bed, check):
+    """The table row of `point` from its finished runs `by_bed` ({bed: [result of each
+    repeat]}), errors left out: each observable the mean over the beds of its median over the
+    repeats (per_bed: those medians)."""
+    results = [r for runs in by_bed.values() for r in runs]
     walls = [r["wall_s"] for r in results]
     row = {"point": point.name, **{axis: getattr(point, axis) for axis in AXES},
            "dt_s": check["dt_s"], "particles": statistics.median(r["particles"] for r in results),
-           "steps": results[0]["steps"], "repeats": len(results),
-           "wall_s": statistics.median(walls), "wall_s_min": min(walls), "wall_s_max": max(walls)}
+           "steps": results[0]["steps"], "repeats": min(len(runs) for runs in by_bed.values()),
+           "beds": len(by_bed), "wall_s": statistics.median(walls), "wall_s_min": min(walls),
+           "wall_s_max": max(walls)}
     row["particle_steps_per_s"] = row["particles"] * row["steps"] / row["wall_s"]
     names = results[0]["observables"]
-    row["observables"] = {k: statistics.median(r["observables"][k] for r in results)
+    row["per_bed"] = {bed: {k: statistics.median(r["observables"][k] for r in runs)
+                            for k in names} for bed, runs in by_bed.items()}
+    row["observables"] = {k: statistics.fmean(v[k] for v in row["per_bed"].values())
                           for k in names}
     return row
+
+
+def error_standard_errors(row, reference):
+    """Per observable: the standard error of the mean paired difference x_b − x_ref,b over the
+    beds both have run, relative to |x_ref| (NaN with fewer than two such beds)."""
+    beds = sorted(set(row["per_bed"]) & set(reference["per_bed"]))
+    spread = {}
+    for key, ref in reference["observables"].items():
+        if len(beds) < 2:
+            spread[key] = math.nan
+            continue
+        differences = [row["per_bed"][b][key] - reference["per_bed"][b][key] for b in beds]
+        spread[key] = statistics.stdev(differences) / math.sqrt(len(beds)) / \
+            (abs(ref) if ref != 0 else 1.0)
+    return spread
 
 
 def table_rows(points, reference, results, checks):
     """One row per point with a finished run; errors against the reference once it has run."""
     rows = []
     for point in points:
-        done = [r for (name, _), r in results.items() if name == point.name]
-        if done:
-            rows.append(point_row(point, done, checks[point.name]))
+        by_bed = {}
+        for (name, bed, _), result in results.items():
+            if name == point.name:
+                by_bed.setdefault(bed, []).append(result)
+        if by_bed:
+            rows.append(point_row(point, by_bed, checks[point.name]))
     ref = next((row for row in rows if row["point"] == reference.name), None)
     for row in rows:
         row["reference"] = row is ref
         errors = relative_errors(row["observables"], ref["observables"]) if ref else {}
         row["errors"] = errors
+        row["error_se"] = error_standard_errors(row, ref) if ref else {}
         row["max_error"] = max(errors.values()) if errors else math.nan
     return rows
 
@@ -566,15 +610,17 @@ def pareto_front(speeds, errors):
 
 
 def write_table(path, rows, observables):
-    columns = ["point", "reference", *AXES, "dt_s", "particles", "steps", "repeats", "wall_s",
-               "wall_s_min", "wall_s_max", "particle_steps_per_s", *observables,
-               *(f"{name}_error" for name in observables), "max_error"]
+    columns = ["point", "reference", *AXES, "dt_s", "particles", "steps", "repeats", "beds",
+               "wall_s", "wall_s_min", "wall_s_max", "particle_steps_per_s", *observables,
+               *(f"{name}_error" for name in observables),
+               *(f"{name}_error_se" for name in observables), "max_error"]
     with open(path, "w", newline="") as f:
         table = csv.writer(f)
         table.writerow(columns)
         for row in rows:
             values = {**row, **row["observables"], "reference": int(row["reference"]),
-                      **{f"{k}_error": v for k, v in row["errors"].items()}}
+                      **{f"{k}_error": v for k, v in row["errors"].items()},
+                      **{f"{k}_error_se": v for k, v in row["error_se"].items()}}
             table.writerow([format_value(values.get(column, "")) for column in columns])
 
 
@@ -627,7 +673,7 @@ def recommendations(rows, tolerances, rank_by):
         row = recommend(rows, tolerance, rank_by)
         picks[f"{tolerance:g}"] = None if row is None else {
             key: row[key] for key in ("point", *AXES, "dt_s", "wall_s", "particle_steps_per_s",
-                                      "max_error", "errors", "observables")}
+                                      "beds", "max_error", "errors", "error_se", "observables")}
     return picks
 
 
@@ -638,9 +684,13 @@ def report(picks, reference, rank_by):
             print(f"within {float(tolerance):.3g}: no grid point")
             continue
         settings = ", ".join(f"{axis} {pick[axis]}" for axis in AXES)
+        worst = max(pick["errors"], key=pick["errors"].get)
+        spread = pick["error_se"].get(worst, math.nan)
+        over = "" if math.isnan(spread) else \
+            f" ± {spread * 100:.2g} % (standard error over {pick['beds']} beds)"
         print(f"within {float(tolerance) * 100:g} % ({cost}): {pick['point']} ({settings}): "
               f"{pick['wall_s']:.3g} s, {reference['wall_s'] / pick['wall_s']:.3g} times as fast "
-              f"as the reference, largest error {pick['max_error'] * 100:.3g} %")
+              f"as the reference, largest error {pick['max_error'] * 100:.3g} %{over}")
 
 
 def progress(done, total, run, result, ran, rows, runs_left, checks, rates):
@@ -672,7 +722,7 @@ def main():
     results, rates, rows = {}, [], []
     for done, run in enumerate(runs, 1):
         result, ran = run_once(args, run, context)
-        results[(run.point.name, run.repeat)] = result
+        results[(run.point.name, run.bed, run.repeat)] = result
         if ran:
             rates.append(result["particle_steps_per_s"])
         rows = table_rows(points, reference, results, checks)

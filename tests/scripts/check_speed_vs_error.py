@@ -11,9 +11,13 @@ solver_timing() on the last line of a fixed and of an adaptive run.
 Resuming: a sweep with --repeat 2 is killed (SIGKILL, it and the solver) once two runs are done,
 and run again: the runs done are kept (their result.json untouched), the others run, and the
 table's points and observables equal those of an uninterrupted sweep.
+Several beds: table_rows() on synthetic runs of two points on two beds gives each observable's
+mean over the beds, its error and the standard error of the paired differences, as computed
+here by hand; and a real silo sweep (two points) on two small beds poured with different seeds
+runs each point on each bed and tables their means.
 Refusals (exit 2, naming the option, before any run): an unknown scene type, an axis without
 values, a dt_fraction the solver refuses (a skin it refuses), --scale on the impact scene, a
---set key the study sets.
+--set key the study sets, a missing bed, a bed given twice.
 usage: check_speed_vs_error.py PROJECT_SOURCE_DIR WORK_DIR GPUDEM_MPI"""
 import csv
 import json
@@ -92,9 +96,10 @@ def check_pure_functions():
 def check_table(out):
     rows = read_table(out)
     columns = ["point", "reference", "dt_fraction", "precision", "skin", "integrator", "scale",
-               "step", "dt_s", "particles", "steps", "repeats", "wall_s", "wall_s_min", "wall_s_max",
-               "particle_steps_per_s", "restitution", "contact_duration_s",
-               "restitution_error", "contact_duration_s_error", "max_error"]
+               "step", "dt_s", "particles", "steps", "repeats", "beds", "wall_s", "wall_s_min",
+               "wall_s_max", "particle_steps_per_s", "restitution", "contact_duration_s",
+               "restitution_error", "contact_duration_s_error", "restitution_error_se",
+               "contact_duration_s_error_se", "max_error"]
     if not rows or list(rows[0]) != columns:
         failures.append(f"{out}: columns {list(rows[0]) if rows else None}, wanted {columns}")
         return rows
@@ -141,11 +146,74 @@ def kill_after(out, runs_done, *options):
     process.wait()
 
 
+def check_bed_means():
+    """Two points on two beds, x = 10.0 and 12.0 for the reference, 10.5 and 12.1 for the other:
+    means 11.0 and 11.3, error 0.3 / 11, paired differences 0.5 and 0.1, standard error
+    stdev / √2 = 0.2, relative 0.2 / 11."""
+    reference = speed_vs_error.Point(0.05, "double", "auto", "velocity_verlet", 1.0)
+    other = speed_vs_error.Point(0.1, "double", "auto", "velocity_verlet", 1.0)
+    values = {(reference.name, 1): 10.0, (reference.name, 2): 12.0, (other.name, 1): 10.5,
+              (other.name, 2): 12.1}
+    results = {(name, bed, 1): {"steps": 100, "wall_s": 1.0, "particles": 10.0,
+                                "observables": {"x": x}} for (name, bed), x in values.items()}
+    checks = {p.name: {"dt_s": 1e-5} for p in (reference, other)}
+    rows = speed_vs_error.table_rows([reference, other], reference, results, checks)
+    ref, row = rows
+    wanted = {"reference x": (ref["observables"]["x"], 11.0), "x": (row["observables"]["x"], 11.3),
+              "error": (row["errors"]["x"], 0.3 / 11), "standard error": (row["error_se"]["x"],
+                                                                           0.2 / 11),
+              "reference error": (ref["errors"]["x"], 0.0), "beds": (row["beds"], 2)}
+    for what, (got, expected) in wanted.items():
+        if not math.isclose(got, expected, rel_tol=1e-12, abs_tol=1e-15):
+            failures.append(f"two beds: {what} {got}, wanted {expected}")
+
+
+def silo_beds():
+    """Two small silo beds (300 grains) poured with seeds 1 and 2."""
+    beds = []
+    for seed in (1, 2):
+        out = work / f"silo-bed-{seed}"
+        result = subprocess.run(
+            [solver, str(project / "inputs/accuracy/silo_fill.toml"), "--output-dir", str(out),
+             "--set", "insert.0.count=300", "--set", f"simulation.seed={seed}"],
+            env=ENV, capture_output=True, text=True)
+        if result.returncode != 0:
+            failures.append(f"silo bed {seed}: exit {result.returncode}: {result.stderr}")
+        beds.append(str(out / "bed.h5"))
+    return beds
+
+
+def check_two_beds(beds):
+    command = ["/usr/bin/python3", str(project / "scripts" / "speed_vs_error.py"), "silo",
+               "--solver", solver, "--out", str(work / "beds"), "--bed", *beds,
+               "--dt-fraction", "0.1", "0.2", "--precision", "double", "--skin", "auto",
+               "--integrator", "velocity_verlet", "--step", "auto"]
+    result = subprocess.run(command, env=ENV, capture_output=True, text=True)
+    if result.returncode != 0 or "[4/4]" not in result.stdout:
+        failures.append(f"two-bed silo sweep: exit {result.returncode}: "
+                        f"{result.stdout + result.stderr}")
+        return
+    rows = {row["point"]: row for row in read_table("beds")}
+    for name, row in rows.items():
+        rates = [json.loads((work / "beds/runs" / f"{name}-b{b}-r1/result.json").read_text())
+                 ["observables"]["discharge_rate_per_s"] for b in (1, 2)]
+        if row["beds"] != "2" or not math.isclose(float(row["discharge_rate_per_s"]),
+                                                  sum(rates) / 2, rel_tol=1e-7):
+            failures.append(f"two beds: {name}: beds {row['beds']}, rate "
+                            f"{row['discharge_rate_per_s']}, wanted the mean of {rates}")
+        spread = float(row["discharge_rate_per_s_error_se"])
+        if row["reference"] == "0" and not (math.isfinite(spread) and spread >= 0):
+            failures.append(f"two beds: {name}: standard error {spread}")
+
+
 def observables(rows):
     return [(r["point"], r["repeats"], r["restitution"], r["contact_duration_s"]) for r in rows]
 
 
 check_pure_functions()
+check_bed_means()
+beds = silo_beds()
+check_two_beds(beds)
 code, out = sweep("whole", *GRID, "--repeat", "2")
 if code != 0 or "[6/6]" not in out or "within 1 %" not in out:
     failures.append(f"uninterrupted sweep: exit {code}: {out}")
@@ -175,6 +243,7 @@ REFUSED = [
     (["impact", "--set", "simulation.dt_fraction=0.3"],
      "--set simulation.dt_fraction: the study sets this key itself"),
     (["silo", "--bed", str(work / "none.h5")], f"--bed: no file {work / 'none.h5'}"),
+    (["silo", "--bed", beds[0], beds[0]], "--bed: a bed given twice"),
 ]
 for options, wanted in REFUSED:
     shutil.rmtree(work / "refused", ignore_errors=True)
