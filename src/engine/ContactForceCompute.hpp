@@ -1,7 +1,8 @@
 #pragma once
 /// The ForceCompute of one contact law (ForceCompute.hpp): the law's pair constants in the
 /// system's memory space, and the contact sweeps (forces, diagnostics' terms, mesh loads) as
-/// launches of the law's functors. The history arrays the particle system stores as flat values
+/// launches of the law's functors; the host's force sweeps evaluate each pair once
+/// (PairOnceSweep). The history arrays the particle system stores as flat values
 /// are read as the law's records (ContactState: history_size values, nothing else). Include the
 /// backend's ParallelFor header first.
 #include <type_traits>
@@ -33,6 +34,7 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
 
   std::uint32_t history_width() const override { return Law::history_size; }
   bool needs_spin() const override { return Law::needs_spin; }
+  std::size_t memory_bytes() const override { return pair_params_.bytes() + pair_once_.bytes(); }
 
   /// On the host each pair is evaluated once and the pair loads are summed as integers
   /// (PairOnceForces.hpp).

@@ -75,6 +75,9 @@ class ForceCompute {
   virtual std::uint32_t history_width() const = 0;
   /// Whether the law reads spins and exerts torques.
   virtual bool needs_spin() const = 0;
+  /// Bytes the law holds between steps: its pair constants and, on the host, the pair-once
+  /// sweep's per-particle groups and sums.
+  virtual std::size_t memory_bytes() const = 0;
   /// Forces of the particles subset[0, count) (all of 0..count when subset is null): contact
   /// forces plus gravity, torques, overlap ratios, the history advanced by dt into `out`.
   virtual void compute(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,

@@ -76,7 +76,7 @@ struct GroupRange {
   std::uint64_t generation;
   std::uint64_t* group;
   ExactSum3* pair_force;
-  ExactSum3* pair_torque;
+  ExactSum3* pair_torque;  ///< null for a law without torques
   Real* overlap_ratio;
 
   void operator()(std::uint32_t begin, std::uint32_t end) const {
@@ -86,7 +86,7 @@ struct GroupRange {
       const std::uint32_t i = swept_index(subset, k);
       group[i] = tag;
       pair_force[i] = ExactSum3{};
-      pair_torque[i] = ExactSum3{};
+      if (pair_torque) pair_torque[i] = ExactSum3{};
       overlap_ratio[i] = 0;
     }
   }
@@ -109,7 +109,7 @@ struct PairOnceForces {
   std::uint32_t owned = 0;               ///< particles with a list row; the others are ghosts
   const std::uint64_t* group = nullptr;  ///< per owned particle (GroupRange)
   ExactSum3* pair_force = nullptr;       ///< per particle: what its group's lower partners left
-  ExactSum3* pair_torque = nullptr;      ///< idem, torques
+  ExactSum3* pair_torque = nullptr;      ///< idem, torques (unused without spin)
 
   /// The particles at positions [begin, end) of the sweep, in order.
   GPUDEM_HOST_FLATTEN void operator()(std::uint32_t begin, std::uint32_t end) const {
@@ -119,7 +119,9 @@ struct PairOnceForces {
   GPUDEM_HOST_FLATTEN void particle(std::uint32_t i) const {
     const SweptParticle me = swept_particle<Law>(i, particles);
     const std::uint64_t mine = group[i];
-    PairOnceSum<Law> sum{history, dt, pair_force[i], pair_torque[i], overlap_ratio[i]};
+    ExactSum3 torque_so_far{};
+    if constexpr (Law::needs_spin) torque_so_far = pair_torque[i];
+    PairOnceSum<Law> sum{history, dt, pair_force[i], torque_so_far, overlap_ratio[i]};
     for (std::uint32_t k = scene.neighbor_offsets[i]; k < scene.neighbor_offsets[i + 1]; ++k) {
       const std::uint32_t j = scene.neighbor_index[k];
       const bool grouped = j < owned && group[j] == mine;
@@ -183,18 +185,23 @@ class PairOnceSweep {
     if (group_.size() < owned) {
       group_.resize(owned);
       pair_force_.resize(owned);
-      pair_torque_.resize(owned);
+      if constexpr (Law::needs_spin) pair_torque_.resize(owned);
     }
     ++generation_;
     host_ranges(count, grouping_.ranges,
                 GroupRange{kernel.subset, generation_, group_.data(), pair_force_.data(),
-                           pair_torque_.data(), kernel.overlap_ratio});
+                           Law::needs_spin ? pair_torque_.data() : nullptr, kernel.overlap_ratio});
     kernel.owned = static_cast<std::uint32_t>(owned);
     kernel.group = group_.data();
     kernel.pair_force = pair_force_.data();
     kernel.pair_torque = pair_torque_.data();
     host_ranges(count, grouping_.ranges, kernel);
     if constexpr (Law::history_size > 0) pending_ = kernel.history.pair;
+  }
+
+  std::size_t bytes() const {
+    return group_.capacity() * sizeof(std::uint64_t) +
+           (pair_force_.capacity() + pair_torque_.capacity()) * sizeof(ExactSum3);
   }
 
   /// Fills in the other ends of the pairs the sweeps since the last call evaluated once, in the

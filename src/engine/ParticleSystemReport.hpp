@@ -98,7 +98,8 @@ std::vector<MemoryUse> ParticleSystem<Space, P, S>::memory_use() const {
                          {"rebuild scratch", scratch_bytes()},
                          {"ghost buffers", ghosts_.memory_bytes() + ghost_rows_.memory_bytes() +
                                                rank_cells_.memory_bytes()},
-                         {"meshes", meshes_.memory_bytes()}});
+                         {"meshes", meshes_.memory_bytes()},
+                         {"contact law", law_->memory_bytes()}});
   if (!bonds_.empty()) use.push_back({"bonds", bonds_.bytes()});
   return use;
 }

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
@@ -14,6 +15,7 @@
 #include "core/ContactModel.hpp"
 #include "core/ParticleSources.hpp"
 #include "core/contact/ContactLaw.hpp"
+#include "engine/ExactSum.hpp"
 #include "engine/SceneSetup.hpp"
 #include "engine/SizeClassGrid.hpp"
 #include "support/Backends.hpp"
@@ -147,9 +149,12 @@ TEST_P(ContactHistory, MemoryReportBeforeARebuildCountsItsCarryOver) {
 /// policy's state scalar (`state` bytes), forces and history in its law scalar (`scalar`
 /// bytes), a cell range per cell at most (kMaxCellsPerParticle cells per particle and one cell
 /// per empty size class at most).
+/// Bytes of one pair of materials' law constants, at most.
+constexpr std::size_t kPairConstantBytes = 512;
+
 std::map<std::string, std::size_t> needed_bytes(const StepEngine& engine, std::size_t walls,
                                                 std::size_t width, std::size_t scalar,
-                                                std::size_t state) {
+                                                std::size_t state, Backend backend) {
   const std::size_t n = engine.owned_count(), record = width * scalar;
   std::vector<std::uint32_t> lengths;
   engine.get_list_lengths(lengths);
@@ -157,21 +162,26 @@ std::map<std::string, std::size_t> needed_bytes(const StepEngine& engine, std::s
   for (const std::uint32_t length : lengths) entries += length;
   const std::size_t index = sizeof(std::uint32_t);
   const std::size_t cells = kMaxCellsPerParticle * n + kMaxSizeClasses;
-  return {{"position, radius", n * 4 * state},
-          {"velocity, inverse mass", n * 4 * state},
-          {"angular velocity", n * 3 * state},
-          {"id, material", n * (sizeof(ParticleId) + sizeof(MaterialId))},
-          {"force, torque", n * 6 * scalar},
-          {"overlap ratio", n * sizeof(Real)},
-          {"position at list build", n * 4 * state},
-          {"neighbour list", (n + 1 + entries) * index},
-          {"pair history", entries * record},
-          {"wall history", n * walls * record},
-          {"cell list", n * index + (cells + 1) * index},
-          {"history carry-over", carry_over_bytes(n, loaded_pair_records(engine), record)},
-          {"rebuild scratch", n * index},  // each particle's row in the previous list
-          {"ghost buffers", 0},
-          {"meshes", 0}};
+  return {
+      {"position, radius", n * 4 * state},
+      {"velocity, inverse mass", n * 4 * state},
+      {"angular velocity", n * 3 * state},
+      {"id, material", n * (sizeof(ParticleId) + sizeof(MaterialId))},
+      {"force, torque", n * 6 * scalar},
+      {"overlap ratio", n * sizeof(Real)},
+      {"position at list build", n * 4 * state},
+      {"neighbour list", (n + 1 + entries) * index},
+      {"pair history", entries * record},
+      {"wall history", n * walls * record},
+      {"cell list", n * index + (cells + 1) * index},
+      {"history carry-over", carry_over_bytes(n, loaded_pair_records(engine), record)},
+      {"rebuild scratch", n * index},  // each particle's row in the previous list
+      {"ghost buffers", 0},
+      {"meshes", 0},
+      // one material; on the host each particle's pair-once group and two integer sums
+      {"contact law",
+       kPairConstantBytes +
+           (backend == Backend::Host ? n * (sizeof(std::uint64_t) + 2 * sizeof(ExactSum3)) : 0)}};
 }
 
 // After a poured bed has settled through many rebuilds, no array of the engine is larger than
@@ -200,7 +210,8 @@ TEST_P(ContactHistory, SettledBedHoldsNoMoreThanItsArraysNeed) {
     engine->set_particles(particles);
     for (int n = 0; n < 6000; ++n) engine->step();
     ASSERT_GE(engine->rebuild_count(), 5u);
-    const auto needed = needed_bytes(*engine, scene.walls.size(), width, scalar, state);
+    const auto needed =
+        needed_bytes(*engine, scene.walls.size(), width, scalar, state, GetParam().backend);
     std::size_t total = 0;
     for (const MemoryUse& use : engine->memory_use()) {
       ASSERT_EQ(needed.count(use.name), 1u) << "unexpected array " << use.name;

@@ -149,7 +149,8 @@ TEST_F(CommandLine, VerboseReportsEachArraysBytesPerParticle) {
                                 "history carry-over",
                                 "rebuild scratch",
                                 "ghost buffers",
-                                "meshes"};
+                                "meshes",
+                                "contact law"};
   double sum = 0;
   for (const char* name : arrays) {
     const double bytes = bytes_per_particle(r.output, name);
