@@ -41,7 +41,9 @@ struct PairOnceSum {
 
   void operator()(ContactSample<Law>& c) {
     last = evaluate_contact(c, c.state.value, dt);
-    if constexpr (Law::history_size > 0) history.pair[c.slot] = c.state;
+    // −0 stored as +0: the same bits whether this end or the partner's mirror writes the record
+    if constexpr (Law::history_size > 0)
+      history.pair[c.slot] = Law::without_negative_zeros(c.state);
     force_term = exact_terms(last.force);
     force.add(force_term);
     if constexpr (Law::needs_spin) torque.add(exact_terms(contact_torque(c, last)));
@@ -157,9 +159,10 @@ struct MirrorPairHistory {
       for (std::uint32_t k = offsets[i]; k < offsets[i + 1]; ++k) {
         const std::uint32_t j = index[k];
         if (j >= i || group[j] != group[i]) continue;  // i evaluated this pair itself
+        // j's entry for i, which a symmetric list always has
         std::uint32_t m = offsets[j];
-        while (index[m] != i) ++m;  // j's entry for i (the list is symmetric)
-        history[k] = Law::mirrored(history[m]);
+        while (m < offsets[j + 1] && index[m] != i) ++m;
+        if (m < offsets[j + 1]) history[k] = Law::mirrored(history[m]);
       }
   }
 };
@@ -221,7 +224,9 @@ class PairOnceSweep {
     bool split = false;  ///< sweeps over subsets
   };
   Grouping grouping_;
-  std::uint32_t generation_ = 0;  ///< of the last sweep; tags of older sweeps never match
+  /// Of the last sweep. A tag of an older sweep does not match: every owned particle is
+  /// tagged anew each step, so a tag is at most a few sweeps old (the count wraps after 2^32).
+  std::uint32_t generation_ = 0;
   std::vector<std::uint64_t> group_;
   std::vector<ExactSum3> pair_force_;
   std::vector<ExactSum3> pair_torque_;

@@ -278,15 +278,16 @@ class ParticleSystem final : public StepEngine {
     add_bond_loads(step_dt());
   }
 
-  /// The forces of the owned particles list[0, count) (all of 0..count when list is null).
   /// The step of the base step in progress: dt / substeps.
   Real step_dt() const { return setup_.dt / clock_.substeps; }
 
+  /// The forces of the owned particles list[0, count) (all of 0..count when list is null).
   void compute_forces(const std::uint32_t* list, std::size_t count);
 
   /// Brings every list entry's history up to date after pair-once sweeps (ForceCompute::
   /// mirror_pair_history, which writes the records the law holds pending): called before the
-  /// history is read, kept or freed, and before the list or the particles change.
+  /// history is read, kept or freed, and before the list or the particles change. Const, as
+  /// no contact's history changes, but it writes records: not for concurrent callers.
   void settle_pair_history() const { law_->mirror_pair_history(contact_inputs()); }
 
   /// The forces of the current state written to `scratch`, the engine's state untouched.

@@ -144,14 +144,14 @@ TEST_P(ContactHistory, MemoryReportBeforeARebuildCountsItsCarryOver) {
   EXPECT_EQ(engine->memory_bytes(), before);
 }
 
+/// Bytes of one pair of materials' law constants, at most.
+constexpr std::size_t kPairConstantBytes = 512;
+
 /// The bytes each report line of a one-rank engine without meshes needs, from its particle
 /// count, list length, walls and loaded springs: state (positions, velocities, spins) in the
 /// policy's state scalar (`state` bytes), forces and history in its law scalar (`scalar`
 /// bytes), a cell range per cell at most (kMaxCellsPerParticle cells per particle and one cell
 /// per empty size class at most).
-/// Bytes of one pair of materials' law constants, at most.
-constexpr std::size_t kPairConstantBytes = 512;
-
 std::map<std::string, std::size_t> needed_bytes(const StepEngine& engine, std::size_t walls,
                                                 std::size_t width, std::size_t scalar,
                                                 std::size_t state, Backend backend) {

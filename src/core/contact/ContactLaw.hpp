@@ -82,14 +82,21 @@ struct ContactLaw {
   }
 
   /// The history of the same contact seen from its other end: each slot's leading
-  /// negated_values (its springs) change sign, the rest (flags) are kept. A zero stays +0, so
-  /// that a blank record stays blank byte for byte (HistoryCarryOver's is_fresh).
+  /// negated_values (its springs) change sign, the rest (flags) are kept. A zero, +0 or −0,
+  /// becomes +0, so that a blank record stays blank byte for byte (HistoryCarryOver's is_fresh).
   GPUDEM_HD static State mirrored(const State& s) {
     State m = s;
     negate_leading<Tangential>(m.value);
     negate_leading<Rolling>(m.value + rolling_offset);
     negate_leading<Cohesion>(m.value + formed_offset);
     return m;
+  }
+
+  /// The record with every −0 made +0 (x + 0 is x otherwise): what a pair's end stores when the
+  /// other end may hold the mirror (ForceCompute::mirror_pair_history), whose zeros are +0.
+  GPUDEM_HD static State without_negative_zeros(State s) {
+    for (Scalar& v : s.value) v = v + Scalar(0);
+    return s;
   }
 
   /// True when the stored history says the contact has formed (a cohesion that holds contacts
