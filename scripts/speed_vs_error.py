@@ -39,7 +39,8 @@ error is that of its mean against the reference's mean. The beds average out wha
 packing adds to an observable (the tillage draft and the silo's rate move by several per cent
 between runs that differ only in their last digits), and the table gives, per observable, the
 standard error of that error: the spread over the beds of the paired difference x_b − x_ref,b
-over √(beds), relative to |x_ref|. The grid is checked on the first bed.
+over √(beds), relative to |x_ref|, which pareto.png draws as bars. The grid is checked on the
+first bed.
 
 The grid: each axis option lists its values (defaults per scene type, printed at the start).
 Its centre is the scene's own setting on each axis (dt_fraction 0.1 unless the scene gives
@@ -636,6 +637,13 @@ def short_label(row, middle):
     return ", ".join(moved) or "centre"
 
 
+def largest_error_se(row):
+    """The standard error of the row's largest error (0 when there is none: one bed)."""
+    worst = max(row["errors"], key=row["errors"].get)
+    spread = row["error_se"].get(worst, math.nan)
+    return 0.0 if math.isnan(spread) else spread
+
+
 def plot_front(path, rows, middle, tolerances):
     """Max error against particle-steps/s and against wall time, the Pareto front marked."""
     fig, axes = plt.subplots(1, 2, figsize=(12, 5), sharey=True)
@@ -644,8 +652,11 @@ def plot_front(path, rows, middle, tolerances):
     for ax, key, better in ((axes[0], "particle_steps_per_s", 1), (axes[1], "wall_s", -1)):
         speeds = [better * row[key] for row in shown]
         front = pareto_front(speeds, [row["max_error"] for row in shown])
-        ax.plot([row[key] for row in shown], [row["max_error"] for row in shown], "o",
-                color="C0", label="grid points")
+        spread = [largest_error_se(row) for row in shown]
+        low = [min(se, 0.9 * row["max_error"]) for se, row in zip(spread, shown)]  # log axis
+        ax.errorbar([row[key] for row in shown], [row["max_error"] for row in shown],
+                    yerr=[low, spread], fmt="o", color="C0",
+                    label="grid points (bars: standard error over the beds)")
         ax.plot([shown[i][key] for i in front], [shown[i]["max_error"] for i in front], "-s",
                 color="C3", label="Pareto front")
         for row in shown:
