@@ -638,10 +638,9 @@ def short_label(row, middle):
 
 
 def largest_error_se(row):
-    """The standard error of the row's largest error (0 when there is none: one bed)."""
+    """The standard error of the row's largest error (NaN with one bed)."""
     worst = max(row["errors"], key=row["errors"].get)
-    spread = row["error_se"].get(worst, math.nan)
-    return 0.0 if math.isnan(spread) else spread
+    return row["error_se"].get(worst, math.nan)
 
 
 def plot_front(path, rows, middle, tolerances):
@@ -652,7 +651,7 @@ def plot_front(path, rows, middle, tolerances):
     for ax, key, better in ((axes[0], "particle_steps_per_s", 1), (axes[1], "wall_s", -1)):
         speeds = [better * row[key] for row in shown]
         front = pareto_front(speeds, [row["max_error"] for row in shown])
-        spread = [largest_error_se(row) for row in shown]
+        spread = [0.0 if math.isnan(se) else se for se in map(largest_error_se, shown)]
         low = [min(se, 0.9 * row["max_error"]) for se, row in zip(spread, shown)]  # log axis
         ax.errorbar([row[key] for row in shown], [row["max_error"] for row in shown],
                     yerr=[low, spread], fmt="o", color="C0",
@@ -695,8 +694,7 @@ def report(picks, reference, rank_by):
             print(f"within {float(tolerance):.3g}: no grid point")
             continue
         settings = ", ".join(f"{axis} {pick[axis]}" for axis in AXES)
-        worst = max(pick["errors"], key=pick["errors"].get)
-        spread = pick["error_se"].get(worst, math.nan)
+        spread = largest_error_se(pick)
         over = "" if math.isnan(spread) else \
             f" ± {spread * 100:.2g} % (standard error over {pick['beds']} beds)"
         print(f"within {float(tolerance) * 100:g} % ({cost}): {pick['point']} ({settings}): "
