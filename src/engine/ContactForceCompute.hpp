@@ -41,18 +41,15 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
   void compute(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,
                const ForceOutputs<S>& out, const std::uint32_t* subset,
                std::size_t count) const override {
-    if constexpr (std::is_same_v<Space, HostSpace>) {
-      pair_once_.run(
-          PairOnceForces<Law, P>{view(in), scene(in), gravity, dt, records(out.history), out.force,
-                                 out.torque, out.overlap_ratio, out.wall_push, subset},
-          count, in.owned, in.neighbor_offsets, in.neighbor_index);
-    } else {
-      parallel_for(
-          Space{}, count,
-          ComputeForces<Law, P>{view(in), scene(in), gravity, dt, records(out.history), out.force,
-                                out.torque, out.overlap_ratio, out.wall_push, subset},
-          LaunchSlot::forces);
-    }
+    const ForceSweep<Law, P> sweep{
+        view(in),   scene(in),         gravity,       dt,     records(out.history), out.force,
+        out.torque, out.overlap_ratio, out.wall_push, subset,
+    };
+    if constexpr (std::is_same_v<Space, HostSpace>)
+      pair_once_.run(PairOnceForces<Law, P>{sweep}, count, in.owned, in.neighbor_offsets,
+                     in.neighbor_index);
+    else
+      parallel_for(Space{}, count, ComputeForces<Law, P>{sweep}, LaunchSlot::forces);
   }
 
   void mirror_pair_history(const ContactInputs<P, S>& in) const override {

@@ -62,11 +62,15 @@ struct ForceSum {
   }
 };
 
-/// F_i = m_i g + Σ contacts, T_i = Σ (arm × F + rolling torque) (one thread per particle), from
-/// a state held in scalar P; thread k computes particle subset[k], or particle k when subset is
-/// null (one kernel for both launches: each law's force kernel is compiled once per backend).
+/// The particle a sweep visits at position k: subset[k], or k without a subset.
+GPUDEM_HD inline std::uint32_t swept_index(const std::uint32_t* subset, std::size_t k) {
+  return subset ? subset[k] : static_cast<std::uint32_t>(k);
+}
+
+/// What a force sweep reads and writes, on either backend: the particles (in scalar P), the
+/// scene, and per particle the force, torque and worst overlap ratio it computes.
 template <class Law, class P>
-struct ComputeForces {
+struct ForceSweep {
   using S = typename Law::Scalar;
   ParticleView<P> particles;
   ContactScene<Law> scene;
@@ -76,15 +80,30 @@ struct ComputeForces {
   Vec3T<S>* force;
   Vec3T<S>* torque;
   Real* overlap_ratio;
-  S* wall_push;  ///< per (particle, plane wall) slot, or null (ForceSum)
-  const std::uint32_t* subset = nullptr;
+  S* wall_push;                           ///< per (particle, plane wall) slot, or null (ForceSum)
+  const std::uint32_t* subset = nullptr;  ///< the particles swept; null: 0..count
+
+  /// Stores particle i's results: F_i = m_i g + the contacts' force, T_i, the worst ratio.
+  GPUDEM_HD void store(std::uint32_t i, Real inv_mass, const Vec3T<S>& contact_force,
+                       const Vec3T<S>& contact_torque, Real worst_overlap_ratio) const {
+    force[i] = contact_force + vec_cast<S>((Real(1) / inv_mass) * gravity);
+    if constexpr (Law::needs_spin) torque[i] = contact_torque;
+    overlap_ratio[i] = worst_overlap_ratio;
+  }
+};
+
+/// F_i = m_i g + Σ contacts, T_i = Σ (arm × F + rolling torque) (one thread per particle), from
+/// a state held in scalar P; thread k computes particle swept_index(subset, k) (one kernel for
+/// both launches: each law's force kernel is compiled once per backend).
+template <class Law, class P>
+struct ComputeForces {
+  ForceSweep<Law, P> sweep;
   GPUDEM_HD GPUDEM_HOST_FLATTEN void operator()(std::size_t k) const {
-    const std::size_t i = subset ? subset[k] : k;
-    ForceSum<Law> sum{history, dt, Vec3T<S>{}, Vec3T<S>{}, Real(0), wall_push};
-    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, sum);
-    force[i] = sum.force + vec_cast<S>((Real(1) / particles.velocity(i).w) * gravity);
-    if constexpr (Law::needs_spin) torque[i] = sum.torque;
-    overlap_ratio[i] = sum.worst_overlap_ratio;
+    const ForceSweep<Law, P>& s = sweep;
+    const std::uint32_t i = swept_index(s.subset, k);
+    ForceSum<Law> sum{s.history, s.dt, {}, {}, Real(0), s.wall_push};
+    for_each_contact(i, s.particles, s.scene, sum);
+    s.store(i, s.particles.velocity(i).w, sum.force, sum.torque, sum.worst_overlap_ratio);
   }
 };
 

@@ -67,11 +67,6 @@ struct PairOnceSum {
   }
 };
 
-/// The particle a sweep visits at position k: subset[k], or k without a subset.
-inline std::uint32_t swept_index(const std::uint32_t* subset, std::uint32_t k) {
-  return subset ? subset[k] : k;
-}
-
 /// Tags each particle of a range with the range's group and clears what its partners will add.
 struct GroupRange {
   const std::uint32_t* subset;
@@ -97,51 +92,43 @@ struct GroupRange {
 template <class Law, class P>
 struct PairOnceForces {
   using S = typename Law::Scalar;
-  ParticleView<P> particles;
-  ContactScene<Law> scene;
-  Vec3 gravity;
-  Real dt;
-  HistoryArrays<Law> history;
-  Vec3T<S>* force;
-  Vec3T<S>* torque;
-  Real* overlap_ratio;  ///< also the partners' worst ratio so far, within a group
-  S* wall_push;
-  const std::uint32_t* subset;  ///< null: particles 0..count
+  ForceSweep<Law, P> sweep;
   // Filled in by PairOnceSweep::run.
   std::uint32_t owned = 0;               ///< particles with a list row; the others are ghosts
   const std::uint64_t* group = nullptr;  ///< per owned particle (GroupRange)
   ExactSum3* pair_force = nullptr;       ///< per particle: what its group's lower partners left
-  ExactSum3* pair_torque = nullptr;      ///< idem, torques (unused without spin)
+  ExactSum3* pair_torque = nullptr;      ///< idem, torques; null for a law without torques
 
   /// The particles at positions [begin, end) of the sweep, in order.
   GPUDEM_HOST_FLATTEN void operator()(std::uint32_t begin, std::uint32_t end) const {
-    for (std::uint32_t k = begin; k < end; ++k) particle(swept_index(subset, k));
+    for (std::uint32_t k = begin; k < end; ++k) particle(swept_index(sweep.subset, k));
   }
 
+  /// Particle i's pairs (each in its group once), then its walls and meshes. sweep.overlap_ratio
+  /// holds, until i's turn, the worst ratio of i's lower partners in its group.
   GPUDEM_HOST_FLATTEN void particle(std::uint32_t i) const {
-    const SweptParticle me = swept_particle<Law>(i, particles);
+    const ForceSweep<Law, P>& s = sweep;
+    const SweptParticle me = swept_particle<Law>(i, s.particles);
     const std::uint64_t mine = group[i];
     ExactSum3 torque_so_far{};
     if constexpr (Law::needs_spin) torque_so_far = pair_torque[i];
-    PairOnceSum<Law> sum{history, dt, pair_force[i], torque_so_far, overlap_ratio[i]};
-    for (std::uint32_t k = scene.neighbor_offsets[i]; k < scene.neighbor_offsets[i + 1]; ++k) {
-      const std::uint32_t j = scene.neighbor_index[k];
+    PairOnceSum<Law> sum{s.history, s.dt, pair_force[i], torque_so_far, s.overlap_ratio[i]};
+    for (std::uint32_t k = s.scene.neighbor_offsets[i]; k < s.scene.neighbor_offsets[i + 1]; ++k) {
+      const std::uint32_t j = s.scene.neighbor_index[k];
       const bool grouped = j < owned && group[j] == mine;
       if (grouped && j < i) continue;  // evaluated at j's turn
       sum.touched = false;
-      visit_pair_entry(me, k, particles, scene, sum);
+      visit_pair_entry(me, k, s.particles, s.scene, sum);
       if (!sum.touched || !grouped) continue;
       pair_force[j].subtract(sum.force_term);
       if constexpr (Law::needs_spin)
-        pair_torque[j].add(exact_terms(sum.partner_torque(particles.position(j).w)));
-      if (sum.ratio > overlap_ratio[j]) overlap_ratio[j] = sum.ratio;
+        pair_torque[j].add(exact_terms(sum.partner_torque(s.particles.position(j).w)));
+      if (sum.ratio > s.overlap_ratio[j]) s.overlap_ratio[j] = sum.ratio;
     }
-    ForceSum<Law> bodies{history, dt, Vec3T<S>{}, Vec3T<S>{}, sum.worst_overlap_ratio, wall_push};
-    visit_body_contacts(i, me, scene, bodies);
-    force[i] =
-        (sum.force.template value<S>() + bodies.force) + vec_cast<S>((Real(1) / me.v.w) * gravity);
-    if constexpr (Law::needs_spin) torque[i] = sum.torque.template value<S>() + bodies.torque;
-    overlap_ratio[i] = bodies.worst_overlap_ratio;
+    ForceSum<Law> bodies{s.history, s.dt, {}, {}, sum.worst_overlap_ratio, s.wall_push};
+    visit_body_contacts(i, me, s.scene, bodies);
+    s.store(i, me.v.w, sum.force.template value<S>() + bodies.force,
+            sum.torque.template value<S>() + bodies.torque, bodies.worst_overlap_ratio);
   }
 };
 
@@ -179,7 +166,7 @@ class PairOnceSweep {
   /// its subset; `owned` particles have list rows.
   void run(PairOnceForces<Law, P> kernel, std::size_t count, std::size_t owned,
            const std::uint32_t* offsets, const std::uint32_t* index) {
-    const Grouping grouping{host_thread_count(), kernel.subset != nullptr};
+    const Grouping grouping{host_thread_count(), kernel.sweep.subset != nullptr};
     if (grouping.ranges != grouping_.ranges || grouping.split != grouping_.split) {
       // A regrouping: no end of a regrouped pair may start from a record left behind.
       mirror(offsets, index, owned);
@@ -191,15 +178,15 @@ class PairOnceSweep {
       if constexpr (Law::needs_spin) pair_torque_.resize(owned);
     }
     ++generation_;
-    host_ranges(count, grouping_.ranges,
-                GroupRange{kernel.subset, generation_, group_.data(), pair_force_.data(),
-                           Law::needs_spin ? pair_torque_.data() : nullptr, kernel.overlap_ratio});
     kernel.owned = static_cast<std::uint32_t>(owned);
     kernel.group = group_.data();
     kernel.pair_force = pair_force_.data();
-    kernel.pair_torque = pair_torque_.data();
+    kernel.pair_torque = Law::needs_spin ? pair_torque_.data() : nullptr;
+    host_ranges(count, grouping_.ranges,
+                GroupRange{kernel.sweep.subset, generation_, group_.data(), kernel.pair_force,
+                           kernel.pair_torque, kernel.sweep.overlap_ratio});
     host_ranges(count, grouping_.ranges, kernel);
-    if constexpr (Law::history_size > 0) pending_ = kernel.history.pair;
+    if constexpr (Law::history_size > 0) pending_ = kernel.sweep.history.pair;
   }
 
   std::size_t bytes() const {

@@ -93,7 +93,7 @@ class JkrImpact : public BackendTest {
     for (long n = 0; n < steps; ++n) {
       engine->step();
       engine->get_particles(particles);
-      const Sample s = sample(particles, *engine, on_wall);
+      const Sample s = sample(particles, on_wall);
       if (!touched && s.overlap <= 0) {
         impact.force_before_touch = std::max(impact.force_before_touch, std::abs(s.force));
         continue;
@@ -116,7 +116,7 @@ class JkrImpact : public BackendTest {
     double overlap, overlap_rate, force;
   };
   /// δ, δ̇ (positive approaching) and F_n (positive repulsive) of particle 0 with 1 or the floor.
-  static Sample sample(const ParticleStore& p, const StepEngine& engine, bool on_wall) {
+  static Sample sample(const ParticleStore& p, bool on_wall) {
     if (on_wall) {
       const double force = p.force[0].z;
       return {p.position_radius[0].w - p.position_radius[0].z, -p.velocity_inv_mass[0].z, force};

@@ -143,8 +143,9 @@ TEST(PairOnce, SameBitsOnOneAndThreeThreads) {
     const std::string name = contact_model_name(model);
     for (const Precision precision : {Precision::Double, Precision::Mixed}) {
       const Outcome one = pour(model, precision, 1);
-      if (contact_history_width(model) > 0)
+      if (contact_history_width(model) > 0) {
         ASSERT_GT(one.contacts, 0u) << name << ": the bed should hold loaded contacts";
+      }
       ASSERT_GT(one.rebuilds, 2u) << name << ": the pour should rebuild its lists";
       const Outcome many = pour(model, precision, 3);
       EXPECT_TRUE(same_bits(one.particle_values, many.particle_values))

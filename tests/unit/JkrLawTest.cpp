@@ -88,7 +88,9 @@ TEST(JkrRelation, RelativeRadiusSolvesTheQuarticFromPartingToDeepOverlap) {
       const float kf = static_cast<float>(k), df = static_cast<float>(d * scale * scale);
       const double af = jkr_relative_radius(kf, df) / scale;
       EXPECT_NEAR(af * af - 4 * std::sqrt(af), d, 32 * 1.2e-7 * std::max(1.0, std::abs(d))) << d;
-      if (d >= -2.5) EXPECT_NEAR(af, a, 2e-6 * a) << "float at " << d;
+      if (d >= -2.5) {
+        EXPECT_NEAR(af, a, 2e-6 * a) << "float at " << d;
+      }
     }
   }
   EXPECT_NEAR(jkr_relative_radius(1.0, 0.0), std::cbrt(16.0), 1e-14);  // â₀ at touch
