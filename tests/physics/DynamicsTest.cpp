@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
 #include <vector>
 
@@ -10,6 +9,7 @@
 #include "engine/SceneSetup.hpp"
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
+#include "support/SameBits.hpp"
 #include "support/SceneBuilder.hpp"
 
 namespace gpudem::test {
@@ -131,12 +131,6 @@ GPUDEM_INSTANTIATE_BACKENDS(Dynamics);
 
 /// The snapshot copy an engine stages for output while it steps on.
 class Staging : public BackendTest {};
-
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
 
 /// Particles staged at a step and collected only after more steps hold that step's state, bit
 /// for bit in every field, with the step's particle count; later steps changed the engine.

@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstring>
 #include <numeric>
 #include <string>
 #include <tuple>
@@ -24,6 +23,7 @@
 #include "core/ParticleSources.hpp"
 #include "engine/SceneSetup.hpp"
 #include "engine/StepEngine.hpp"
+#include "support/SameBits.hpp"
 #include "support/SceneBuilder.hpp"
 
 namespace gpudem::test {
@@ -126,11 +126,6 @@ Outcome pour(const ContactModel& model, Precision precision, int threads, int sw
   }
   out.contacts = records.size();
   return out;
-}
-
-/// Whether two arrays hold the same bits.
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
 TEST(PairOnce, SameBitsOnOneAndThreeThreads) {

@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -20,6 +19,7 @@
 #include "engine/SceneSetup.hpp"
 #include "support/Backends.hpp"
 #include "support/Format.hpp"
+#include "support/SameBits.hpp"
 #include "support/SceneBuilder.hpp"
 
 namespace gpudem::test {
@@ -81,11 +81,6 @@ double largest_difference(const ParticleStore& a, const ParticleStore& b) {
   return worst;
 }
 
-template <class T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
 class Restart : public BackendTest {
  protected:
   void SetUp() override {
@@ -143,19 +138,19 @@ TEST_P(Restart, CheckpointedRunContinuesBitIdentically) {
   EXPECT_GT(second_leg->rebuild_count(), rebuilds_before) << "T must include neighbour rebuilds";
   ParticleStore actual;
   second_leg->get_particles(actual);
-  EXPECT_TRUE(same_bytes(actual.id, expected.id)) << "particle order differs";
-  EXPECT_TRUE(same_bytes(actual.position_radius, expected.position_radius))
+  EXPECT_TRUE(same_bits(actual.id, expected.id)) << "particle order differs";
+  EXPECT_TRUE(same_bits(actual.position_radius, expected.position_radius))
       << "largest difference " << largest_difference(actual, expected);
-  EXPECT_TRUE(same_bytes(actual.velocity_inv_mass, expected.velocity_inv_mass));
-  EXPECT_TRUE(same_bytes(actual.angular_velocity, expected.angular_velocity));
+  EXPECT_TRUE(same_bits(actual.velocity_inv_mass, expected.velocity_inv_mass));
+  EXPECT_TRUE(same_bits(actual.angular_velocity, expected.angular_velocity));
   EXPECT_EQ(second_leg->removed_count(), straight->removed_count());
 
   ContactHistory straight_history, restored_history;
   straight->get_contact_history(straight_history);
   second_leg->get_contact_history(restored_history);
   EXPECT_EQ(restored_history.width, straight_history.width);
-  EXPECT_TRUE(same_bytes(restored_history.pair_values, straight_history.pair_values));
-  EXPECT_TRUE(same_bytes(restored_history.wall_values, straight_history.wall_values));
+  EXPECT_TRUE(same_bits(restored_history.pair_values, straight_history.pair_values));
+  EXPECT_TRUE(same_bits(restored_history.wall_values, straight_history.wall_values));
 }
 
 TEST_P(Restart, RestartWithoutContactHistoryDiverges) {

@@ -5,12 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <cstring>
 #include <string>
 #include <vector>
 
 #include "engine/ParticleMigration.hpp"
 #include "support/FakeRanks.hpp"
+#include "support/SameBits.hpp"
 
 namespace gpudem {
 namespace {
@@ -55,11 +55,7 @@ void add_particle(MigratingParticles<S, P>& p, int from, int k) {
 /// of the rank count, which the exchange must deliver like any other message.
 int destination_of(int r, int k, int ranks) { return (r + k + 1) % ranks; }
 
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
+using test::same_bits;
 
 template <class S, class P>
 bool same_bits(const MigratingParticles<S, P>& a, const MigratingParticles<S, P>& b) {
