@@ -127,8 +127,10 @@ struct PairOnceForces {
     }
     ForceSum<Law> bodies{s.history, s.dt, {}, {}, sum.worst_overlap_ratio, s.wall_push};
     visit_body_contacts(i, me, s.scene, bodies);
-    s.store(i, me.v.w, sum.force.template value<S>() + bodies.force,
-            sum.torque.template value<S>() + bodies.torque, bodies.worst_overlap_ratio);
+    Vec3T<S> torque{};  // summed only for a law with torques
+    if constexpr (Law::needs_spin) torque = sum.torque.template value<S>() + bodies.torque;
+    s.store(i, me.v.w, sum.force.template value<S>() + bodies.force, torque,
+            bodies.worst_overlap_ratio);
   }
 };
 
