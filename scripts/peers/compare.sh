@@ -21,7 +21,8 @@
 # the memory figures.
 # Usage: scripts/peers/compare.sh [SETTLE (default 15000)] [SETTLED (default 2000)]
 #        [PLATE (default 3000, even)]
-# Environment: RANKS (default 2), BUILD_DIR (default build), OUT (default out/peers/compare).
+# Environment: RANKS (default 2), BUILD_DIR (default build), OUT (default out/peers/compare),
+#   ESYS (default 1; 0 leaves ESyS-Particle out, whose settling takes eight times ours).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 unset PROCS  # set only for ESyS-Particle's run (ranks_run)
@@ -29,9 +30,11 @@ settle=${1:-15000}
 settled=${2:-2000}
 drag=${3:-3000}
 ranks=${RANKS:-2}
+esys=${ESYS:-1}
 out=${OUT:-out/peers/compare}
-if ((settle % 500 || settle < 500 || settled < 1 || drag < 20 || drag % 2)); then
-  echo "usage: $0 [SETTLE (a multiple of 500)] [SETTLED (> 0)] [PLATE (even, >= 20)]" >&2
+if ((settle % 500 || settle < 500 || settled < 1 || drag < 20 || drag % 2)) ||
+  [[ $esys != [01] ]]; then
+  echo "usage: [ESYS=0|1] $0 [SETTLE (a multiple of 500)] [SETTLED (> 0)] [PLATE (even, >= 20)]" >&2
   exit 2
 fi
 scripts/setup.sh liggghts lammps esys-particle time > /dev/null
@@ -129,16 +132,20 @@ run_peer() {  # code binary input
 }
 run_peer liggghts liggghts inputs/bench/liggghts_peers.in
 run_peer lammps lmp inputs/bench/lammps_peers.in
-PROCS=$((ranks + 1)) ranks_run "$out/esys" esysparticle "$PWD/inputs/bench/esys_peers.py" \
-  "$out/particles.csv" "$settle" "$settled" "$ranks" > "$out/esys/run.log" 2>&1 ||
-  failed esys-particle "$out/esys/run.log"
-mapfile -t loops < <(loop_seconds "$out/esys/run.log")
-seconds[esys.settle]=${loops[0]}
-seconds[esys.settled]=${loops[1]}
-memory[esys.settle]=$(peak_mb "$out/esys")
-memory[esys.settled]=${memory[esys.settle]}
-state[esys.settle]=$(observe "$out/esys/settle.dump")
-state[esys.settled]=$(observe "$out/esys/settled.dump")
+settling_codes="gpudem liggghts lammps"
+if [[ $esys == 1 ]]; then
+  settling_codes+=" esys"
+  PROCS=$((ranks + 1)) ranks_run "$out/esys" esysparticle "$PWD/inputs/bench/esys_peers.py" \
+    "$out/particles.csv" "$settle" "$settled" "$ranks" > "$out/esys/run.log" 2>&1 ||
+    failed esys-particle "$out/esys/run.log"
+  mapfile -t loops < <(loop_seconds "$out/esys/run.log")
+  seconds[esys.settle]=${loops[0]}
+  seconds[esys.settled]=${loops[1]}
+  memory[esys.settle]=$(peak_mb "$out/esys")
+  memory[esys.settled]=${memory[esys.settle]}
+  state[esys.settle]=$(observe "$out/esys/settle.dump")
+  state[esys.settled]=$(observe "$out/esys/settled.dump")
+fi
 
 # The plate drag, from gpudem-mpi's settled bed, in gpudem-mpi, LIGGGHTS and LAMMPS.
 plate=(0.25 0.25 0.45 0.04 0.30)  # X Y0 Y1 Z0 Z1 [m]: the plate's plane x = X at the start
@@ -200,7 +207,7 @@ echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for phase in settle settled; do
   steps=$([[ $phase == settle ]] && echo "$settle" || echo "$settled")
   IFS=, read -r _ h0 p0 _ <<< "${state[gpudem.$phase]}"
-  for code in gpudem liggghts lammps esys; do
+  for code in $settling_codes; do
     IFS=, read -r n h p ke <<< "${state[$code.$phase]}"
     awk -v c="$code" -v ph="$phase" -v st="$steps" -v s="${seconds[$code.$phase]}" \
       -v r="$ranks" -v m="${memory[$code.$phase]}" -v n="$n" -v h="$h" -v p="$p" -v ke="$ke" \
