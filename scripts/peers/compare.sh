@@ -11,8 +11,8 @@
 # rectangle 0.2 m wide, from 0.04 m above the floor to above the bed's top (0.14 m), starting at
 # x = 0.25 m and moving along +x at 1 m/s, the particles that touch its start or the 2 mm
 # behind it left out (inputs/bench/liggghts_plate.in, lammps_plate.in; LAMMPS' plate is a 2 mm
-# block). Installs Debian's liggghts, lammps and esys-particle when missing. Prints two
-# tables: the stepping time of each phase (the peers' "Loop time", our "done" line),
+# block). Installs Debian's liggghts, lammps and esys-particle (with ESYS=1) when missing.
+# Prints two tables: the stepping time of each phase (the peers' "Loop time", our "done" line),
 # particle-steps/s per core, the peak memory of all ranks, and the observables at the end of
 # each phase (bed height, packing fraction of the lower half of the bed, kinetic energy), or
 # the plate's draft (the particles' force on it against its travel) over the second half of
@@ -37,7 +37,9 @@ if ((settle % 500 || settle < 500 || settled < 1 || drag < 20 || drag % 2)) ||
   echo "usage: [ESYS=0|1] $0 [SETTLE (a multiple of 500)] [SETTLED (> 0)] [PLATE (even, >= 20)]" >&2
   exit 2
 fi
-scripts/setup.sh liggghts lammps esys-particle time > /dev/null
+peers=(liggghts lammps time)
+[[ $esys == 1 ]] && peers+=(esys-particle)
+scripts/setup.sh "${peers[@]}" > /dev/null
 gpudem=$(cd "${BUILD_DIR:-build}" && pwd)/gpudem-mpi
 source scripts/mpi-env.sh
 export OMP_NUM_THREADS=1
