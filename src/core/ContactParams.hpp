@@ -40,22 +40,30 @@ struct ImpactPair {
 /// G = E / (2(1 + ν)) [Pa] of a material of Young's modulus E and Poisson ratio ν.
 inline double shear_modulus(double young, double poisson) { return young / (2 * (1 + poisson)); }
 
+/// Calls f(field of `to`, field of `from`) for each constant, in order: the one list of the
+/// fields for the functions that copy them.
+template <class To, class From, class F>
+GPUDEM_HD void for_each_param(ContactPairParamsT<To>& to, const ContactPairParamsT<From>& from,
+                              F f) {
+  f(to.hooke_stiffness, from.hooke_stiffness);
+  f(to.hooke_tangential_stiffness, from.hooke_tangential_stiffness);
+  f(to.effective_young, from.effective_young);
+  f(to.effective_shear, from.effective_shear);
+  f(to.restitution_beta, from.restitution_beta);
+  f(to.viscoelastic_time, from.viscoelastic_time);
+  f(to.friction_static, from.friction_static);
+  f(to.friction_dynamic, from.friction_dynamic);
+  f(to.rolling_friction, from.rolling_friction);
+  f(to.rolling_damping, from.rolling_damping);
+  f(to.cohesion_energy_density, from.cohesion_energy_density);
+  f(to.surface_energy, from.surface_energy);
+}
+
 /// `p` with every constant converted to scalar To.
 template <class To>
 ContactPairParamsT<To> params_cast(const ContactPairParams& p) {
   ContactPairParamsT<To> out;
-  out.hooke_stiffness = static_cast<To>(p.hooke_stiffness);
-  out.hooke_tangential_stiffness = static_cast<To>(p.hooke_tangential_stiffness);
-  out.effective_young = static_cast<To>(p.effective_young);
-  out.effective_shear = static_cast<To>(p.effective_shear);
-  out.restitution_beta = static_cast<To>(p.restitution_beta);
-  out.viscoelastic_time = static_cast<To>(p.viscoelastic_time);
-  out.friction_static = static_cast<To>(p.friction_static);
-  out.friction_dynamic = static_cast<To>(p.friction_dynamic);
-  out.rolling_friction = static_cast<To>(p.rolling_friction);
-  out.rolling_damping = static_cast<To>(p.rolling_damping);
-  out.cohesion_energy_density = static_cast<To>(p.cohesion_energy_density);
-  out.surface_energy = static_cast<To>(p.surface_energy);
+  for_each_param(out, p, [](To& to, Real from) { to = static_cast<To>(from); });
   return out;
 }
 

@@ -101,7 +101,8 @@ inline Real sphere_mass(Real density, Real radius) {
 }
 
 /// Moment of inertia of a solid sphere, I = 2/5 m r², from its radius and inverse mass.
-GPUDEM_HD inline Real sphere_inertia(Real radius, Real inv_mass) {
+template <class R>
+GPUDEM_HD R sphere_inertia(R radius, R inv_mass) {
   return Real(0.4) * radius * radius / inv_mass;
 }
 

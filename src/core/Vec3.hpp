@@ -4,6 +4,7 @@
 /// mixed policies), Vec3T<float> the forces and contact geometry of the mixed and float
 /// policies (ContactLaw.hpp) and Vec4T<float> the engine's particle state in the float policy.
 #include <cmath>
+#include <type_traits>
 
 #include "core/Config.hpp"
 
@@ -109,6 +110,27 @@ GPUDEM_HD S norm2(Vec3T<S> a) {
 template <class S>
 GPUDEM_HD S norm(Vec3T<S> a) {
   return square_root(dot(a, a));
+}
+
+/// a where `take_a`, else b: how the contact laws choose between cheap values, so that the same
+/// law also runs on Lanes (core/Lanes.hpp), where each lane chooses for itself. Both values are
+/// computed; choose computes only what is needed.
+template <class S, std::enable_if_t<std::is_arithmetic_v<S>, int> = 0>
+GPUDEM_HD S select(bool take_a, S a, S b) {
+  return take_a ? a : b;
+}
+template <class Mask, class S>
+GPUDEM_HD Vec3T<S> select(const Mask& take_a, const Vec3T<S>& a, const Vec3T<S>& b) {
+  return {select(take_a, a.x, b.x), select(take_a, a.y, b.y), select(take_a, a.z, b.z)};
+}
+
+/// a() where `take_a`, else b(): how the contact laws choose between outcomes that cost
+/// something to compute. On a scalar only the chosen one is computed; on Lanes (core/Lanes.hpp)
+/// both are, unless every lane takes the same one, and each lane keeps its own (select).
+template <class A, class B>
+GPUDEM_HD auto choose(bool take_a, const A& a, const B& b) -> decltype(a()) {
+  if (take_a) return a();
+  return b();
 }
 
 /// Component access by axis index 0..2.

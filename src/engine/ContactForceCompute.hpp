@@ -15,7 +15,7 @@
 #include "engine/ForceCompute.hpp"
 #include "engine/HostCopies.hpp"
 #include "engine/LaunchTuning.hpp"
-#include "engine/PairOnceForces.hpp"
+#include "engine/PairOnceSweep.hpp"
 
 namespace gpudem {
 
@@ -27,14 +27,19 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
                 "a history record is the law's history_size values, nothing else");
 
  public:
-  /// `pair_params`: the constants of each material pair, material_count² entries, row-major.
-  explicit ContactForceCompute(const std::vector<ContactPairParams>& pair_params) {
+  /// `pair_params`: the constants of each material pair, material_count² entries, row-major;
+  /// `host_lanes`: the host's sweep evaluates eight contacts at once where it can (PairOnceSweep).
+  ContactForceCompute(const std::vector<ContactPairParams>& pair_params, bool host_lanes)
+      : pair_once_(host_lanes) {
     pair_params_.upload(converted(pair_params, params_cast<S>));
   }
 
   std::uint32_t history_width() const override { return Law::history_size; }
   bool needs_spin() const override { return Law::needs_spin; }
   std::size_t memory_bytes() const override { return pair_params_.bytes() + pair_once_.bytes(); }
+  int contact_lanes() const override {
+    return std::is_same_v<Space, HostSpace> ? pair_once_.contact_lanes() : 1;
+  }
 
   /// On the host each pair is evaluated once and the pair loads are summed as integers
   /// (PairOnceForces.hpp).

@@ -7,15 +7,32 @@
 
 namespace gpudem {
 
-/// Torque of a contact force about i's centre, arm·n × F_t, plus the law's rolling torque.
+/// Torque about a particle's centre of a contact's loads f on it, with lever arm `arm` along
+/// the contact normal n: arm·n × F_t plus the law's rolling torque. R is Real and L the law's
+/// scalar, or lanes of both (core/Lanes.hpp).
+template <class Law, class R, class L>
+GPUDEM_HD Vec3T<L> lever_torque(R arm, const Vec3T<R>& normal, const ContactForce<L>& f) {
+  Vec3T<L> torque = f.rolling_torque;
+  if constexpr (Law::has_tangential_force) torque += cross(vec_cast<L>(arm * normal), f.tangential);
+  return torque;
+}
+
+/// The torque on i's partner of the loads f on i (normal n from i to the partner), as the
+/// partner's own evaluation computes it: lever_torque with its arm, normal −n and mirrored
+/// loads, which is −M_r + (arm·n) × F_t exactly.
+template <class Law, class R, class L>
+GPUDEM_HD Vec3T<L> partner_torque(R partner_arm, const Vec3T<R>& normal, const ContactForce<L>& f) {
+  Vec3T<L> torque = -f.rolling_torque;
+  if constexpr (Law::has_tangential_force)
+    torque += cross(vec_cast<L>(partner_arm * normal), f.tangential);
+  return torque;
+}
+
+/// Torque of a contact force about i's centre (lever_torque).
 template <class Law>
 GPUDEM_HD Vec3T<typename Law::Scalar> contact_torque(const ContactSample<Law>& c,
                                                      const typename Law::Force& f) {
-  using S = typename Law::Scalar;
-  Vec3T<S> torque = f.rolling_torque;
-  if constexpr (Law::has_tangential_force)
-    torque += cross(vec_cast<S>(c.arm * c.point.normal), f.tangential);
-  return torque;
+  return lever_torque<Law>(c.arm, c.point.normal, f);
 }
 
 /// Writable history arrays of one particle's contacts.

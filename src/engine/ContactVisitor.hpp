@@ -157,19 +157,26 @@ GPUDEM_HD Real contact_energy(const ContactSample<Law>& c) {
 }
 
 /// Moment of inertia about the contact point, I + m r², of a sphere (for I_r).
-GPUDEM_HD inline Real inertia_about_contact(Real radius, Real inv_mass) {
+template <class R>
+GPUDEM_HD R inertia_about_contact(R radius, R inv_mass) {
   return sphere_inertia(radius, inv_mass) + radius * radius / inv_mass;
 }
 
-/// Fills the fields of a pair contact that the law's flags ask for.
-template <class Law>
-GPUDEM_HD void describe_pair(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi, Real4 xj, Real4 vj,
-                             Vec3 wj) {
-  ContactPoint& k = c.point;
-  const Real arm_j = xj.w - Real(0.5) * k.overlap;
-  Vec3 ui = xyz(vi), uj = xyz(vj);
+/// The pair contact of particle i (centre and radius xi, velocity and inverse mass vi, spin wi)
+/// with a partner at d = x_j − x_i, |d|² = dist2 > 0: the normal, the overlap, i's lever arm
+/// r_i − δ/2 and the fields the law's flags ask for. R is Real, or Lanes of Real for several
+/// contacts at once (core/Lanes.hpp), each lane the same bits as one contact in Real.
+template <class Law, class R>
+GPUDEM_HD void describe_pair(ContactPointT<R>& k, R& arm, Vec3T<R> d, R dist2, Vec4T<R> xi,
+                             Vec4T<R> vi, Vec3T<R> wi, Vec4T<R> xj, Vec4T<R> vj, Vec3T<R> wj) {
+  const R dist = square_root(dist2);
+  k.normal = (Real(1) / dist) * d;
+  k.overlap = xi.w + xj.w - dist;
+  arm = xi.w - Real(0.5) * k.overlap;
+  const R arm_j = xj.w - Real(0.5) * k.overlap;
+  Vec3T<R> ui = xyz(vi), uj = xyz(vj);
   if constexpr (Law::needs_spin) {
-    ui += cross(wi, c.arm * k.normal);
+    ui += cross(wi, arm * k.normal);
     uj += cross(wj, -arm_j * k.normal);
     k.relative_spin = wi - wj;
   }
@@ -178,7 +185,7 @@ GPUDEM_HD void describe_pair(ContactSample<Law>& c, Real4 xi, Real4 vi, Vec3 wi,
   k.reduced_mass = Real(1) / (vi.w + vj.w);
   if constexpr (Law::needs_effective_radius) k.effective_radius = xi.w * xj.w / (xi.w + xj.w);
   if constexpr (Law::needs_inertia) {
-    const Real inertia_i = sphere_inertia(xi.w, vi.w), inertia_j = sphere_inertia(xj.w, vj.w);
+    const R inertia_i = sphere_inertia(xi.w, vi.w), inertia_j = sphere_inertia(xj.w, vj.w);
     k.reduced_inertia = inertia_i * inertia_j / (inertia_i + inertia_j);
     k.rolling_inertia = Real(1) / (Real(1) / inertia_about_contact(xi.w, vi.w) +
                                    Real(1) / inertia_about_contact(xj.w, vj.w));
@@ -396,41 +403,53 @@ GPUDEM_HD SweptParticle swept_particle(std::uint32_t i, const ParticleView<P>& p
   return q;
 }
 
-/// Calls visit(sample) when particle i (`me`) and its partner on list entry k touch — positive
-/// overlap, or, for a cohesion that holds contacts past touch (JKR), a formed contact within
-/// its pull-off gap — and visit.separated(k) otherwise (or when the pair is bonded).
+/// Particle i's partner on one list entry as a contact sweep first sees it.
+struct PairEntry {
+  std::uint32_t j;  ///< the partner
+  bool touching;    ///< whether the pair is a contact now
+  Real4 xj;         ///< the partner's centre and radius (when not bonded)
+  Vec3 d;           ///< x_j − x_i, nearest image
+  Real dist2;       ///< |d|²
+};
+
+/// Whether particle i (`me`) and its partner on list entry k touch: positive overlap, or, for a
+/// cohesion that holds contacts past touch (JKR), a formed contact within its pull-off gap; a
+/// bonded pair never does.
+template <class Law, class P>
+GPUDEM_HD PairEntry pair_entry(const SweptParticle& me, std::uint32_t k, const ParticleView<P>& p,
+                               const ContactScene<Law>& s) {
+  PairEntry e{s.neighbor_index[k], false, {}, {}, 0};
+  if (s.bonded(k)) return e;
+  const Real4 xi = me.x;
+  e.xj = p.position(e.j);
+  e.d = s.box.minimum_image(xyz(e.xj) - xyz(xi));
+  e.dist2 = norm2(e.d);
+  const Real reach = xi.w + e.xj.w;
+  Real limit = reach;
+  if constexpr (Law::Cohesion::history_size > 0)
+    if (e.dist2 >= reach * reach)
+      limit += holding_gap<Law>(s.pair_params[me.material * s.material_count + p.material[e.j]],
+                                xi.w * e.xj.w / reach, s.pair_history[k]);
+  e.touching = !(e.dist2 >= limit * limit || e.dist2 == 0);  // NaN: touching, so it spreads
+  return e;
+}
+
+/// Calls visit(sample) when particle i (`me`) and its partner on list entry k touch
+/// (pair_entry), and visit.separated(k) otherwise.
 template <class Law, class P, class Visitor>
 GPUDEM_HD void visit_pair_entry(const SweptParticle& me, std::uint32_t k, const ParticleView<P>& p,
                                 const ContactScene<Law>& s, Visitor& visit) {
-  const std::uint32_t j = s.neighbor_index[k];
-  if (s.bonded(k)) {
+  const PairEntry e = pair_entry(me, k, p, s);
+  if (!e.touching) {
     visit.separated(k);
     return;
   }
-  const Real4 xi = me.x;
-  const Real4 xj = p.position(j);
-  const Vec3 d = s.box.minimum_image(xyz(xj) - xyz(xi));
-  const Real dist2 = norm2(d);
-  const Real reach = xi.w + xj.w;
-  Real limit = reach;
-  if constexpr (Law::Cohesion::history_size > 0)
-    if (dist2 >= reach * reach)
-      limit += holding_gap<Law>(s.pair_params[me.material * s.material_count + p.material[j]],
-                                xi.w * xj.w / reach, s.pair_history[k]);
-  if (dist2 >= limit * limit || dist2 == 0) {
-    visit.separated(k);
-    return;
-  }
-  const Real dist = sqrt(dist2);
   ContactSample<Law> c;
-  c.point.normal = (Real(1) / dist) * d;
-  c.point.overlap = reach - dist;
-  c.arm = xi.w - Real(0.5) * c.point.overlap;
   Vec3 wj{};
-  if constexpr (Law::needs_spin) wj = p.spin(j);
-  describe_pair(c, xi, me.v, me.w, xj, p.velocity(j), wj);
-  c.min_radius = xi.w < xj.w ? xi.w : xj.w;
-  c.params = &s.pair_params[me.material * s.material_count + p.material[j]];
+  if constexpr (Law::needs_spin) wj = p.spin(e.j);
+  describe_pair<Law>(c.point, c.arm, e.d, e.dist2, me.x, me.v, me.w, e.xj, p.velocity(e.j), wj);
+  c.min_radius = me.x.w < e.xj.w ? me.x.w : e.xj.w;
+  c.params = &s.pair_params[me.material * s.material_count + p.material[e.j]];
   c.wall = -1;
   c.slot = k;
   if constexpr (Law::history_size > 0) c.state = s.pair_history[k];

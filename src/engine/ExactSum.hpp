@@ -14,8 +14,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "core/Config.hpp"
+#include "core/Lanes.hpp"
 #include "core/Vec3.hpp"
 
 namespace gpudem {
@@ -47,13 +49,58 @@ inline ExactTerm term(double x) {
 inline bool within_limit(double x) { return std::fabs(x) < exact_term_limit; }  // NaN: false
 }  // namespace exact_detail
 
-template <class S>
+template <class S, std::enable_if_t<std::is_arithmetic_v<S>, int> = 0>
 ExactTerm3 exact_terms(const Vec3T<S>& v) {
   const double x = v.x, y = v.y, z = v.z;
   using exact_detail::within_limit;
   if (!(within_limit(x) && within_limit(y) && within_limit(z))) return {{}, {}, {}, false};
   using exact_detail::term;
   return {term(x), term(y), term(z), true};
+}
+
+/// The terms of W vectors at once (a contact's loads in lanes, core/Lanes.hpp); lane(l) is what
+/// exact_terms gives for lane l's vector: llrint is round to nearest even (rint) and the
+/// conversion of the integer it gives, which is exact.
+template <int W>
+struct ExactTermLanes {
+  using Integers = Lanes<long long, W>;
+  Integers whole[3];
+  Integers fraction[3];
+  LaneMask<double, W> representable;
+
+  ExactTerm3 lane(int l) const {
+    if (!representable[l]) return {{}, {}, {}, false};
+    const auto term = [&](int k) {
+      return ExactTerm{static_cast<std::uint64_t>(whole[k][l]),
+                       static_cast<std::uint64_t>(fraction[k][l])};
+    };
+    return {term(0), term(1), term(2), true};
+  }
+};
+
+template <class S, int W>
+ExactTermLanes<W> exact_terms(const Vec3T<Lanes<S, W>>& v) {
+  using D = Lanes<double, W>;
+  using Integers = typename ExactTermLanes<W>::Integers;
+  const D x[3] = {D(v.x), D(v.y), D(v.z)};
+  ExactTermLanes<W> t;
+  t.representable = x[0] < exact_term_limit && x[0] > -exact_term_limit;  // NaN: false
+  for (int k = 0; k < 3; ++k) {
+    const D y = x[k] * exact_units_per_newton;
+    const D whole = round_to_integer(y);
+    t.whole[k] = Integers(whole);
+    t.fraction[k] = Integers(round_to_integer((y - whole) * exact_fractions_per_unit));
+    if (k > 0)
+      t.representable = t.representable && (x[k] < exact_term_limit && x[k] > -exact_term_limit);
+  }
+  return t;
+}
+
+/// Lane l's terms: the terms themselves for one lane.
+inline ExactTerm3 lane_of(const ExactTerm3& t, int) { return t; }
+template <int W>
+ExactTerm3 lane_of(const ExactTermLanes<W>& t, int l) {
+  return t.lane(l);
 }
 
 /// A vector summed from rounded terms.

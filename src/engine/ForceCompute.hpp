@@ -78,6 +78,9 @@ class ForceCompute {
   /// Bytes the law holds between steps: its pair constants and, on the host, the pair-once
   /// sweep's per-particle groups and sums.
   virtual std::size_t memory_bytes() const = 0;
+  /// Contacts one thread evaluates at once: 8 where the host sweep runs in AVX-512 lanes
+  /// (PairLanesForces.hpp), else 1.
+  virtual int contact_lanes() const = 0;
   /// Forces of the particles subset[0, count) (all of 0..count when subset is null): contact
   /// forces plus gravity, torques, overlap ratios, the history advanced by dt into `out`.
   virtual void compute(const ContactInputs<P, S>& in, const Vec3& gravity, Real dt,

@@ -1,6 +1,6 @@
 #pragma once
 /// Host loops over contiguous ranges of particles, one range per thread: the pair-once force
-/// sweep and its history mirror (PairOnceForces.hpp) split the particles the same way.
+/// sweep and its history mirror (PairOnceSweep.hpp) split the particles the same way.
 #include <cstddef>
 #include <cstdint>
 

@@ -50,7 +50,7 @@ struct Kick {
     v.z = (v.z + h * v.w * f.z) * slowed;
     velocity_inv_mass[i] = vec4_cast<P>(v);
     if constexpr (kRotate) {
-      const Real inertia = sphere_inertia(position_radius[i].w, v.w);
+      const Real inertia = sphere_inertia<Real>(position_radius[i].w, v.w);
       const Vec3 w =
           vec_cast<Real>(angular_velocity[i]) + (h / inertia) * vec_cast<Real>(torque[i]);
       angular_velocity[i] = vec_cast<P>(slowed * w);

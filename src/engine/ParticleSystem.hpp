@@ -142,6 +142,7 @@ class ParticleSystem final : public StepEngine {
   std::vector<MemoryUse> memory_use() const override;
 
   std::string backend_name() const override { return Space::name; }
+  int contact_lanes() const override { return law_->contact_lanes(); }
 
  private:
   /// The arrays a snapshot or get_particles reads; the owned particles are their first rows.

@@ -55,6 +55,9 @@ struct EngineSetup {
   /// Wait for the device at the end of each timed part of a step (StepTimes), so that each
   /// part holds its own kernels' time; a device synchronisation per part on CUDA.
   bool exact_phase_times = false;
+  /// The host's force sweep evaluates eight contacts at once in AVX-512 lanes where the build
+  /// and the CPU have them (PairLanesForces.hpp); the same bits either way.
+  bool host_lanes = true;
 };
 
 /// Global quantities reduced over all particles; walls' forces are the forces the
@@ -272,6 +275,8 @@ class EngineDiagnostics {
     return total;
   }
   virtual std::string backend_name() const = 0;
+  /// Contacts one thread evaluates at once (ForceCompute::contact_lanes).
+  virtual int contact_lanes() const = 0;
 };
 
 /// The one-off choice of an engine's launch parameters.

@@ -30,6 +30,37 @@ function(gpudem_add_engine_instances backend space parallel_for_header extension
 endfunction()
 
 gpudem_add_engine_instances(Host HostSpace engine/ParallelFor.hpp cpp)
+
+# The host's pair sweeps in AVX-512 lanes (PairLanesInstance.in), one unit per normal law and law
+# scalar, each instantiating the sweep of every damping, tangential, rolling and cohesion choice
+# (enum values; the uncompiled ones are empty). Only these units are built for x86-64-v4.
+if(GPUDEM_HOST_LANES)
+  set(LANES_INSTANCES "")
+  foreach(D RANGE 2)
+    foreach(T RANGE 2)
+      foreach(R RANGE 2)
+        foreach(C RANGE 2)
+          string(APPEND LANES_INSTANCES "GPUDEM_SWEEP_IN_LANES(${D}, ${T}, ${R}, ${C})\n")
+        endforeach()
+      endforeach()
+    endforeach()
+  endforeach()
+  add_library(gpudem_host_lanes OBJECT)
+  foreach(SCALAR double float)
+    foreach(LAW Hooke Hertz)
+      string(TOLOWER ${LAW} LAW_NAME)
+      set(file ${CMAKE_CURRENT_BINARY_DIR}/generated/PairLanes${LAW}_${SCALAR}.cpp)
+      configure_file(${CMAKE_CURRENT_SOURCE_DIR}/engine/PairLanesInstance.in ${file} @ONLY)
+      target_sources(gpudem_host_lanes PRIVATE ${file})
+    endforeach()
+  endforeach()
+  target_link_libraries(gpudem_host_lanes PRIVATE gpudem_contact_model gpudem_mesh)
+  target_compile_options(gpudem_host_lanes PRIVATE -march=x86-64-v4)
+  if(GPUDEM_LIBRARY_TYPE STREQUAL "SHARED")
+    set_target_properties(gpudem_host_lanes PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  endif()
+  target_sources(gpudem_engine PRIVATE $<TARGET_OBJECTS:gpudem_host_lanes>)
+endif()
 if(GPUDEM_HAVE_CUDA)
   target_sources(gpudem_engine PRIVATE engine/CudaMemory.cu engine/CudaPrimitives.cu
                                        engine/StepEngineCuda.cu)

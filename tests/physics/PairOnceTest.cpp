@@ -5,7 +5,9 @@
 // velocities, spins, forces, torques and each contact's history on both its ends (the other
 // end's filled in from the evaluating end's, mirrored, before it is read). Run for every
 // contact law, over list rebuilds, in each precision policy, with two materials (so that pairs
-// of unlike grains, whose constants are mixed, are evaluated at either end too).
+// of unlike grains, whose constants are mixed, are evaluated at either end too). Where the CPU
+// runs AVX-512, the sweep that evaluates eight contacts at once (engine/PairLanesForces.hpp,
+// compiled apart for x86-64-v4) must give the bits of the one that evaluates one at a time.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,6 +22,7 @@
 
 #include "core/ContactHistory.hpp"
 #include "core/ContactModel.hpp"
+#include "core/Lanes.hpp"
 #include "core/ParticleSources.hpp"
 #include "engine/SceneSetup.hpp"
 #include "engine/StepEngine.hpp"
@@ -35,6 +38,7 @@ struct Outcome {
   std::vector<double> history_values;   ///< each record's partner ids and values
   std::size_t contacts = 0;
   std::uint64_t rebuilds = 0;
+  int contact_lanes = 0;  ///< contacts a thread evaluated at once
 };
 
 Scene sticky_rolling_bed(const ContactModel& model) {
@@ -82,14 +86,16 @@ void set_threads([[maybe_unused]] int threads) {
 #endif
 }
 
-/// The pour's 1,000 steps on `threads` threads, from step `switch_at` on `then` threads.
+/// The pour's 1,000 steps on `threads` threads, from step `switch_at` on `then` threads; `lanes`:
+/// eight contacts at once where the CPU can.
 Outcome pour(const ContactModel& model, Precision precision, int threads, int switch_at = 1000,
-             int then = 1) {
+             int then = 1, bool lanes = true) {
   set_threads(threads);
   const Scene scene = sticky_rolling_bed(model);
   const ParticleStore particles = pressed_bed(scene);
   EngineSetup setup = make_engine_setup(scene, particles);
   setup.precision = precision;
+  setup.host_lanes = lanes;
   auto engine = make_host_engine(setup);
   engine->set_particles(particles);
   for (int n = 0; n < 1000; ++n) {
@@ -98,6 +104,7 @@ Outcome pour(const ContactModel& model, Precision precision, int threads, int sw
   }
   Outcome out;
   out.rebuilds = engine->rebuild_count();
+  out.contact_lanes = engine->contact_lanes();
   ParticleStore p;
   engine->get_particles(p);
   std::vector<std::size_t> order(p.size());
@@ -165,6 +172,28 @@ TEST(PairOnce, SameBitsWhenTheThreadCountChangesMidRun) {
   const Outcome switched = pour(model, Precision::Double, 1, 137, 3);
   EXPECT_TRUE(same_bits(one.particle_values, switched.particle_values));
   EXPECT_TRUE(same_bits(one.history_values, switched.history_values));
+}
+
+TEST(PairOnce, SameBitsInAvx512LanesAsOneContactAtATime) {
+  if (!GPUDEM_HOST_LANES) GTEST_SKIP() << "built without the AVX-512 sweep (GPUDEM_HOST_LANES)";
+  if (!host_runs_x86_64_v4()) GTEST_SKIP() << "this CPU does not run x86-64-v4 (AVX-512) code";
+  int in_lanes = 0;
+  for (const ContactModel& model : valid_contact_models()) {
+    const std::string name = contact_model_name(model);
+    for (const Precision precision : {Precision::Double, Precision::Mixed}) {
+      const Outcome lanes = pour(model, precision, 2, 1000, 1, true);
+      const Outcome one = pour(model, precision, 2, 1000, 1, false);
+      EXPECT_EQ(one.contact_lanes, 1) << name;
+      // Every slot but JKR's cohesion evaluates in lanes (ContactLaw::evaluates_in_lanes).
+      EXPECT_EQ(lanes.contact_lanes, model.cohesion == CohesionLaw::Jkr ? 1 : 8) << name;
+      in_lanes += lanes.contact_lanes == 8;
+      EXPECT_TRUE(same_bits(one.particle_values, lanes.particle_values))
+          << name << ", in lanes: particles differ";
+      EXPECT_TRUE(same_bits(one.history_values, lanes.history_values))
+          << name << ", in lanes: histories differ";
+    }
+  }
+  EXPECT_GT(in_lanes, 40);
 }
 
 }  // namespace

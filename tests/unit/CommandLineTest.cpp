@@ -116,7 +116,8 @@ double bytes_per_particle(const std::string& output, const std::string& name) {
   return std::stod(output.substr(at + 3 + name.size()));
 }
 
-/// X from the start-up summary "backend NAME[ (DEVICE)], X bytes per particle"; -1 without it.
+/// X from the start-up summary "backend NAME[ (DEVICE)][, 8 contacts at once (AVX-512)], X bytes
+/// per particle"; -1 without it.
 double summary_bytes_per_particle(const std::string& output) {
   const std::size_t line = output.find("backend ");
   const std::size_t end = output.find(" bytes per particle", line);

@@ -22,6 +22,7 @@ struct Adhesion {
 /// The members shared by the choices that act only while the particles overlap.
 struct TouchingCohesion {
   static constexpr int history_size = 0;
+  static constexpr bool evaluates_in_lanes = true;  ///< ContactLaw::evaluates_in_lanes
   static constexpr bool needs_effective_radius = false;
   template <class S>
   GPUDEM_HD static S friction_load(const ContactPairParamsT<S>&, const ContactPointT<S>&,
@@ -75,6 +76,7 @@ struct JkrCohesion {
   static constexpr bool needs_contact_area = false;
   static constexpr bool needs_effective_radius = true;
   static constexpr int history_size = 1;
+  static constexpr bool evaluates_in_lanes = false;  ///< its solve branches
   /// The formed flag is the same seen from either end.
   static constexpr int negated_values = 0;
   /// With x = √(a/R*) and k = π γ/(8E* R*) (jkr_relative_radius): overlap a²/R* = R* x⁴ and

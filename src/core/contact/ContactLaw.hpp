@@ -54,6 +54,16 @@ struct ContactLaw {
   static constexpr bool needs_inertia = Rolling::needs_inertia;
   static constexpr bool needs_contact_area = Cohesion::needs_contact_area;
   static constexpr bool has_tangential_force = Tangential::history_size > 0;
+  /// Whether evaluate also runs on Lanes<Scalar, W> (core/Lanes.hpp), W contacts at once: every
+  /// slot but JKR's cohesion is written with select instead of branches.
+  static constexpr bool evaluates_in_lanes = Cohesion::evaluates_in_lanes;
+  /// The slot choices, as a scene names them.
+  static constexpr ContactModel model{
+      static_cast<NormalLaw>(NormalSlots::index_of<Normal>()),
+      static_cast<DampingLaw>(DampingSlots::index_of<Damping>()),
+      static_cast<TangentialLaw>(TangentialSlots::index_of<Tangential>()),
+      static_cast<RollingLaw>(RollingSlots::index_of<Rolling>()),
+      static_cast<CohesionLaw>(CohesionSlots::index_of<Cohesion>())};
   using State = ContactState<history_size, Scalar>;
   using Params = ContactPairParamsT<Scalar>;
   using Point = ContactPointT<Scalar>;
@@ -64,20 +74,24 @@ struct ContactLaw {
   /// Normal: F_n = F_e + F_d (clamped at 0 if the damping law says so) minus the cohesion's
   /// pull; the Coulomb and rolling limits scale with the cohesion's friction load (F_e, or
   /// JKR's F_e − pull + 2 F_pull-off; TangentialLaws.hpp).
-  GPUDEM_HD static Force evaluate(const Params& p, const Point& c, Scalar* history, Scalar dt) {
-    const Adhesion<Scalar> adhesion = Cohesion::adhere(p, c);
-    const Point& e = adhesion.point;
-    const Scalar pull = adhesion.pull;
-    const NormalResponse<Scalar> n = Normal::respond(p, e);
-    Scalar fn = n.force + Damping::template normal_force<Normal>(p, e, n);
-    if (Damping::clamps_attraction && fn < 0) fn = 0;
-    const Scalar load = Cohesion::friction_load(p, e, n.force, pull);
-    Force out;
+  /// T is Scalar, or Lanes of it (core/Lanes.hpp) where evaluates_in_lanes.
+  template <class T>
+  GPUDEM_HD static ContactForce<T> evaluate(const ContactPairParamsT<T>& p,
+                                            const ContactPointT<T>& c, T* history,
+                                            NonDeducedT<T> dt) {
+    const Adhesion<T> adhesion = Cohesion::adhere(p, c);
+    const ContactPointT<T>& e = adhesion.point;
+    const T pull = adhesion.pull;
+    const NormalResponse<T> n = Normal::respond(p, e);
+    T fn = n.force + Damping::template normal_force<Normal>(p, e, n);
+    if constexpr (Damping::clamps_attraction) fn = select(fn < 0, T(0), fn);
+    const T load = Cohesion::friction_load(p, e, n.force, pull);
+    ContactForce<T> out;
     out.tangential = Tangential::template force<Damping, Normal>(p, e, load, history, dt);
     out.force = out.tangential - (fn - pull) * c.normal;
     out.rolling_torque = Rolling::torque(p, e, n, load, history + rolling_offset, dt);
     if constexpr (Cohesion::history_size > 0)
-      if (dt > 0) history[formed_offset] = 1;
+      history[formed_offset] = select(dt > 0, T(1), history[formed_offset]);
     return out;
   }
 

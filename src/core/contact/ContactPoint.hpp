@@ -51,8 +51,9 @@ GPUDEM_HD Vec3T<S> tangential_velocity(const ContactPointT<S>& c) {
 /// a² of two overlapping spheres at centre distance d: the radius of the lens' rim,
 /// a² = (r_i+r_j−d)(d+r_i−r_j)(d−r_i+r_j)(d+r_i+r_j) / (4d²), evaluated with the radii in
 /// order of size, so that both ends of a contact get the same bits.
-GPUDEM_HD inline Real sphere_contact_radius_sq(Real d, Real ri, Real rj) {
-  const Real small = ri < rj ? ri : rj, large = ri < rj ? rj : ri;
+template <class R>
+GPUDEM_HD R sphere_contact_radius_sq(R d, R ri, R rj) {
+  const R small = select(ri < rj, ri, rj), large = select(ri < rj, rj, ri);
   return (small + large - d) * (d + large - small) * (d - large + small) * (d + small + large) /
          (4 * d * d);
 }

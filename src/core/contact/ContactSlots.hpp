@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <vector>
 
 #include "core/contact/CohesionLaws.hpp"
@@ -25,6 +26,14 @@ struct SlotList {
   /// The choice of enum value `index`.
   template <std::size_t index>
   using At = std::tuple_element_t<index, std::tuple<Slots...>>;
+  /// The enum value of choice Slot.
+  template <class Slot>
+  static constexpr std::size_t index_of() {
+    constexpr bool is_slot[] = {std::is_same_v<Slot, Slots>...};
+    std::size_t k = 0;
+    while (!is_slot[k]) ++k;
+    return k;
+  }
   /// Scene-file keywords, in enum order.
   static std::vector<std::string> keywords() { return {Slots::keyword...}; }
   /// The material keys of each choice ("a b", space-separated), in enum order.

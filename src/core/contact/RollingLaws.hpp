@@ -41,13 +41,10 @@ struct ConstantTorqueRolling {
   GPUDEM_HD static Vec3T<S> torque(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
                                    const NormalResponse<S>&, S elastic_force, S*, S dt) {
     const S spin = norm(c.relative_spin);
-    if (spin == 0) return Vec3T<S>{};
-    S magnitude = p.rolling_friction * elastic_force * c.effective_radius;
-    if (dt > 0) {
-      const S stopping = c.reduced_inertia * spin / dt;
-      if (stopping < magnitude) magnitude = stopping;
-    }
-    return (-magnitude / spin) * c.relative_spin;
+    const S limit = p.rolling_friction * elastic_force * c.effective_radius;
+    const S stopping = c.reduced_inertia * spin / dt;
+    const S magnitude = select(dt > 0 && stopping < limit, stopping, limit);
+    return select(spin == 0, Vec3T<S>{}, (-magnitude / spin) * c.relative_spin);
   }
   template <class S>
   GPUDEM_HD static S energy(const ContactPairParamsT<S>&, const ContactPointT<S>&,
@@ -86,13 +83,16 @@ struct EpsdRolling {
                       (k_r * dt) * roll;
     const S limit = p.rolling_friction * elastic_force * c.effective_radius;
     const S magnitude = norm(spring);
-    const bool at_limit = magnitude >= limit;
-    if (at_limit) spring = (magnitude > 0 ? limit / magnitude : S(0)) * spring;
+    const auto at_limit = magnitude >= limit;
+    spring = select(at_limit, select(magnitude > 0, limit / magnitude, S(0)) * spring, spring);
     history[0] = spring.x;
     history[1] = spring.y;
     history[2] = spring.z;
-    if (at_limit) return spring;
-    return spring - (p.rolling_damping * 2 * square_root(c.rolling_inertia * k_r)) * roll;
+    return choose(
+        at_limit, [&] { return spring; },
+        [&] {
+          return spring - (p.rolling_damping * 2 * square_root(c.rolling_inertia * k_r)) * roll;
+        });
   }
   /// ½ |M_k|² / k_r [J].
   template <class S>

@@ -42,18 +42,18 @@ GPUDEM_HD Vec3T<S> rotate_into_plane(Vec3T<S> v, Vec3T<S> normal) {
   const S length_sq = norm2(v);
   v -= dot(v, normal) * normal;
   const S projected_sq = norm2(v);
-  return projected_sq > 0 ? square_root(length_sq / projected_sq) * v : v;
+  return select(projected_sq > 0, square_root(length_sq / projected_sq) * v, v);
 }
 
 /// |v| > limit, from |v|² without a root (true for any v when the limit is negative).
 template <class S>
-GPUDEM_HD bool longer_than(const Vec3T<S>& v, S limit) {
+GPUDEM_HD auto longer_than(const Vec3T<S>& v, S limit) {
   return limit < 0 || norm2(v) > limit * limit;
 }
 
 /// |v| ≥ limit, from |v|² without a root (true for any v when the limit is negative).
 template <class S>
-GPUDEM_HD bool at_least(const Vec3T<S>& v, S limit) {
+GPUDEM_HD auto at_least(const Vec3T<S>& v, S limit) {
   return limit < 0 || norm2(v) >= limit * limit;
 }
 
@@ -61,37 +61,59 @@ GPUDEM_HD bool at_least(const Vec3T<S>& v, S limit) {
 template <class S>
 GPUDEM_HD Vec3T<S> with_length(Vec3T<S> v, S length) {
   const S current = norm(v);
-  return current > 0 ? (length / current) * v : v;
+  return select(current > 0, (length / current) * v, v);
+}
+
+/// The spring ξ a Coulomb contact keeps and the force it exerts.
+template <class S>
+struct SpringForce {
+  Vec3T<S> spring;
+  Vec3T<S> force;
+};
+template <class Mask, class S>
+GPUDEM_HD SpringForce<S> select(const Mask& take_a, const SpringForce<S>& a,
+                                const SpringForce<S>& b) {
+  return {select(take_a, a.spring, b.spring), select(take_a, a.force, b.force)};
 }
 
 /// The Coulomb spring above for stiffness S_t and elastic normal force F_e; `history` holds ξ
-/// and the sliding flag.
+/// and the sliding flag. The branches choose (core/Vec3.hpp), so that the law runs on lanes too.
 template <class Damping, class Normal, class S>
 GPUDEM_HD Vec3T<S> coulomb_spring_force(const ContactPairParamsT<S>& p, const ContactPointT<S>& c,
                                         S stiffness, S elastic_force, S* history, S dt) {
   const Vec3T<S> vt = tangential_velocity(c);
-  Vec3T<S> spring =
+  const Vec3T<S> spring =
       rotate_into_plane(Vec3T<S>{history[0], history[1], history[2]}, c.normal) + dt * vt;
   const Vec3T<S> spring_force = stiffness * spring;
-  const bool was_sliding = history[3] != 0;
-  const bool sliding = dt == 0       ? was_sliding  // reading the stored state
-                       : was_sliding ? at_least(spring_force, p.friction_dynamic * elastic_force)
-                                     : longer_than(spring_force, p.friction_static * elastic_force);
-  Vec3T<S> force;
-  if (sliding) {
-    spring = with_length(spring, p.friction_dynamic * elastic_force / stiffness);
-    force = -stiffness * spring;
-  } else {
-    const S gamma = Damping::template tangential_coefficient<Normal>(p, c, stiffness);
-    force = -spring_force - gamma * vt;
-    const S limit = p.friction_static * elastic_force;
-    if (longer_than(force, limit)) force = with_length(force, limit);
-  }
-  history[0] = spring.x;
-  history[1] = spring.y;
-  history[2] = spring.z;
-  history[3] = sliding ? S(1) : S(0);
-  return force;
+  const auto was_sliding = history[3] != 0;
+  const auto still_sliding = [&] {
+    return at_least(spring_force, p.friction_dynamic * elastic_force);
+  };
+  const auto starts_sliding = [&] {
+    return longer_than(spring_force, p.friction_static * elastic_force);
+  };
+  const auto sliding = select(dt == 0, was_sliding,  // reading the stored state
+                              choose(was_sliding, still_sliding, starts_sliding));
+  const SpringForce<S> out = choose(
+      sliding,
+      [&] {  // the spring shrinks to the dynamic limit and pulls back
+        const Vec3T<S> slid = with_length(spring, p.friction_dynamic * elastic_force / stiffness);
+        return SpringForce<S>{slid, -stiffness * slid};
+      },
+      [&] {  // the spring and the dashpot, capped at the static limit
+        const S gamma = Damping::template tangential_coefficient<Normal>(p, c, stiffness);
+        const Vec3T<S> stuck = -spring_force - gamma * vt;
+        const S limit = p.friction_static * elastic_force;
+        return SpringForce<S>{
+            spring, choose(
+                        longer_than(stuck, limit), [&] { return with_length(stuck, limit); },
+                        [&] { return stuck; })};
+      });
+  history[0] = out.spring.x;
+  history[1] = out.spring.y;
+  history[2] = out.spring.z;
+  history[3] = select(sliding, S(1), S(0));
+  return out.force;
 }
 
 /// ½ S_t |ξ|² [J].

@@ -1,0 +1,182 @@
+#pragma once
+/// The host's pair-once force sweep with the law evaluated on eight contacts at a time, for CPUs
+/// with AVX-512 (PairLanesForces); the same pairs, loads and bits as PairOnceForces. Host code
+/// only.
+#include <cstdint>
+#include <type_traits>
+
+#include "core/Lanes.hpp"
+#include "engine/PairOnceForces.hpp"
+
+namespace gpudem {
+
+/// Up to W touching pair entries, gathered lane by lane for one evaluation of the law. Lanes at
+/// and past `count` hold an earlier batch's inputs (or zeros) and are evaluated but not read.
+template <class Law, int W>
+struct PairContactLanes {
+  using S = typename Law::Scalar;
+  using R = LaneScalar<Real, W>;
+  using L = LaneScalar<S, W>;
+  int count = 0;
+  // Which contact each lane holds.
+  std::uint32_t i[W];
+  std::uint32_t j[W];
+  std::uint32_t entry[W];
+  bool grouped[W];  ///< both ends in one group: the partner's sums are written here too
+  // The contact's inputs.
+  Vec3T<R> d;
+  R dist2;
+  R min_radius;  ///< the smaller radius of the pair
+  Vec4T<R> xi, vi, xj, vj;
+  Vec3T<R> wi, wj;
+  ContactPairParamsT<L> params;
+  bool one_pair_type = false;  ///< a scene of one material: params are set once, for every lane
+  L history[Law::history_size > 0 ? Law::history_size : 1];
+
+  template <class P>
+  void add(std::uint32_t me_index, const SweptParticle& me, const PairEntry& e, std::uint32_t k,
+           bool both_in_group, const ParticleView<P>& p, const ContactScene<Law>& s) {
+    const int l = count++;
+    i[l] = me_index;
+    j[l] = e.j;
+    entry[l] = k;
+    grouped[l] = both_in_group;
+    set_lane(min_radius, l, me.x.w < e.xj.w ? me.x.w : e.xj.w);
+    set_lane<Real, W>(d, l, e.d);
+    set_lane(dist2, l, e.dist2);
+    set_lane<Real, W>(xi, l, me.x);
+    set_lane<Real, W>(vi, l, me.v);
+    set_lane<Real, W>(xj, l, e.xj);
+    set_lane<Real, W>(vj, l, p.velocity(e.j));
+    if constexpr (Law::needs_spin) {
+      set_lane<Real, W>(wi, l, me.w);
+      set_lane<Real, W>(wj, l, p.spin(e.j));
+    }
+    if (!one_pair_type)
+      for_each_param(params, s.pair_params[me.material * s.material_count + p.material[e.j]],
+                     [l](L& to, S from) { set_lane(to, l, from); });
+    for (int v = 0; v < Law::history_size; ++v) set_lane(history[v], l, s.pair_history[k].value[v]);
+  }
+};
+
+/// The host backend's force sweep over one thread's range of particles, as PairOnceForces
+/// (the same pairs, loads and bits) but with the touching entries of 64 particles at a time
+/// gathered into lanes of eight contacts (core/Lanes.hpp) and the law evaluated on the eight
+/// at once; then each particle's walls and meshes, and its loads stored. Built for AVX-512 only
+/// (sweep_in_avx512_lanes): split into narrower vectors it is slower than PairOnceForces.
+template <class Law, class P>
+struct PairLanesForces {
+  using S = typename Law::Scalar;
+  static constexpr int W = 8;
+  static constexpr std::uint32_t chunk = 64;  ///< particles whose pairs share the lanes
+  PairOnceForces<Law, P> once;                ///< the sweep, its groups and its integer sums
+
+  /// The particles at positions [begin, end) of the sweep.
+  void sweep_range(std::uint32_t begin, std::uint32_t end) const {
+    const ForceSweep<Law, P>& s = once.sweep;
+    PairContactLanes<Law, W> lanes{};
+    if (s.scene.material_count == 1) {
+      lanes.one_pair_type = true;
+      for_each_param(lanes.params, s.scene.pair_params[0], [](auto& to, S from) { to = from; });
+    }
+    for (std::uint32_t first = begin; first < end; first += chunk) {
+      const std::uint32_t last = end - first < chunk ? end : first + chunk;
+      for (std::uint32_t k = first; k < last; ++k) gather_pairs(swept_index(s.subset, k), lanes);
+      evaluate(lanes);
+      for (std::uint32_t k = first; k < last; ++k) finish(swept_index(s.subset, k));
+    }
+  }
+
+  /// Particle i's touching pair entries (each pair in its group once) into the lanes, evaluated
+  /// whenever they are full; a separated entry forgets its history.
+  void gather_pairs(std::uint32_t i, PairContactLanes<Law, W>& lanes) const {
+    const ForceSweep<Law, P>& s = once.sweep;
+    const SweptParticle me = swept_particle<Law>(i, s.particles);
+    const std::uint64_t mine = once.group[i];
+    for (std::uint32_t k = s.scene.neighbor_offsets[i]; k < s.scene.neighbor_offsets[i + 1]; ++k) {
+      const std::uint32_t j = s.scene.neighbor_index[k];
+      const bool grouped = j < once.owned && once.group[j] == mine;
+      if (grouped && j < i) continue;  // evaluated at j's turn
+      const PairEntry e = pair_entry(me, k, s.particles, s.scene);
+      if (!e.touching) {
+        if constexpr (Law::history_size > 0) s.history.pair[k] = typename Law::State{};
+        continue;
+      }
+      lanes.add(i, me, e, k, grouped, s.particles, s.scene);
+      if (lanes.count == W) evaluate(lanes);
+    }
+  }
+
+  /// The law on the lanes' contacts; each contact's loads go to its own end and, for a pair in
+  /// one group, to the partner (the loads mirrored, its torque with its own arm).
+  void evaluate(PairContactLanes<Law, W>& c) const {
+    using L = LaneScalar<S, W>;
+    if (c.count == 0) return;
+    ContactPointT<typename PairContactLanes<Law, W>::R> point;
+    typename PairContactLanes<Law, W>::R arm;
+    describe_pair<Law>(point, arm, c.d, c.dist2, c.xi, c.vi, c.wi, c.xj, c.vj, c.wj);
+    const ContactForce<L> f =
+        Law::evaluate(c.params, point_cast<L>(point), c.history, L(static_cast<S>(once.sweep.dt)));
+    const auto force_terms = exact_terms(f.force);
+    std::remove_const_t<decltype(force_terms)> torque_terms{}, partner_terms{};
+    if constexpr (Law::needs_spin) {
+      torque_terms = exact_terms(lever_torque<Law>(arm, point.normal, f));
+      partner_terms =
+          exact_terms(partner_torque<Law>(c.xj.w - Real(0.5) * point.overlap, point.normal, f));
+    }
+    const auto ratio = point.overlap / c.min_radius;
+    for (int l = 0; l < c.count; ++l) {
+      if constexpr (Law::history_size > 0) {
+        typename Law::State state;
+        for (int v = 0; v < Law::history_size; ++v) state.value[v] = lane_of(c.history[v], l);
+        // −0 stored as +0: the same bits whether this end or the partner's mirror writes it
+        once.sweep.history.pair[c.entry[l]] = Law::without_negative_zeros(state);
+      }
+      const std::uint32_t i = c.i[l], j = c.j[l];
+      const ExactTerm3 force_term = lane_of(force_terms, l);
+      once.pair_force[i].add(force_term);
+      if (c.grouped[l]) once.pair_force[j].subtract(force_term);
+      if constexpr (Law::needs_spin) {
+        once.pair_torque[i].add(lane_of(torque_terms, l));
+        if (c.grouped[l]) once.pair_torque[j].add(lane_of(partner_terms, l));
+      }
+      const Real lane_ratio = lane_of(ratio, l);
+      Real* worst = once.sweep.overlap_ratio;
+      if (lane_ratio > worst[i]) worst[i] = lane_ratio;
+      if (c.grouped[l] && lane_ratio > worst[j]) worst[j] = lane_ratio;
+    }
+    c.count = 0;
+  }
+
+  /// Particle i's walls and meshes, then its force, torque and worst ratio stored.
+  void finish(std::uint32_t i) const {
+    const ForceSweep<Law, P>& s = once.sweep;
+    const SweptParticle me = swept_particle<Law>(i, s.particles);
+    ForceSum<Law> bodies{s.history, s.dt, {}, {}, s.overlap_ratio[i], s.wall_push};
+    visit_body_contacts(i, me, s.scene, bodies);
+    Vec3T<S> torque{};  // summed only for a law with torques
+    if constexpr (Law::needs_spin) torque = once.pair_torque[i].template value<S>() + bodies.torque;
+    s.store(i, me.v.w, once.pair_force[i].template value<S>() + bodies.force, torque,
+            bodies.worst_overlap_ratio);
+  }
+};
+
+#if GPUDEM_HOST_LANES
+/// PairLanesForces::sweep_range compiled for -march=x86-64-v4 (AVX-512) with everything it
+/// calls inlined, in translation units of its own (engine/PairLanesInstance.in); call it only
+/// where host_runs_x86_64_v4().
+template <class Law, class P>
+void sweep_in_avx512_lanes(const PairLanesForces<Law, P>& kernel, std::uint32_t begin,
+                           std::uint32_t end);
+
+/// One thread's range of the sweep in AVX-512 lanes.
+template <class Law, class P>
+struct PairLanesInAvx512 {
+  PairLanesForces<Law, P> kernel;
+  void operator()(std::uint32_t begin, std::uint32_t end) const {
+    sweep_in_avx512_lanes(kernel, begin, end);
+  }
+};
+#endif
+
+}  // namespace gpudem

@@ -1,0 +1,125 @@
+#pragma once
+/// The state of the host's pair-once force sweeps between steps (PairOnceSweep): each particle's
+/// group, the partners' integer sums, and the history that the last sweeps advanced at one end
+/// of a pair only, mirrored to the other end before anything reads it. Host code only.
+#include <cstdint>
+#include <vector>
+
+#include "core/Lanes.hpp"
+#include "engine/PairOnceForces.hpp"
+#if GPUDEM_HOST_LANES
+#include "engine/PairLanesForces.hpp"
+#endif
+
+namespace gpudem {
+
+/// Copies, for each pair the last sweeps evaluated once, the evaluating end's history (the
+/// lower index) to the other end, mirrored (Law::mirrored).
+template <class Law>
+struct MirrorPairHistory {
+  const std::uint32_t* offsets;
+  const std::uint32_t* index;
+  const std::uint64_t* group;
+  typename Law::State* history;
+
+  void operator()(std::uint32_t begin, std::uint32_t end) const {
+    for (std::uint32_t i = begin; i < end; ++i)
+      for (std::uint32_t k = offsets[i]; k < offsets[i + 1]; ++k) {
+        const std::uint32_t j = index[k];
+        if (j >= i || group[j] != group[i]) continue;  // i evaluated this pair itself
+        // j's entry for i, which a symmetric list always has
+        std::uint32_t m = offsets[j];
+        while (m < offsets[j + 1] && index[m] != i) ++m;
+        if (m < offsets[j + 1]) history[k] = Law::mirrored(history[m]);
+      }
+  }
+};
+
+/// The state of the host's pair-once sweeps: the particles' groups, the partners' integer sums,
+/// and the history the last sweeps left with only one end of some pairs advanced.
+template <class Law, class P>
+class PairOnceSweep {
+ public:
+  using S = typename Law::Scalar;
+  using State = typename Law::State;
+
+  /// `in_lanes`: evaluate eight contacts at once where this build and CPU can (the same bits).
+  explicit PairOnceSweep(bool in_lanes = true)
+      : in_lanes_(in_lanes && Law::evaluates_in_lanes && host_runs_x86_64_v4()) {}
+
+  /// Runs `kernel` (its subset, group and sums filled in here) over positions [0, count) of
+  /// its subset; `owned` particles have list rows.
+  void run(PairOnceForces<Law, P> kernel, std::size_t count, std::size_t owned,
+           const std::uint32_t* offsets, const std::uint32_t* index) {
+    const Grouping grouping{host_thread_count(), kernel.sweep.subset != nullptr};
+    if (grouping.ranges != grouping_.ranges || grouping.split != grouping_.split) {
+      // A regrouping: no end of a regrouped pair may start from a record left behind.
+      mirror(offsets, index, owned);
+      grouping_ = grouping;
+    }
+    if (group_.size() < owned) {
+      group_.resize(owned);
+      pair_force_.resize(owned);
+      if constexpr (Law::needs_spin) pair_torque_.resize(owned);
+    }
+    ++generation_;
+    kernel.owned = static_cast<std::uint32_t>(owned);
+    kernel.group = group_.data();
+    kernel.pair_force = pair_force_.data();
+    kernel.pair_torque = Law::needs_spin ? pair_torque_.data() : nullptr;
+    host_ranges(count, grouping_.ranges,
+                GroupRange{kernel.sweep.subset, generation_, group_.data(), kernel.pair_force,
+                           kernel.pair_torque, kernel.sweep.overlap_ratio});
+    if (!sweep_in_lanes(kernel, count)) host_ranges(count, grouping_.ranges, kernel);
+    if constexpr (Law::history_size > 0) pending_ = kernel.sweep.history.pair;
+  }
+
+  /// Contacts a thread evaluates at once.
+  int contact_lanes() const { return in_lanes_ ? 8 : 1; }
+
+  std::size_t bytes() const {
+    return group_.capacity() * sizeof(std::uint64_t) +
+           (pair_force_.capacity() + pair_torque_.capacity()) * sizeof(ExactSum3);
+  }
+
+  /// Fills in the other ends of the pairs the sweeps since the last call evaluated once, in the
+  /// history they wrote; the list must be the one they swept. Nothing when none is pending.
+  void mirror(const std::uint32_t* offsets, const std::uint32_t* index, std::size_t owned) {
+    if constexpr (Law::history_size > 0) {
+      if (!pending_) return;
+      host_ranges(owned, host_thread_count(),
+                  MirrorPairHistory<Law>{offsets, index, group_.data(), pending_});
+      pending_ = nullptr;
+    }
+  }
+
+ private:
+  /// The sweep in AVX-512 lanes, where chosen; false where it did not run.
+  bool sweep_in_lanes(const PairOnceForces<Law, P>& kernel, std::size_t count) const {
+#if GPUDEM_HOST_LANES
+    if constexpr (Law::evaluates_in_lanes) {
+      if (!in_lanes_) return false;
+      host_ranges(count, grouping_.ranges, PairLanesInAvx512<Law, P>{{kernel}});
+      return true;
+    }
+#endif
+    (void)kernel, (void)count;
+    return false;
+  }
+
+  struct Grouping {
+    std::size_t ranges = 0;
+    bool split = false;  ///< sweeps over subsets
+  };
+  Grouping grouping_;
+  /// Of the last sweep. A tag of an older sweep does not match: every owned particle is
+  /// tagged anew each step, so a tag is at most a few sweeps old (the count wraps after 2^32).
+  std::uint32_t generation_ = 0;
+  std::vector<std::uint64_t> group_;
+  std::vector<ExactSum3> pair_force_;
+  std::vector<ExactSum3> pair_torque_;
+  State* pending_ = nullptr;  ///< the history the last sweeps wrote, other ends not filled in
+  bool in_lanes_;             ///< PairOnceForcesAvx512 runs the sweeps
+};
+
+}  // namespace gpudem
