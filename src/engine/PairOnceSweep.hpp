@@ -45,7 +45,8 @@ class PairOnceSweep {
 
   /// `in_lanes`: evaluate eight contacts at once where this build and CPU can (the same bits).
   explicit PairOnceSweep(bool in_lanes = true)
-      : in_lanes_(in_lanes && Law::evaluates_in_lanes && host_runs_x86_64_v4()) {}
+      : in_lanes_(GPUDEM_HOST_LANES && in_lanes && Law::evaluates_in_lanes &&
+                  host_runs_x86_64_v4()) {}
 
   /// Runs `kernel` (its subset, group and sums filled in here) over positions [0, count) of
   /// its subset; `owned` particles have list rows.
@@ -119,7 +120,7 @@ class PairOnceSweep {
   std::vector<ExactSum3> pair_force_;
   std::vector<ExactSum3> pair_torque_;
   State* pending_ = nullptr;  ///< the history the last sweeps wrote, other ends not filled in
-  bool in_lanes_;             ///< PairOnceForcesAvx512 runs the sweeps
+  bool in_lanes_;             ///< PairLanesInAvx512 runs the sweeps
 };
 
 }  // namespace gpudem
