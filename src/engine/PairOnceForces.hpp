@@ -58,13 +58,9 @@ struct PairOnceSum {
     if constexpr (Law::history_size > 0) history.pair[slot] = typename Law::State{};
   }
 
-  /// The torque of the last contact on the partner of radius r_j, as the partner's own sweep
-  /// computes it (contact_torque with its arm r_j − δ/2, normal −n and mirrored loads).
+  /// The torque of the last contact on the partner of radius r_j (its arm r_j − δ/2).
   Vec3T<S> partner_torque(Real partner_radius) const {
-    Vec3T<S> t = -last.rolling_torque;
-    if constexpr (Law::has_tangential_force)
-      t += cross(vec_cast<S>((partner_radius - Real(0.5) * overlap) * normal), last.tangential);
-    return t;
+    return gpudem::partner_torque<Law>(partner_radius - Real(0.5) * overlap, normal, last);
   }
 };
 
