@@ -51,15 +51,15 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
         out.torque, out.overlap_ratio, out.wall_push, subset,
     };
     if constexpr (std::is_same_v<Space, HostSpace>)
-      pair_once_.run(PairOnceForces<Law, P>{sweep}, count, in.owned, in.neighbor_offsets,
-                     in.neighbor_index);
+      pair_once_.run(PairOnceForces<Law, P>{sweep}, count,
+                     {in.owned, in.neighbor_offsets, in.neighbor_index, in.list_builds});
     else
       parallel_for(Space{}, count, ComputeForces<Law, P>{sweep}, LaunchSlot::forces);
   }
 
   void mirror_pair_history(const ContactInputs<P, S>& in) const override {
     if constexpr (std::is_same_v<Space, HostSpace>)
-      pair_once_.mirror(in.neighbor_offsets, in.neighbor_index, in.owned);
+      pair_once_.mirror({in.owned, in.neighbor_offsets, in.neighbor_index, in.list_builds});
   }
 
   void contact_terms(const ContactInputs<P, S>& in, std::size_t count,

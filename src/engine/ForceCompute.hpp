@@ -35,6 +35,7 @@ struct ContactInputs {
   std::size_t owned;                      ///< particles with a list row
   const std::uint32_t* neighbor_offsets;  ///< CSR offsets, owned + 1
   const std::uint32_t* neighbor_index;    ///< full neighbour list
+  std::uint64_t list_builds;              ///< the list's build count: a new count, a new list
   std::uint32_t material_count;
   const PlaneWall* walls;
   std::uint32_t wall_count;

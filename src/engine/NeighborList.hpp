@@ -179,6 +179,7 @@ class NeighborList {
   void build(const CellList<Space>& cells, const Real4* sorted_position_radius, std::size_t n,
              const PeriodicBox& box, Real skin, const NeighborRows* rows = nullptr) {
     check_matches(cells, n, box, skin);
+    ++builds_;
     const NeighborSearch search{cells.grids(), cells.cell_begin(), sorted_position_radius};
     const neighbor_list_kernels::RowLayout layout = layout_of(rows);
     n_ = rows ? rows->count : n;
@@ -207,6 +208,8 @@ class NeighborList {
   std::uint64_t pairs_kept() const { return pairs_kept_; }
   /// Bytes held in Space memory.
   std::size_t memory_bytes() const { return offsets_.bytes() + neighbors_.bytes(); }
+  /// How many times the list was built: a new count, a new list.
+  std::uint64_t builds() const { return builds_; }
 
  private:
   /// Writes each row's neighbour count to offsets_ and returns the candidates examined (counted
@@ -249,6 +252,7 @@ class NeighborList {
   std::size_t n_ = 0;
   std::uint64_t candidates_examined_ = 0;
   std::uint64_t pairs_kept_ = 0;
+  std::uint64_t builds_ = 0;
   DeviceArray<std::uint32_t, Space> offsets_;
   DeviceArray<std::uint32_t, Space> neighbors_;
 };

@@ -81,22 +81,23 @@ struct PairLanesForces {
     }
     for (std::uint32_t first = begin; first < end; first += chunk) {
       const std::uint32_t last = end - first < chunk ? end : first + chunk;
-      for (std::uint32_t k = first; k < last; ++k) gather_pairs(swept_index(s.subset, k), lanes);
+      for (std::uint32_t k = first; k < last; ++k) gather_pairs(k, lanes);
       evaluate(lanes);
       for (std::uint32_t k = first; k < last; ++k) finish(swept_index(s.subset, k));
     }
   }
 
-  /// Particle i's touching pair entries (each pair in its group once) into the lanes, evaluated
-  /// whenever they are full; a separated entry forgets its history.
-  void gather_pairs(std::uint32_t i, PairContactLanes<Law, W>& lanes) const {
+  /// The touching pair entries of the particle at position k (each pair in its group once) into
+  /// the lanes, evaluated whenever they are full; a separated entry forgets its history.
+  void gather_pairs(std::uint32_t position, PairContactLanes<Law, W>& lanes) const {
     const ForceSweep<Law, P>& s = once.sweep;
+    const std::uint32_t i = swept_index(s.subset, position);
     const SweptParticle me = swept_particle<Law>(i, s.particles);
-    const std::uint64_t mine = once.group[i];
-    for (std::uint32_t k = s.scene.neighbor_offsets[i]; k < s.scene.neighbor_offsets[i + 1]; ++k) {
-      const std::uint32_t j = s.scene.neighbor_index[k];
-      const bool grouped = j < once.owned && once.group[j] == mine;
-      if (grouped && j < i) continue;  // evaluated at j's turn
+    const EvaluatedRows& rows = once.evaluated;
+    const std::uint32_t group_end = rows.group_end[position];
+    for (std::uint32_t h = rows.begin[position]; h < rows.end[position]; ++h) {
+      const std::uint32_t k = rows.entry[h];
+      const bool grouped = h < group_end;
       const PairEntry e = pair_entry(me, k, s.particles, s.scene);
       if (!e.touching) {
         if constexpr (Law::history_size > 0) s.history.pair[k] = typename Law::State{};

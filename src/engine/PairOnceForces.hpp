@@ -6,14 +6,16 @@
 /// the same group is evaluated at its lower index: that end adds the pair's load to its own sum
 /// and subtracts it from the partner's accumulator, whose turn is still to come (a subset lists
 /// its particles in ascending order); any other pair (across ranges or sweeps, or with a ghost)
-/// is evaluated at both ends, each writing only its own. Loads are summed as integers
-/// (ExactSum.hpp), so each particle's force and torque are the same bits on any number of
-/// threads or ranks: the two ends of a pair evaluate to exact mirrors (n, v_rel and the history
-/// change sign, every other input is symmetric), a term and its negative round to exact
-/// negatives, and integer sums do not depend on their order. Only the evaluating end's history
+/// is evaluated at both ends, each writing only its own. The entries each particle evaluates are
+/// selected once per list and grouping (SelectEvaluated), so that the sweep walks only those.
+/// Loads are summed as integers (ExactSum.hpp), so each particle's force and torque are the same
+/// bits on any number of threads or ranks: the two ends of a pair evaluate to exact mirrors (n,
+/// v_rel and the history change sign, every other input is symmetric), a term and its negative
+/// round to exact negatives, and integer sums do not depend on their order. Only the evaluating end's history
 /// advances; PairOnceSweep::mirror copies it to the other end before anything reads it. Where
 /// the CPU runs AVX-512, PairLanesForces sweeps the same pairs eight contacts at a time.
 /// Host code only.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -64,6 +66,50 @@ struct PairOnceSum {
   }
 };
 
+/// The owned particles' rows of the full neighbour list a sweep reads.
+struct ListRows {
+  std::size_t owned;             ///< particles with a row; the others are ghosts
+  const std::uint32_t* offsets;  ///< owned + 1
+  const std::uint32_t* index;    ///< the partners
+  std::uint64_t builds;          ///< the list's build count: a new count, a new list
+};
+
+/// The list entries each particle of a sweep evaluates: its row of the full list without the
+/// partners of its group at a lower index (they evaluate the pair), those of its group first.
+/// Position k of the sweep evaluates entry[h] for h in [begin[k], end[k]), of its group below
+/// group_end[k]. Valid for one list and one grouping of one sweep.
+struct EvaluatedRows {
+  std::uint32_t* begin;      ///< per position
+  std::uint32_t* group_end;  ///< per position
+  std::uint32_t* end;        ///< per position
+  std::uint32_t* entry;      ///< list entries; position k's from begin[k], its row's length at most
+};
+
+/// Fills the evaluated rows (EvaluatedRows, `begin` set) of a range of a sweep whose particles
+/// carry their groups (GroupRange).
+struct SelectEvaluated {
+  const std::uint32_t* subset;
+  ListRows list;
+  const std::uint64_t* group;
+  EvaluatedRows rows;
+
+  void operator()(std::uint32_t begin, std::uint32_t end) const {
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const std::uint32_t i = swept_index(subset, k);
+      std::uint32_t h = rows.begin[k];
+      for (int pass = 0; pass < 2; ++pass) {  // the group's partners, then the others
+        for (std::uint32_t e = list.offsets[i]; e < list.offsets[i + 1]; ++e) {
+          const std::uint32_t j = list.index[e];
+          const bool grouped = j < list.owned && group[j] == group[i];
+          if (grouped == (pass == 0) && !(grouped && j < i)) rows.entry[h++] = e;
+        }
+        if (pass == 0) rows.group_end[k] = h;
+      }
+      rows.end[k] = h;
+    }
+  }
+};
+
 /// Tags each particle of a range with the range's group and clears what its partners will add.
 struct GroupRange {
   const std::uint32_t* subset;
@@ -91,29 +137,30 @@ struct PairOnceForces {
   using S = typename Law::Scalar;
   ForceSweep<Law, P> sweep;
   // Filled in by PairOnceSweep::run.
-  std::uint32_t owned = 0;               ///< particles with a list row; the others are ghosts
-  const std::uint64_t* group = nullptr;  ///< per owned particle (GroupRange)
-  ExactSum3* pair_force = nullptr;       ///< per particle: what its group's lower partners left
-  ExactSum3* pair_torque = nullptr;      ///< idem, torques; null for a law without torques
+  EvaluatedRows evaluated{};         ///< the entries each particle evaluates
+  ExactSum3* pair_force = nullptr;   ///< per particle: what its group's lower partners left
+  ExactSum3* pair_torque = nullptr;  ///< idem, torques; null for a law without torques
 
   /// The particles at positions [begin, end) of the sweep, in order.
   GPUDEM_HOST_FLATTEN void operator()(std::uint32_t begin, std::uint32_t end) const {
-    for (std::uint32_t k = begin; k < end; ++k) particle(swept_index(sweep.subset, k));
+    for (std::uint32_t k = begin; k < end; ++k) particle(k);
   }
 
-  /// Particle i's pairs (each in its group once), then its walls and meshes. sweep.overlap_ratio
-  /// holds, until i's turn, the worst ratio of i's lower partners in its group.
-  GPUDEM_HOST_FLATTEN void particle(std::uint32_t i) const {
+  /// The particle at position k: its pairs (each in its group once), then its walls and meshes.
+  /// sweep.overlap_ratio holds, until its turn, the worst ratio of its lower partners in its
+  /// group.
+  GPUDEM_HOST_FLATTEN void particle(std::uint32_t position) const {
+    const std::uint32_t i = swept_index(sweep.subset, position);
     const ForceSweep<Law, P>& s = sweep;
     const SweptParticle me = swept_particle<Law>(i, s.particles);
-    const std::uint64_t mine = group[i];
     ExactSum3 torque_so_far{};
     if constexpr (Law::needs_spin) torque_so_far = pair_torque[i];
     PairOnceSum<Law> sum{s.history, s.dt, pair_force[i], torque_so_far, s.overlap_ratio[i]};
-    for (std::uint32_t k = s.scene.neighbor_offsets[i]; k < s.scene.neighbor_offsets[i + 1]; ++k) {
+    const std::uint32_t group_end = evaluated.group_end[position];
+    for (std::uint32_t h = evaluated.begin[position]; h < evaluated.end[position]; ++h) {
+      const std::uint32_t k = evaluated.entry[h];
       const std::uint32_t j = s.scene.neighbor_index[k];
-      const bool grouped = j < owned && group[j] == mine;
-      if (grouped && j < i) continue;  // evaluated at j's turn
+      const bool grouped = h < group_end;
       sum.touched = false;
       visit_pair_entry(me, k, s.particles, s.scene, sum);
       if (!sum.touched || !grouped) continue;

@@ -48,29 +48,27 @@ class PairOnceSweep {
       : in_lanes_(GPUDEM_HOST_LANES && in_lanes && Law::evaluates_in_lanes &&
                   host_runs_x86_64_v4()) {}
 
-  /// Runs `kernel` (its subset, group and sums filled in here) over positions [0, count) of
-  /// its subset; `owned` particles have list rows.
-  void run(PairOnceForces<Law, P> kernel, std::size_t count, std::size_t owned,
-           const std::uint32_t* offsets, const std::uint32_t* index) {
+  /// Runs `kernel` (its subset, rows and sums filled in here) over positions [0, count) of
+  /// its subset, on the owned particles' rows `list`.
+  void run(PairOnceForces<Law, P> kernel, std::size_t count, const ListRows& list) {
     const Grouping grouping{host_thread_count(), kernel.sweep.subset != nullptr};
     if (grouping.ranges != grouping_.ranges || grouping.split != grouping_.split) {
       // A regrouping: no end of a regrouped pair may start from a record left behind.
-      mirror(offsets, index, owned);
+      mirror(list);
       grouping_ = grouping;
     }
-    if (group_.size() < owned) {
-      group_.resize(owned);
-      pair_force_.resize(owned);
-      if constexpr (Law::needs_spin) pair_torque_.resize(owned);
+    if (group_.size() < list.owned) {
+      group_.resize(list.owned);
+      pair_force_.resize(list.owned);
+      if constexpr (Law::needs_spin) pair_torque_.resize(list.owned);
     }
     ++generation_;
-    kernel.owned = static_cast<std::uint32_t>(owned);
-    kernel.group = group_.data();
     kernel.pair_force = pair_force_.data();
     kernel.pair_torque = Law::needs_spin ? pair_torque_.data() : nullptr;
     host_ranges(count, grouping_.ranges,
                 GroupRange{kernel.sweep.subset, generation_, group_.data(), kernel.pair_force,
                            kernel.pair_torque, kernel.sweep.overlap_ratio});
+    kernel.evaluated = evaluated_rows(kernel.sweep.subset, count, list);
     if (!sweep_in_lanes(kernel, count)) host_ranges(count, grouping_.ranges, kernel);
     if constexpr (Law::history_size > 0) pending_ = kernel.sweep.history.pair;
   }
@@ -80,16 +78,16 @@ class PairOnceSweep {
 
   std::size_t bytes() const {
     return group_.capacity() * sizeof(std::uint64_t) +
-           (pair_force_.capacity() + pair_torque_.capacity()) * sizeof(ExactSum3);
+           (pair_force_.capacity() + pair_torque_.capacity()) * sizeof(ExactSum3) + rows_bytes();
   }
 
   /// Fills in the other ends of the pairs the sweeps since the last call evaluated once, in the
   /// history they wrote; the list must be the one they swept. Nothing when none is pending.
-  void mirror(const std::uint32_t* offsets, const std::uint32_t* index, std::size_t owned) {
+  void mirror(const ListRows& list) {
     if constexpr (Law::history_size > 0) {
       if (!pending_) return;
-      host_ranges(owned, host_thread_count(),
-                  MirrorPairHistory<Law>{offsets, index, group_.data(), pending_});
+      host_ranges(list.owned, host_thread_count(),
+                  MirrorPairHistory<Law>{list.offsets, list.index, group_.data(), pending_});
       pending_ = nullptr;
     }
   }
@@ -108,9 +106,61 @@ class PairOnceSweep {
     return false;
   }
 
+  /// The entries each particle of this sweep evaluates (EvaluatedRows), kept per sweep and
+  /// selected again after a new list or a regrouping: between list builds the grouping stays,
+  /// and so do the groups each sweep's particles are tagged with (the same ranges, a new
+  /// generation).
+  EvaluatedRows evaluated_rows(const std::uint32_t* subset, std::size_t count,
+                               const ListRows& list) {
+    const SweepKey key{list.builds, subset, count, grouping_.ranges};
+    if (!sweeps_.empty() && sweeps_.front().key.list_builds != list.builds) sweeps_.clear();
+    SweepRows* rows = nullptr;
+    for (SweepRows& r : sweeps_)
+      if (r.key.subset == subset) rows = &r;
+    if (rows && rows->key == key) return rows->view();
+    if (!rows) rows = &sweeps_.emplace_back();
+    rows->key = key;
+    rows->begin.resize(count);
+    rows->group_end.resize(count);
+    rows->end.resize(count);
+    std::uint32_t total = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t i = swept_index(subset, k);
+      rows->begin[k] = total;
+      total += list.offsets[i + 1] - list.offsets[i];
+    }
+    rows->entry.resize(total);
+    host_ranges(count, grouping_.ranges,
+                SelectEvaluated{subset, list, group_.data(), rows->view()});
+    return rows->view();
+  }
+
+  std::size_t rows_bytes() const {
+    std::size_t words = 0;
+    for (const SweepRows& r : sweeps_)
+      words += r.begin.capacity() + r.group_end.capacity() + r.end.capacity() + r.entry.capacity();
+    return words * sizeof(std::uint32_t);
+  }
+
   struct Grouping {
     std::size_t ranges = 0;
     bool split = false;  ///< sweeps over subsets
+  };
+  /// What a sweep's evaluated rows depend on: the list, the particles swept and their ranges.
+  struct SweepKey {
+    std::uint64_t list_builds;
+    const std::uint32_t* subset;
+    std::size_t count;
+    std::size_t ranges;
+    bool operator==(const SweepKey& o) const {
+      return list_builds == o.list_builds && subset == o.subset && count == o.count &&
+             ranges == o.ranges;
+    }
+  };
+  struct SweepRows {
+    SweepKey key;
+    std::vector<std::uint32_t> begin, group_end, end, entry;
+    EvaluatedRows view() { return {begin.data(), group_end.data(), end.data(), entry.data()}; }
   };
   Grouping grouping_;
   /// Of the last sweep. A tag of an older sweep does not match: every owned particle is
@@ -119,8 +169,9 @@ class PairOnceSweep {
   std::vector<std::uint64_t> group_;
   std::vector<ExactSum3> pair_force_;
   std::vector<ExactSum3> pair_torque_;
-  State* pending_ = nullptr;  ///< the history the last sweeps wrote, other ends not filled in
-  bool in_lanes_;             ///< PairLanesInAvx512 runs the sweeps
+  std::vector<SweepRows> sweeps_;  ///< per subset swept since the last list build
+  State* pending_ = nullptr;       ///< the history the last sweeps wrote, other ends not filled in
+  bool in_lanes_;                  ///< PairLanesInAvx512 runs the sweeps
 };
 
 }  // namespace gpudem

@@ -223,6 +223,7 @@ class ParticleSystem final : public StepEngine {
                                      owned_,
                                      neighbors_.offsets(),
                                      neighbors_.neighbors(),
+                                     neighbors_.builds(),
                                      setup_.material_count,
                                      walls_.data(),
                                      wall_count(),

@@ -24,6 +24,7 @@
 #include "core/ContactModel.hpp"
 #include "core/Lanes.hpp"
 #include "core/ParticleSources.hpp"
+#include "engine/PairOnceForces.hpp"
 #include "engine/SceneSetup.hpp"
 #include "engine/StepEngine.hpp"
 #include "support/SameBits.hpp"
@@ -172,6 +173,51 @@ TEST(PairOnce, SameBitsWhenTheThreadCountChangesMidRun) {
   const Outcome switched = pour(model, Precision::Double, 1, 137, 3);
   EXPECT_TRUE(same_bits(one.particle_values, switched.particle_values));
   EXPECT_TRUE(same_bits(one.history_values, switched.history_values));
+}
+
+// Each particle walks only the entries it evaluates (SelectEvaluated): of a pair in one group,
+// the lower index's entry only; of any other pair (across groups, or with a ghost), both ends'
+// entries; its group's partners first. Six owned particles in two groups (0–2, 3–5, the second
+// swept in reverse through a subset) and two ghosts (6, 7), every pair of them listed.
+TEST(PairOnce, EachParticleEvaluatesItsGroupsPairsAtTheLowerIndexAndTheOthersAtBothEnds) {
+  constexpr std::uint32_t owned = 6, total = 8;
+  std::vector<std::uint32_t> offsets{0}, index;
+  for (std::uint32_t i = 0; i < owned; ++i) {
+    for (std::uint32_t j = 0; j < total; ++j)
+      if (j != i) index.push_back(j);
+    offsets.push_back(static_cast<std::uint32_t>(index.size()));
+  }
+  const std::vector<std::uint64_t> group{7, 7, 7, 9, 9, 9};
+  const std::vector<std::uint32_t> subset{2, 1, 0, 5, 4, 3};
+  std::vector<std::uint32_t> begin(owned), group_end(owned), end(owned), entry(index.size());
+  for (std::uint32_t k = 0; k < owned; ++k) begin[k] = offsets[subset[k]];
+  const EvaluatedRows rows{begin.data(), group_end.data(), end.data(), entry.data()};
+  const SelectEvaluated select{
+      subset.data(), {owned, offsets.data(), index.data(), 1}, group.data(), rows};
+  select(0, 3);
+  select(3, owned);
+  std::vector<int> times_evaluated(total * total, 0);  // (i, j): entries of i naming j
+  for (std::uint32_t k = 0; k < owned; ++k) {
+    const std::uint32_t i = subset[k];
+    ASSERT_LE(begin[k], group_end[k]);
+    ASSERT_LE(group_end[k], end[k]);
+    ASSERT_LE(end[k], offsets[i + 1]);
+    for (std::uint32_t h = begin[k]; h < end[k]; ++h) {
+      ASSERT_GE(entry[h], offsets[i]) << "particle " << i << ": an entry of another row";
+      ASSERT_LT(entry[h], offsets[i + 1]) << "particle " << i << ": an entry of another row";
+      const std::uint32_t j = index[entry[h]];
+      const bool same_group = j < owned && group[j] == group[i];
+      EXPECT_EQ(h < group_end[k], same_group) << "particle " << i << ", partner " << j;
+      ++times_evaluated[i * total + j];
+    }
+  }
+  for (std::uint32_t i = 0; i < owned; ++i)
+    for (std::uint32_t j = 0; j < total; ++j) {
+      if (j == i) continue;
+      const bool same_group = j < owned && group[j] == group[i];
+      const int expected = same_group ? (i < j ? 1 : 0) : 1;
+      EXPECT_EQ(times_evaluated[i * total + j], expected) << "particle " << i << ", partner " << j;
+    }
 }
 
 TEST(PairOnce, SameBitsInAvx512LanesAsOneContactAtATime) {
