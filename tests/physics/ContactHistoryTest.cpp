@@ -162,26 +162,29 @@ std::map<std::string, std::size_t> needed_bytes(const StepEngine& engine, std::s
   for (const std::uint32_t length : lengths) entries += length;
   const std::size_t index = sizeof(std::uint32_t);
   const std::size_t cells = kMaxCellsPerParticle * n + kMaxSizeClasses;
-  return {
-      {"position, radius", n * 4 * state},
-      {"velocity, inverse mass", n * 4 * state},
-      {"angular velocity", n * 3 * state},
-      {"id, material", n * (sizeof(ParticleId) + sizeof(MaterialId))},
-      {"force, torque", n * 6 * scalar},
-      {"overlap ratio", n * sizeof(Real)},
-      {"position at list build", n * 4 * state},
-      {"neighbour list", (n + 1 + entries) * index},
-      {"pair history", entries * record},
-      {"wall history", n * walls * record},
-      {"cell list", n * index + (cells + 1) * index},
-      {"history carry-over", carry_over_bytes(n, loaded_pair_records(engine), record)},
-      {"rebuild scratch", n * index},  // each particle's row in the previous list
-      {"ghost buffers", 0},
-      {"meshes", 0},
-      // one material; on the host each particle's pair-once group and two integer sums
-      {"contact law",
-       kPairConstantBytes +
-           (backend == Backend::Host ? n * (sizeof(std::uint64_t) + 2 * sizeof(ExactSum3)) : 0)}};
+  // On the host, each particle's pair-once group and two integer sums, and the entries it
+  // evaluates: three bounds and one word per entry of its row (one sweep of all particles).
+  const std::size_t pair_once =
+      backend == Backend::Host
+          ? n * (sizeof(std::uint64_t) + 2 * sizeof(ExactSum3)) + (3 * n + entries) * index
+          : 0;
+  return {{"position, radius", n * 4 * state},
+          {"velocity, inverse mass", n * 4 * state},
+          {"angular velocity", n * 3 * state},
+          {"id, material", n * (sizeof(ParticleId) + sizeof(MaterialId))},
+          {"force, torque", n * 6 * scalar},
+          {"overlap ratio", n * sizeof(Real)},
+          {"position at list build", n * 4 * state},
+          {"neighbour list", (n + 1 + entries) * index},
+          {"pair history", entries * record},
+          {"wall history", n * walls * record},
+          {"cell list", n * index + (cells + 1) * index},
+          {"history carry-over", carry_over_bytes(n, loaded_pair_records(engine), record)},
+          {"rebuild scratch", n * index},  // each particle's row in the previous list
+          {"ghost buffers", 0},
+          {"meshes", 0},
+          // one material
+          {"contact law", kPairConstantBytes + pair_once}};
 }
 
 // After a poured bed has settled through many rebuilds, no array of the engine is larger than
