@@ -11,10 +11,10 @@
 /// Loads are summed as integers (ExactSum.hpp), so each particle's force and torque are the same
 /// bits on any number of threads or ranks: the two ends of a pair evaluate to exact mirrors (n,
 /// v_rel and the history change sign, every other input is symmetric), a term and its negative
-/// round to exact negatives, and integer sums do not depend on their order. Only the evaluating end's history
-/// advances; PairOnceSweep::mirror copies it to the other end before anything reads it. Where
-/// the CPU runs AVX-512, PairLanesForces sweeps the same pairs eight contacts at a time.
-/// Host code only.
+/// round to exact negatives, and integer sums do not depend on their order. Only the evaluating
+/// end's history advances; PairOnceSweep::mirror copies it to the other end before anything
+/// reads it. Where the CPU runs AVX-512, PairLanesForces sweeps the same pairs eight contacts at
+/// a time. Host code only.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -85,6 +85,13 @@ struct EvaluatedRows {
   std::uint32_t* entry;      ///< list entries; position k's from begin[k], its row's length at most
 };
 
+/// Whether owned particle i and its partner j are in one group (GroupRange): then only the lower
+/// index evaluates the pair.
+inline bool in_one_group(std::uint32_t i, std::uint32_t j, std::size_t owned,
+                         const std::uint64_t* group) {
+  return j < owned && group[j] == group[i];
+}
+
 /// Fills the evaluated rows (EvaluatedRows, `begin` set) of a range of a sweep whose particles
 /// carry their groups (GroupRange).
 struct SelectEvaluated {
@@ -100,7 +107,7 @@ struct SelectEvaluated {
       for (int pass = 0; pass < 2; ++pass) {  // the group's partners, then the others
         for (std::uint32_t e = list.offsets[i]; e < list.offsets[i + 1]; ++e) {
           const std::uint32_t j = list.index[e];
-          const bool grouped = j < list.owned && group[j] == group[i];
+          const bool grouped = in_one_group(i, j, list.owned, group);
           if (grouped == (pass == 0) && !(grouped && j < i)) rows.entry[h++] = e;
         }
         if (pass == 0) rows.group_end[k] = h;

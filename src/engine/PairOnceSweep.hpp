@@ -17,16 +17,17 @@ namespace gpudem {
 /// lower index) to the other end, mirrored (Law::mirrored).
 template <class Law>
 struct MirrorPairHistory {
-  const std::uint32_t* offsets;
-  const std::uint32_t* index;
+  ListRows list;
   const std::uint64_t* group;
   typename Law::State* history;
 
   void operator()(std::uint32_t begin, std::uint32_t end) const {
+    const std::uint32_t* offsets = list.offsets;
+    const std::uint32_t* index = list.index;
     for (std::uint32_t i = begin; i < end; ++i)
       for (std::uint32_t k = offsets[i]; k < offsets[i + 1]; ++k) {
         const std::uint32_t j = index[k];
-        if (j >= i || group[j] != group[i]) continue;  // i evaluated this pair itself
+        if (j >= i || !in_one_group(i, j, list.owned, group)) continue;  // i evaluated it
         // j's entry for i, which a symmetric list always has
         std::uint32_t m = offsets[j];
         while (m < offsets[j + 1] && index[m] != i) ++m;
@@ -87,7 +88,7 @@ class PairOnceSweep {
     if constexpr (Law::history_size > 0) {
       if (!pending_) return;
       host_ranges(list.owned, host_thread_count(),
-                  MirrorPairHistory<Law>{list.offsets, list.index, group_.data(), pending_});
+                  MirrorPairHistory<Law>{list, group_.data(), pending_});
       pending_ = nullptr;
     }
   }
