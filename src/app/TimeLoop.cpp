@@ -107,6 +107,7 @@ TimeLoop::TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine
       dt_(setup.dt),
       skin_(setup.skin),
       first_step_(start.step),
+      first_list_builds_(engine.rebuild_count()),
       total_steps_(step_count(scene.simulation.end_time, setup.dt)),
       snapshot_every_(scene.output.every > 0 ? steps_between(scene.output.every, dt_)
                                              : total_steps_),
@@ -213,11 +214,13 @@ void TimeLoop::report_times() const {
   mpi_.group().sum(halo);
   if (quiet_ || !mpi_.is_root()) return;
   std::printf(
-      "time split (slowest rank): integration %.3g s, forces %.3g s, neighbour lists %.3g s, "
-      "ghost exchange %.3g s, migration %.3g s, output %.3g s%s; halo %.4g bytes per rank per "
-      "step\n",
-      slowest[0], slowest[1], slowest[2], slowest[3], slowest[4], slowest[5],
-      writer_thread_note(slowest[6]).c_str(), halo[1] > 0 ? halo[0] / halo[1] : 0.0);
+      "time split (slowest rank): integration %.3g s, forces %.3g s, neighbour lists %.3g s "
+      "(%llu builds), ghost exchange %.3g s, migration %.3g s, output %.3g s%s; halo %.4g bytes "
+      "per rank per step\n",
+      slowest[0], slowest[1], slowest[2],
+      static_cast<unsigned long long>(engine_.rebuild_count() - first_list_builds_), slowest[3],
+      slowest[4], slowest[5], writer_thread_note(slowest[6]).c_str(),
+      halo[1] > 0 ? halo[0] / halo[1] : 0.0);
 }
 
 std::string TimeLoop::writer_thread_note(double seconds) const {

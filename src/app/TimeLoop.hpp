@@ -96,6 +96,7 @@ class TimeLoop {
   double dt_;
   double skin_;
   std::uint64_t first_step_;
+  std::uint64_t first_list_builds_;  ///< the engine's list builds before the first step
   std::uint64_t total_steps_;
   std::uint64_t snapshot_every_;
   std::uint64_t series_every_;

@@ -16,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
@@ -226,12 +227,27 @@ class CellList {
     sort_by_key(Space{}, cell.data(), order_.data(), n_, bits_for(largest_cell));
   }
 
-  /// cell_begin_ from the sorted cells.
+  /// cell_begin_ from the sorted cells: on a device a search per cell, on the host one pass over
+  /// the sorted cells (the searches' unpredictable branches cost more there than the pass).
   void find_cell_begins(const DeviceArray<std::uint64_t, Space>& cell) {
     cell_begin_.resize(grids_.total_cells + std::size_t(1));
-    parallel_for(Space{}, cell_begin_.size(),
-                 cell_list_kernels::FindCellBegin{cell.data(), static_cast<std::uint32_t>(n_),
-                                                  cell_begin_.data()});
+    if constexpr (std::is_same_v<Space, HostSpace>) {
+      cell_begins_in_order(cell.data());
+    } else {
+      parallel_for(Space{}, cell_begin_.size(),
+                   cell_list_kernels::FindCellBegin{cell.data(), static_cast<std::uint32_t>(n_),
+                                                    cell_begin_.data()});
+    }
+  }
+
+  /// cell_begin_[c] for every c: the first slot whose cell is c or above (n_ past the last).
+  void cell_begins_in_order(const std::uint64_t* sorted_cell) {
+    std::uint32_t* begin = cell_begin_.data();
+    const std::uint64_t cells = cell_begin_.size();
+    std::uint64_t next = 0;  // the first cell whose begin is still to be written
+    for (std::uint32_t k = 0; k < n_; ++k)
+      for (; next <= sorted_cell[k] && next < cells; ++next) begin[next] = k;
+    for (; next < cells; ++next) begin[next] = static_cast<std::uint32_t>(n_);
   }
 
   int max_size_classes_;

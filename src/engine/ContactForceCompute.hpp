@@ -65,15 +65,15 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
   void contact_terms(const ContactInputs<P, S>& in, std::size_t count,
                      const ContactTermOutputs& out) const override {
     parallel_for(Space{}, count,
-                 ContactTerms<Law, P>{view(in), scene(in), out.contacts, out.energy, out.body_force,
-                                      out.mesh_torque, nullptr});
+                 ContactTerms<Law, P>{view(in), scene(in), owned(in), out.contacts, out.energy,
+                                      out.body_force, out.mesh_torque, nullptr});
   }
 
   void mesh_entry_loads(const ContactInputs<P, S>& in, std::size_t count,
                         Vec3* entry_load) const override {
-    parallel_for(
-        Space{}, count,
-        ContactTerms<Law, P>{view(in), scene(in), nullptr, nullptr, nullptr, nullptr, entry_load});
+    parallel_for(Space{}, count,
+                 ContactTerms<Law, P>{view(in), scene(in), owned(in), nullptr, nullptr, nullptr,
+                                      nullptr, entry_load});
   }
 
  private:
@@ -94,6 +94,10 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
   /// The history values as the law's records, read.
   static const State* records(const S* values) { return reinterpret_cast<const State*>(values); }
 
+  static std::uint32_t owned(const ContactInputs<P, S>& in) {
+    return static_cast<std::uint32_t>(in.owned);
+  }
+
   ContactScene<Law> scene(const ContactInputs<P, S>& in) const {
     return ContactScene<Law>{in.neighbor_offsets,
                              in.neighbor_index,
@@ -102,6 +106,7 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
                              in.walls,
                              in.wall_count,
                              in.box,
+                             in.wall_reach,
                              records(in.history.pair),
                              records(in.history.wall),
                              in.mesh,

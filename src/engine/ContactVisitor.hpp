@@ -17,6 +17,7 @@
 #include "engine/MeshWalls.hpp"
 #include "engine/PeriodicBox.hpp"
 #include "engine/PlaneWall.hpp"
+#include "engine/WallReach.hpp"
 
 namespace gpudem {
 
@@ -105,6 +106,9 @@ struct ContactScene {
   const PlaneWall* walls;
   std::uint32_t wall_count;
   PeriodicBox box;
+  /// Per owned particle, the plane walls it may touch before the next list build (WallReach.hpp);
+  /// null without walls.
+  const std::uint32_t* wall_reach;
   const typename Law::State* pair_history;  ///< per neighbour-list entry
   const typename Law::State* wall_history;  ///< per (particle, wall): slot i·wall_count + w
   MeshView mesh;
@@ -356,12 +360,17 @@ GPUDEM_HD void visit_mesh_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi,
     if (!set.is_contact(k)) visit.separated_from_mesh(begin + k);
 }
 
-/// The plane-wall contacts of particle i, each wall in order: positive overlap, or a formed
-/// contact within the cohesion's pull-off gap; the others are separated.
+/// The plane-wall contacts of particle i among the walls in its reach (WallReach.hpp), each wall
+/// in order: positive overlap, or a formed contact within the cohesion's pull-off gap; the
+/// others in reach are separated. The walls out of reach cannot touch it before the next list
+/// build, and the build left their slots blank.
 template <class Law, class Visitor>
 GPUDEM_HD void visit_wall_contacts(std::uint32_t i, Real4 xi, Real4 vi, Vec3 wi, MaterialId mi,
                                    const ContactScene<Law>& s, Visitor& visit) {
+  const WallReachBits reach{s.wall_count > 0 ? s.wall_reach[i] : 0u};
+  if (reach.none()) return;
   for (std::uint32_t w = 0; w < s.wall_count; ++w) {
+    if (!reach.holds(w)) continue;
     const PlaneWall& wall = s.walls[w];
     const Real overlap = wall_overlap(wall, xyz(xi), xi.w);
     const std::uint32_t slot = i * s.wall_count + w;

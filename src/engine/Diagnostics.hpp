@@ -40,23 +40,29 @@ struct GravityEnergy {
 };
 
 /// Particle i's contact terms, written per particle so that the sums need no law-specific
-/// reduction: its share of the contact count and of the elastic energy (a particle pair is
-/// seen from both sides, so each side adds ½), the force it exerts on each body (plane walls
-/// w, then meshes wall_count + m), its torque on each mesh about the mesh's centre, its lever
-/// from the periodic image of the particle that the mesh meets, and the force it exerts on the
-/// triangle of each of its mesh candidate-list entries (zero for an entry not in contact). The
-/// stored history is read, not advanced (dt = 0). A null output is not written: the mesh loads
-/// are asked for alone (one kernel for both: each law's is compiled once per backend).
+/// reduction: its share of the contact count and of the elastic energy, the force it exerts on
+/// each body (plane walls w, then meshes wall_count + m), its torque on each mesh about the
+/// mesh's centre, its lever from the periodic image of the particle that the mesh meets, and the
+/// force it exerts on the triangle of each of its mesh candidate-list entries (zero for an entry
+/// not in contact). A pair of owned particles counts whole at its lower index and is skipped at
+/// the other end; a pair with a ghost counts half at the owned end (its owner counts the other
+/// half). The lower index of an owned pair holds its history as the last sweep advanced it: the
+/// host's pair-once sweep evaluates a pair within one group there and every other pair at both
+/// ends (PairOnceForces.hpp), so the terms need no mirrored history. The stored history is read,
+/// not advanced (dt = 0). A null output is not written: the mesh loads are asked for alone (one
+/// kernel for both: each law's is compiled once per backend).
 template <class Law, class P>
 struct ContactTerms {
   ParticleView<P> particles;
   ContactScene<Law> scene;
-  Real* contacts;     ///< per particle
-  Real* energy;       ///< per particle [J]
-  Vec3* body_force;   ///< per (particle, body): i·body_count + body [N]
-  Vec3* mesh_torque;  ///< per (particle, mesh): i·mesh_count + m [N m]
-  Vec3* entry_load;   ///< per mesh candidate-list entry [N]
+  std::uint32_t owned;  ///< particles [0, owned) are owned, the others ghosts
+  Real* contacts;       ///< per particle
+  Real* energy;         ///< per particle [J]
+  Vec3* body_force;     ///< per (particle, body): i·body_count + body [N]
+  Vec3* mesh_torque;    ///< per (particle, mesh): i·mesh_count + m [N m]
+  Vec3* entry_load;     ///< per mesh candidate-list entry [N]
   struct Tally {
+    Real pair_share = 1;  ///< of the pair being visited: 1, or ½ with a ghost
     Real contacts = 0;
     Real energy = 0;
     Vec3 centre;
@@ -68,7 +74,7 @@ struct ContactTerms {
     std::uint32_t wall_count;
     GPUDEM_HD void operator()(ContactSample<Law>& c) {
       const bool pair = c.wall < 0 && c.mesh < 0;
-      const Real share = pair ? Real(0.5) : Real(1);
+      const Real share = pair ? pair_share : Real(1);
       contacts += share;
       energy += share * contact_energy(c);
       if (pair) return;
@@ -104,7 +110,15 @@ struct ContactTerms {
     t.box = scene.box;
     t.mesh = scene.mesh;
     t.wall_count = scene.wall_count;
-    for_each_contact(static_cast<std::uint32_t>(i), particles, scene, t);
+    const auto me = static_cast<std::uint32_t>(i);
+    const SweptParticle swept = swept_particle<Law>(me, particles);
+    for (std::uint32_t k = scene.neighbor_offsets[i]; k < scene.neighbor_offsets[i + 1]; ++k) {
+      const std::uint32_t j = scene.neighbor_index[k];
+      if (j < me) continue;  // the lower index counts it
+      t.pair_share = j < owned ? Real(1) : Real(0.5);
+      visit_pair_entry(swept, k, particles, scene, t);
+    }
+    visit_body_contacts(me, swept, scene, t);
     if (contacts) contacts[i] = t.contacts;
     if (energy) energy[i] = t.energy;
   }

@@ -39,6 +39,7 @@ struct ContactInputs {
   std::uint32_t material_count;
   const PlaneWall* walls;
   std::uint32_t wall_count;
+  const std::uint32_t* wall_reach;  ///< per owned particle (WallReach.hpp); null without walls
   PeriodicBox box;
   MeshView mesh;
   HistoryPointers<const S> history;
@@ -93,7 +94,8 @@ class ForceCompute {
   /// history they wrote or the list changes. Nothing when nothing is pending (always on CUDA,
   /// whose sweeps advance both ends).
   virtual void mirror_pair_history(const ContactInputs<P, S>& in) const = 0;
-  /// The diagnostics' contact terms of particles [0, count), the history read, not advanced.
+  /// The diagnostics' contact terms of particles [0, count), the history read, not advanced: each
+  /// owned pair at its lower index, where the last sweep left its history (no mirror needed).
   virtual void contact_terms(const ContactInputs<P, S>& in, std::size_t count,
                              const ContactTermOutputs& out) const = 0;
   /// The load of particles [0, count) on each mesh candidate-list entry (ContactTerms).

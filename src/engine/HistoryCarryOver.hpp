@@ -9,6 +9,8 @@
 /// one per list entry. They exist only during a rebuild.
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <vector>
 
 #include "core/Config.hpp"
@@ -19,13 +21,20 @@
 
 namespace gpudem {
 
-/// True when the `width` values at `record` are bit for bit a fresh record (every value +0).
+/// True when the `width` values at `record` are bit for bit a fresh record (every value +0):
+/// each value's bits read as one unsigned word of its size, all words or'ed.
 template <class S>
 GPUDEM_HD bool is_fresh(const S* record, std::uint32_t width) {
-  const unsigned char* byte = reinterpret_cast<const unsigned char*>(record);
-  for (std::size_t k = 0; k < width * sizeof(S); ++k)
-    if (byte[k] != 0) return false;
-  return true;
+  static_assert(sizeof(S) == sizeof(std::uint64_t) || sizeof(S) == sizeof(std::uint32_t),
+                "history values are doubles or floats");
+  using Bits = std::conditional_t<sizeof(S) == sizeof(std::uint64_t), std::uint64_t, std::uint32_t>;
+  Bits any = 0;
+  for (std::uint32_t v = 0; v < width; ++v) {
+    Bits bits;
+    std::memcpy(&bits, record + v, sizeof(Bits));
+    any |= bits;
+  }
+  return any == 0;
 }
 
 /// Copies the `width` values of one record.

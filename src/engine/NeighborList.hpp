@@ -12,15 +12,19 @@
 /// rows.slot[r] as storage indices, ascending in the partners' keys (global ids), so that each
 /// force sum visits its partners in an order set by the ids alone, whatever the storage order or
 /// rank count.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
+#include <type_traits>
+#include <vector>
 
 #include "core/Config.hpp"
 #include "core/Vec3.hpp"
 #include "engine/ArrayKernels.hpp"
 #include "engine/CellList.hpp"
 #include "engine/DeviceArray.hpp"
+#include "engine/HostRanges.hpp"
 #include "engine/ParallelFor.hpp"
 #include "engine/PeriodicBox.hpp"
 #include "engine/SizeClassGrid.hpp"
@@ -131,6 +135,22 @@ struct PairWriter {
   }
 };
 
+/// The host's one-pass search: appends each neighbour to a thread's buffer, entries[0, used),
+/// and counts the candidates. Every candidate is written at `used`, which only a neighbour
+/// advances: about one candidate in seven is a neighbour, and a branch on it would go either way.
+struct PairAppender {
+  RowLayout layout;
+  std::vector<std::uint32_t>* entries;
+  std::size_t used = 0;
+  std::uint64_t examined = 0;
+  void operator()(std::uint32_t j, bool within) {
+    ++examined;
+    if (used == entries->size()) entries->resize(2 * used + 256);
+    (*entries)[used] = layout.entry_of_slot(j);
+    used += within ? 1 : 0;
+  }
+};
+
 /// kept[r], examined[r]: neighbours and candidates of row r's particle.
 struct CountNeighbors {
   NeighborSearch search;
@@ -173,9 +193,9 @@ class NeighborList {
   /// Builds the list of the n particles binned in `cells`, whose positions and radii
   /// (x, y, z, radius) are given in cell order (cells.order()); box and skin [m] must be those of
   /// the binning. Without `rows`, one row per slot; with them, the given rows only (their
-  /// pointers in Space memory, slots < n). Frees the previous list, counts the neighbours, scans
-  /// the counts into offsets, then writes them: the list holds exactly its entries, and a rebuild
-  /// never holds two lists.
+  /// pointers in Space memory, slots < n). Frees the previous list first; the list holds exactly
+  /// its entries. A device counts the neighbours, scans the counts into offsets, then writes
+  /// them, so that a rebuild never holds two lists; the host searches once (search_once).
   void build(const CellList<Space>& cells, const Real4* sorted_position_radius, std::size_t n,
              const PeriodicBox& box, Real skin, const NeighborRows* rows = nullptr) {
     check_matches(cells, n, box, skin);
@@ -186,14 +206,17 @@ class NeighborList {
     release(offsets_);
     release(neighbors_);
     offsets_.resize(n_ + 1);
-    candidates_examined_ = count_neighbors(search, layout);
-    pairs_kept_ = counts_to_offsets<Space>(offsets_.data(), n_,
-                                           "NeighborList: more than 2^32 - 1 neighbour entries");
-    neighbors_.resize(pairs_kept_);
-    parallel_for(
-        Space{}, n_,
-        neighbor_list_kernels::WriteNeighbors{search, layout, offsets_.data(), neighbors_.data()},
-        LaunchSlot::neighbor_list);
+    if constexpr (std::is_same_v<Space, HostSpace>) {
+      search_once(search, layout);
+    } else {
+      candidates_examined_ = count_neighbors(search, layout);
+      pairs_kept_ = counts_to_offsets<Space>(offsets_.data(), n_, kTooManyEntries);
+      neighbors_.resize(pairs_kept_);
+      parallel_for(
+          Space{}, n_,
+          neighbor_list_kernels::WriteNeighbors{search, layout, offsets_.data(), neighbors_.data()},
+          LaunchSlot::neighbor_list);
+    }
   }
 
   /// Number of rows in the list: n, or rows.count when built for given rows.
@@ -224,6 +247,40 @@ class NeighborList {
     return static_cast<std::uint64_t>(
         reduce_sum(Space{}, n_, neighbor_list_kernels::ValueOf{examined.data()}));
   }
+
+  /// The host's build, one search per row instead of a count and a write: each thread searches a
+  /// contiguous range of rows, appending their entries (each row sorted by key) to a buffer of
+  /// its own and writing each row's length to offsets_; the buffers are then copied in row order
+  /// into the list. The entries are held twice for that moment.
+  void search_once(const NeighborSearch& search, const neighbor_list_kernels::RowLayout& layout) {
+    const std::size_t parts = host_thread_count();
+    std::vector<std::vector<std::uint32_t>> entries(parts);
+    std::vector<std::uint64_t> examined(parts, 0);
+    std::uint32_t* length = offsets_.data();
+    host_numbered_ranges(n_, parts, [&](std::size_t part, std::uint32_t begin, std::uint32_t end) {
+      neighbor_list_kernels::PairAppender append{layout, &entries[part]};
+      for (std::uint32_t r = begin; r < end; ++r) {
+        const std::size_t first = append.used;
+        search.for_each_candidate(layout.slot_of_row(r), append);
+        length[r] = static_cast<std::uint32_t>(append.used - first);
+        if (layout.key) layout.sort_row(entries[part].data() + first, length[r]);
+      }
+      entries[part].resize(append.used);
+      examined[part] = append.examined;
+    });
+    candidates_examined_ = 0;
+    for (const std::uint64_t e : examined) candidates_examined_ += e;
+    pairs_kept_ = counts_to_offsets<Space>(offsets_.data(), n_, kTooManyEntries);
+    neighbors_.resize(pairs_kept_);
+    std::uint32_t* list = neighbors_.data();
+    const std::uint32_t* offsets = offsets_.data();
+    host_numbered_ranges(n_, parts, [&](std::size_t part, std::uint32_t begin, std::uint32_t) {
+      std::copy(entries[part].begin(), entries[part].end(), list + offsets[begin]);
+    });
+  }
+
+  static constexpr const char* kTooManyEntries =
+      "NeighborList: more than 2^32 - 1 neighbour entries";
 
   static void check_matches(const CellList<Space>& cells, std::size_t n, const PeriodicBox& box,
                             Real skin) {

@@ -41,6 +41,7 @@
 #include "engine/ShareRouting.hpp"
 #include "engine/StepEngine.hpp"
 #include "engine/WallPistons.hpp"
+#include "engine/WallReach.hpp"
 
 namespace gpudem {
 
@@ -118,7 +119,7 @@ class ParticleSystem final : public StepEngine {
 
   void rebuild_neighbors() override {
     rebuild();
-    compute_forces();
+    compute_forces_after_rebuild();
     measure_pistons();
   }
 
@@ -227,6 +228,7 @@ class ParticleSystem final : public StepEngine {
                                      setup_.material_count,
                                      walls_.data(),
                                      wall_count(),
+                                     wall_count() > 0 ? wall_reach_.data() : nullptr,
                                      setup_.box,
                                      meshes_.view(),
                                      history_pointers(),
@@ -293,21 +295,16 @@ class ParticleSystem final : public StepEngine {
   void settle_pair_history() const { law_->mirror_pair_history(contact_inputs()); }
 
   /// The forces of the current state written to `scratch`, the engine's state untouched.
-  void compute_forces_into(ForceScratch& scratch) {
-    settle_pair_history();
-    law_->compute(contact_inputs(), setup_.gravity, setup_.dt,
-                  {scratch.force.data(),
-                   scratch.torque.data(),
-                   scratch.overlap_ratio.data(),
-                   {scratch.pair.data(), scratch.wall.data(), scratch.mesh.data()}},
-                  nullptr, owned_);
-    settle_pair_history();  // into the scratch, before it is freed
-  }
+  void compute_forces_into(ForceScratch& scratch);
 
   /// Refreshes the ghosts' per-step fields while the forces of the owned particles whose rows
   /// read no ghost are computed, then computes the others' forces. Each particle's force is
   /// the same sum as in compute_forces(); only the particles' order differs.
   void refresh_ghosts_computing_interior(Stopwatch& watch);
+
+  /// After a rebuild, the forces swept as the next steps sweep them (on several ranks, interior
+  /// rows first): the host keeps one grouping and selection of entries per list (PairOnceSweep).
+  void compute_forces_after_rebuild();
 
   bool find_unhealthy_here(double limit, HealthFailure& failure) const;
 
@@ -390,6 +387,10 @@ class ParticleSystem final : public StepEngine {
   /// The owned particles' mesh candidates, with the kept rows' history when `carry`.
   void rebuild_mesh_candidates(bool carry);
 
+  /// Each owned particle's plane walls in reach (WallReach.hpp); blanks its others' history.
+  void find_wall_reach();
+  void blank_walls_out_of_reach();
+
   /// The new list's pair history: the kept records of each particle's previous row (all fresh
   /// on the first build); the kept rows are then freed.
   void remap_pair_history();
@@ -466,6 +467,7 @@ class ParticleSystem final : public StepEngine {
   DeviceArray<State4, Space> position_at_build_;
   DeviceArray<S, Space> pair_history_;  ///< width_ per neighbour-list entry (empty: no history)
   DeviceArray<S, Space> wall_history_;  ///< width_ per (particle, wall) (empty: no history)
+  DeviceArray<std::uint32_t, Space> wall_reach_;  ///< walls in reach at the last list build
   // Rebuild scratch.
   DeviceArray<std::uint32_t, Space> previous_index_;      ///< row of each particle's previous list
   HistoryCarryOver<Space, ParticleId, S> carried_pairs_;  ///< previous rows' history

@@ -36,6 +36,7 @@ void ParticleSystem<Space, P, S>::rebuild() {
   build_list(ghosts);
   split_ghost_rows();
   rebuild_mesh_candidates(has_list_);
+  find_wall_reach();
   remap_pair_history();
   list_build_clock_ = clock_;
   position_at_build_.resize(owned_);
@@ -213,6 +214,26 @@ void ParticleSystem<Space, P, S>::rebuild_mesh_candidates(bool carry) {
   if (meshes_.empty()) return;
   meshes_.rebuild(position_radius_.data(), owned_, domain_.group().max<double>(largest_radius()),
                   setup_.skin, domain_.region(), previous_index_.data(), carry);
+}
+
+template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::find_wall_reach() {
+  if (wall_count() == 0) return;
+  WallReachBits pistons;
+  for (std::size_t k = 0; k < pistons_.count(); ++k) pistons.add(pistons_.piston(k).wall);
+  wall_reach_.resize(owned_);
+  parallel_for(Space{}, owned_,
+               FindWallReach<P>{position_radius_.data(), walls_.data(), wall_count(), pistons,
+                                Real(setup_.skin), wall_reach_.data()});
+  blank_walls_out_of_reach();
+}
+
+template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::blank_walls_out_of_reach() {
+  if (wall_count() == 0 || width_ == 0) return;
+  parallel_for(
+      Space{}, owned_,
+      BlankWallsOutOfReach<S>{wall_reach_.data(), wall_count(), width_, wall_history_.data()});
 }
 
 template <class Space, class P, class S>

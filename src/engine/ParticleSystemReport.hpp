@@ -86,6 +86,18 @@ std::string ParticleSystem<Space, P, S>::tune_launches() {
 }
 
 template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::compute_forces_into(ForceScratch& scratch) {
+  settle_pair_history();
+  law_->compute(contact_inputs(), setup_.gravity, setup_.dt,
+                {scratch.force.data(),
+                 scratch.torque.data(),
+                 scratch.overlap_ratio.data(),
+                 {scratch.pair.data(), scratch.wall.data(), scratch.mesh.data()}},
+                nullptr, owned_);
+  settle_pair_history();  // into the scratch, before it is freed
+}
+
+template <class Space, class P, class S>
 std::vector<MemoryUse> ParticleSystem<Space, P, S>::memory_use() const {
   std::vector<MemoryUse> use = columns_.memory_use();
   use.insert(use.end(), {{"overlap ratio", overlap_ratio_.bytes()},
@@ -93,6 +105,7 @@ std::vector<MemoryUse> ParticleSystem<Space, P, S>::memory_use() const {
                          {"neighbour list", neighbors_.memory_bytes()},
                          {"pair history", pair_history_.bytes()},
                          {"wall history", wall_history_.bytes()},
+                         {"walls in reach", wall_reach_.bytes()},
                          {"cell list", cells_.memory_bytes()},
                          {"history carry-over", carry_over_bytes()},
                          {"rebuild scratch", scratch_bytes()},
@@ -157,7 +170,6 @@ Diagnostics ParticleSystem<Space, P, S>::local_diagnostics(double& contact_share
   DeviceArray<Real, Space> contacts(n), energy(n);
   const std::uint32_t bodies = wall_count() + meshes_.count();
   DeviceArray<Vec3, Space> body_force(n * bodies), mesh_torque(n * meshes_.count());
-  settle_pair_history();
   law_->contact_terms(contact_inputs(), n,
                       {contacts.data(), energy.data(), body_force.data(), mesh_torque.data()});
   d.potential_elastic = reduce_sum(Space{}, n, ReadValue{energy.data()});

@@ -13,7 +13,7 @@ void ParticleSystem<Space, P, S>::set_particles(const ParticleStore& share) {
   count_particles(share.id);
   has_list_ = false;
   rebuild();
-  compute_forces();
+  compute_forces_after_rebuild();
   measure_pistons();
 }
 
@@ -64,6 +64,7 @@ void ParticleSystem<Space, P, S>::set_contact_history(ContactHistory share) {
   if (width_ > 0) {
     upload_history(values.pair, pair_history_);
     upload_history(values.wall, wall_history_);
+    blank_walls_out_of_reach();  // as the last list build left the others
     if (!meshes_.empty())
       meshes_.set_history(std::vector<S>(values.mesh.begin(), values.mesh.end()));
   }
@@ -152,6 +153,7 @@ void ParticleSystem<Space, P, S>::build_list_at_saved_positions(
   if (!meshes_.empty()) meshes_.set_time(list_build_clock_.time(setup_.dt));
   rebuild_mesh_candidates(false);
   if (!meshes_.empty()) meshes_.set_time(clock_.time(setup_.dt));
+  find_wall_reach();
   parallel_for(Space{}, owned_,
                SwapValues<State4>{position_radius_.data(), position_at_build_.data()});
   if (domain_.ranks() > 1) ghosts_.update(domain_, arrays(), owned_);

@@ -49,7 +49,7 @@ void ParticleSystem<Space, P, S>::step() {
   if (rebuild_now) {
     rebuild();  // charges its own parts
     lap(watch);
-    compute_forces();
+    compute_forces_after_rebuild();
   } else if (domain_.ranks() > 1) {
     refresh_ghosts_computing_interior(watch);
   } else {
@@ -59,6 +59,14 @@ void ParticleSystem<Space, P, S>::step() {
   times_.forces += lap(watch);
   if (verlet) kick(Real(0.5) * dt);
   times_.integrate += lap(watch);
+}
+
+template <class Space, class P, class S>
+void ParticleSystem<Space, P, S>::compute_forces_after_rebuild() {
+  if (domain_.ranks() == 1) return compute_forces();
+  compute_forces(ghost_rows_.interior(), ghost_rows_.interior_count());
+  compute_forces(ghost_rows_.boundary(), ghost_rows_.boundary_count());
+  add_bond_loads(step_dt());
 }
 
 template <class Space, class P, class S>

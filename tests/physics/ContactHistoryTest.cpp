@@ -178,6 +178,7 @@ std::map<std::string, std::size_t> needed_bytes(const StepEngine& engine, std::s
           {"neighbour list", (n + 1 + entries) * index},
           {"pair history", entries * record},
           {"wall history", n * walls * record},
+          {"walls in reach", walls > 0 ? n * index : 0},
           {"cell list", n * index + (cells + 1) * index},
           {"history carry-over", carry_over_bytes(n, loaded_pair_records(engine), record)},
           {"rebuild scratch", n * index},  // each particle's row in the previous list

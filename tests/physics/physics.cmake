@@ -5,3 +5,4 @@ gpudem_add_test(test_pair_once SOURCES physics/PairOnceTest.cpp LIBS gpudem_sim 
 gpudem_add_test(test_backend_agreement SOURCES physics/BackendAgreementTest.cpp LIBS gpudem_sim LABELS physics TIMEOUT 900)
 gpudem_add_test(test_precision SOURCES physics/PrecisionTest.cpp LIBS gpudem_sim LABELS physics)
 gpudem_add_test(test_janssen SOURCES physics/JanssenTest.cpp LIBS gpudem_sim LABELS physics TIMEOUT 900)
+gpudem_add_test(test_wall_reach SOURCES physics/WallReachTest.cpp LIBS gpudem_sim LABELS physics)

@@ -136,22 +136,12 @@ TEST_F(CommandLine, VerboseReportsEachArraysBytesPerParticle) {
   EXPECT_EQ(bytes_per_particle(r.output, "id, material"), 8.0 + 4.0);
   EXPECT_EQ(bytes_per_particle(r.output, "force, torque"), 6.0 * sizeof(double));
   EXPECT_EQ(bytes_per_particle(r.output, "position at list build"), 4.0 * sizeof(double));
-  const char* const arrays[] = {"position, radius",
-                                "velocity, inverse mass",
-                                "angular velocity",
-                                "id, material",
-                                "force, torque",
-                                "overlap ratio",
-                                "position at list build",
-                                "neighbour list",
-                                "pair history",
-                                "wall history",
-                                "cell list",
-                                "history carry-over",
-                                "rebuild scratch",
-                                "ghost buffers",
-                                "meshes",
-                                "contact law"};
+  const char* const arrays[] = {
+      "position, radius",   "velocity, inverse mass", "angular velocity",       "id, material",
+      "force, torque",      "overlap ratio",          "position at list build", "neighbour list",
+      "pair history",       "wall history",           "walls in reach",         "cell list",
+      "history carry-over", "rebuild scratch",        "ghost buffers",          "meshes",
+      "contact law"};
   double sum = 0;
   for (const char* name : arrays) {
     const double bytes = bytes_per_particle(r.output, name);

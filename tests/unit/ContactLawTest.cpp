@@ -111,8 +111,8 @@ TEST(ContactLawCost, HookeOnlyKernelReadsNoSpinTorqueOrHistory) {
   box.length = {2, 2, 2};
   const ParticleView<Real> view{x.data(), v.data(), nullptr, material.data()};
   const ContactScene<HookeOnly> scene{
-      offsets.data(), neighbors.data(), &params,    1,      nullptr, 0, box,
-      nullptr,        nullptr,          MeshView{}, nullptr};
+      offsets.data(), neighbors.data(), &params, 1,          nullptr, 0, box,
+      nullptr,        nullptr,          nullptr, MeshView{}, nullptr};
   std::vector<Vec3> force(2);
   std::vector<Real> ratio(2);
   parallel_for(HostSpace{}, 2,
