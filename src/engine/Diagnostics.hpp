@@ -124,18 +124,6 @@ struct ContactTerms {
   }
 };
 
-/// Component `component` of the load `per_particle` row i holds for column `column` of
-/// `columns` (a body's force or a mesh's torque), from ContactTerms.
-struct LoadComponent {
-  const Vec3* per_particle;
-  std::uint32_t columns;
-  std::uint32_t column;
-  int component;
-  GPUDEM_HD Real operator()(std::size_t i) const {
-    return axis(per_particle[i * columns + column], component);
-  }
-};
-
 /// The health score of a particle whose position, velocity or overlap is not finite.
 constexpr Real kNonFiniteScore = Real(1e300);
 

@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "core/Config.hpp"
+#include "core/Vec3.hpp"
 #include "engine/ExecutionSpace.hpp"
+#include "engine/HostRanges.hpp"
 #include "engine/LaunchTuning.hpp"
 
 namespace gpudem {
@@ -51,6 +53,23 @@ Real reduce_max(HostSpace, std::size_t n, Real identity, const F& f) {
 #endif
   for (std::int64_t i = 0; i < count; ++i) m = std::max(m, f(static_cast<std::size_t>(i)));
   return m;
+}
+
+/// out[c] = the sum over rows i of values[i·columns + c], for c in [0, columns): one pass over the
+/// rows, each thread's contiguous range of rows summed apart (host_numbered_ranges), the ranges'
+/// sums then added in order.
+inline void sum_columns(HostSpace, const Vec3* values, std::size_t rows, std::size_t columns,
+                        Vec3* out) {
+  const std::size_t parts = host_thread_count();
+  std::vector<Vec3> part_sums(parts * columns);
+  host_numbered_ranges(rows, parts, [&](std::size_t part, std::uint32_t begin, std::uint32_t end) {
+    Vec3* sum = part_sums.data() + part * columns;
+    for (std::size_t i = begin; i < end; ++i)
+      for (std::size_t c = 0; c < columns; ++c) sum[c] += values[i * columns + c];
+  });
+  std::fill(out, out + columns, Vec3{});
+  for (std::size_t part = 0; part < parts; ++part)
+    for (std::size_t c = 0; c < columns; ++c) out[c] += part_sums[part * columns + c];
 }
 
 /// sum over i of f(i).

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/Config.hpp"
+#include "core/Vec3.hpp"
 #include "engine/ExecutionSpace.hpp"
 #include "engine/LaunchTuning.hpp"
 
@@ -161,6 +162,31 @@ Real reduce_max(CudaSpace, std::size_t n, Real identity, const F& f) {
 template <class F>
 Real reduce_sum(CudaSpace, std::size_t n, const F& f) {
   return detail::reduce(n, f, detail::SumOp{}, Real(0));
+}
+
+namespace detail {
+
+/// Component k of column c of a per-(row, column) Vec3 array, row i.
+struct ColumnComponent {
+  const Vec3* values;
+  std::size_t columns;
+  std::size_t column;
+  int component;
+  GPUDEM_HD Real operator()(std::size_t i) const {
+    return axis(values[i * columns + column], component);
+  }
+};
+
+}  // namespace detail
+
+/// out[c] = the sum over rows i of values[i·columns + c], for c in [0, columns): three
+/// reductions per column (`values` in device memory, `out` on the host).
+inline void sum_columns(CudaSpace, const Vec3* values, std::size_t rows, std::size_t columns,
+                        Vec3* out) {
+  for (std::size_t c = 0; c < columns; ++c)
+    for (int k = 0; k < 3; ++k)
+      axis(out[c], k) =
+          reduce_sum(CudaSpace{}, rows, detail::ColumnComponent{values, columns, c, k});
 }
 
 /// out[i] = in[0] + ... + in[i-1] (modulo 2^32); returns the total in 64 bits, so that the caller

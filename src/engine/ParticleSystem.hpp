@@ -180,13 +180,11 @@ class ParticleSystem final : public StepEngine {
   void build_list_at_saved_positions(DeviceArray<ForceVec, Space>& force,
                                      DeviceArray<ForceVec, Space>& torque);
 
-  /// Σ over owned particles of column `column` of a per-(particle, column) load array.
-  Vec3 column_sum(const DeviceArray<Vec3, Space>& load, std::uint32_t columns,
-                  std::uint32_t column) const {
-    Vec3 sum;
-    for (int k = 0; k < 3; ++k)
-      axis(sum, k) = reduce_sum(Space{}, owned_, LoadComponent{load.data(), columns, column, k});
-    return sum;
+  /// Σ over owned particles of each column of a per-(particle, column) load array.
+  std::vector<Vec3> column_sums(const DeviceArray<Vec3, Space>& load, std::uint32_t columns) const {
+    std::vector<Vec3> sums(columns);
+    sum_columns(Space{}, load.data(), owned_, columns, sums.data());
+    return sums;
   }
 
   Real largest_radius() const {

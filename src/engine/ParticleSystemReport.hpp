@@ -177,12 +177,10 @@ Diagnostics ParticleSystem<Space, P, S>::local_diagnostics(double& contact_share
   contact_share = reduce_sum(Space{}, n, ReadValue{contacts.data()});
   d.contact_count = static_cast<std::uint64_t>(std::llround(contact_share));
   d.max_overlap_ratio = reduce_max(Space{}, n, Real(0), ReadValue{overlap_ratio_.data()});
-  for (std::uint32_t w = 0; w < wall_count(); ++w)
-    d.wall_force.push_back(column_sum(body_force, bodies, w));
-  for (std::uint32_t m = 0; m < meshes_.count(); ++m) {
-    d.mesh_force.push_back(column_sum(body_force, bodies, wall_count() + m));
-    d.mesh_torque.push_back(column_sum(mesh_torque, meshes_.count(), m));
-  }
+  const std::vector<Vec3> body = column_sums(body_force, bodies);
+  d.wall_force.assign(body.begin(), body.begin() + wall_count());
+  d.mesh_force.assign(body.begin() + wall_count(), body.end());
+  d.mesh_torque = column_sums(mesh_torque, meshes_.count());
   return d;
 }
 
