@@ -43,7 +43,7 @@ struct Kick {
       angular_velocity[i] = Vec3T<P>{};
       return;
     }
-    const Real slowed = Real(1) / (Real(1) + m.drag * h);
+    const Real slowed = m.drag == 0 ? Real(1) : Real(1) / (Real(1) + m.drag * h);  // the same 1
     const Vec3 f = vec_cast<Real>(force[i]);
     v.x = (v.x + h * v.w * f.x) * slowed;
     v.y = (v.y + h * v.w * f.y) * slowed;

@@ -20,11 +20,13 @@
 #include <vector>
 
 #include "core/Config.hpp"
+#include "core/Lanes.hpp"
 #include "core/Vec3.hpp"
 #include "engine/ArrayKernels.hpp"
 #include "engine/CellList.hpp"
 #include "engine/DeviceArray.hpp"
 #include "engine/HostRanges.hpp"
+#include "engine/NeighborSlots.hpp"
 #include "engine/ParallelFor.hpp"
 #include "engine/PeriodicBox.hpp"
 #include "engine/SizeClassGrid.hpp"
@@ -41,18 +43,45 @@ struct NeighborSearch {
   /// i, in ascending j; `within` tells whether the pair meets the neighbour criterion.
   template <class Visitor>
   GPUDEM_HD void for_each_candidate(std::uint32_t i, Visitor& visit) const {
+    SlotsOfRuns<Visitor> slots{this, &visit};
+    for_each_run(i, slots);
+  }
+
+  /// Calls visit(i, p, begin, end) for every run of slots [begin, end) in the cells within reach
+  /// of particle i (p: its centre and radius), in ascending slots; a run may hold slot i.
+  template <class RunVisitor>
+  GPUDEM_HD void for_each_run(std::uint32_t i, RunVisitor& visit) const {
     const Real4 p = position_radius[i];
     const Vec3 binned = make_vec3(grids.binned(0, p.x), grids.binned(1, p.y), grids.binned(2, p.z));
     for (int c = 0; c < grids.class_count; ++c)
       if (grids.grid[c].particles > 0) visit_class(i, p, binned, grids.grid[c], visit);
   }
 
+  /// Whether the particle in slot j meets the neighbour criterion with p (centre and radius).
+  GPUDEM_HD bool within(const Real4& p, std::uint32_t j) const {
+    const Real4 q = position_radius[j];
+    const Real cutoff = p.w + q.w + grids.skin;
+    return norm2(grids.box.minimum_image(xyz(q) - xyz(p))) < cutoff * cutoff;
+  }
+
  private:
-  /// Candidates of one class: the cells of its grid within r_i + r_c + skin of particle i, whose
-  /// position as the grids see it is `binned`.
+  /// Runs of slots as single candidates.
   template <class Visitor>
+  struct SlotsOfRuns {
+    const NeighborSearch* search;
+    Visitor* visit;
+    GPUDEM_HD void operator()(std::uint32_t i, const Real4& p, std::uint32_t begin,
+                              std::uint32_t end) const {
+      for (std::uint32_t j = begin; j < end; ++j)
+        if (j != i) (*visit)(j, search->within(p, j));
+    }
+  };
+
+  /// Runs of one class: the cells of its grid within r_i + r_c + skin of particle i, whose
+  /// position as the grids see it is `binned`.
+  template <class RunVisitor>
   GPUDEM_HD void visit_class(std::uint32_t i, const Real4& p, const Vec3& binned, const CellGrid& g,
-                             Visitor& visit) const {
+                             RunVisitor& visit) const {
     const Real reach = p.w + g.radius_max + grids.skin;
     const AxisSpan sx = axis_span(g, grids.region, 0, binned.x, reach);
     const AxisSpan sy = axis_span(g, grids.region, 1, binned.y, reach);
@@ -62,19 +91,8 @@ struct NeighborSearch {
         for (int ry = 0; ry < sy.runs; ++ry)
           for (int y = sy.first[ry]; y <= sy.last[ry]; ++y)
             for (int rx = 0; rx < sx.runs; ++rx)  // a run of cells is a run of slots
-              visit_slots(i, p, cell_begin[cell_index(g, sx.first[rx], y, z)],
-                          cell_begin[cell_index(g, sx.last[rx], y, z) + 1], visit);
-  }
-
-  template <class Visitor>
-  GPUDEM_HD void visit_slots(std::uint32_t i, const Real4& p, std::uint32_t begin,
-                             std::uint32_t end, Visitor& visit) const {
-    for (std::uint32_t j = begin; j < end; ++j) {
-      if (j == i) continue;
-      const Real4 q = position_radius[j];
-      const Real cutoff = p.w + q.w + grids.skin;
-      visit(j, norm2(grids.box.minimum_image(xyz(q) - xyz(p))) < cutoff * cutoff);
-    }
+              visit(i, p, cell_begin[cell_index(g, sx.first[rx], y, z)],
+                    cell_begin[cell_index(g, sx.last[rx], y, z) + 1]);
   }
 };
 
@@ -135,19 +153,55 @@ struct PairWriter {
   }
 };
 
-/// The host's one-pass search: appends each neighbour to a thread's buffer, entries[0, used),
-/// and counts the candidates. Every candidate is written at `used`, which only a neighbour
-/// advances: about one candidate in seven is a neighbour, and a branch on it would go either way.
-struct PairAppender {
+/// The host's one-pass search: appends each run's neighbours to a thread's buffer,
+/// entries[0, used), and counts the candidates. A run is tested eight slots at once where the
+/// CPU runs AVX-512 (slots_within_avx512), else slot by slot, each slot written at `used`,
+/// which only a neighbour advances: about one candidate in seven is a neighbour, and a branch on
+/// it would go either way.
+struct RunAppender {
+  const NeighborSearch* search;
   RowLayout layout;
   std::vector<std::uint32_t>* entries;
+  bool in_avx512 = false;
   std::size_t used = 0;
   std::uint64_t examined = 0;
-  void operator()(std::uint32_t j, bool within) {
-    ++examined;
-    if (used == entries->size()) entries->resize(2 * used + 256);
-    (*entries)[used] = layout.entry_of_slot(j);
-    used += within ? 1 : 0;
+
+  void operator()(std::uint32_t i, const Real4& p, std::uint32_t begin, std::uint32_t end) {
+    const std::size_t room = used + (end - begin) + kSlotsWithinSlack;
+    if (room > entries->size()) entries->resize(2 * room + 256);
+    std::uint32_t* out = entries->data() + used;
+    const std::uint32_t kept =
+        in_avx512 ? avx512_within(i, p, begin, end, out) : scalar_within(i, p, begin, end, out);
+    examined += end - begin - (i >= begin && i < end ? 1 : 0);
+    if (layout.index_of_slot)
+      for (std::uint32_t k = 0; k < kept; ++k) out[k] = layout.index_of_slot[out[k]];
+    used += kept;
+  }
+
+ private:
+  std::uint32_t scalar_within(std::uint32_t i, const Real4& p, std::uint32_t begin,
+                              std::uint32_t end, std::uint32_t* out) const {
+    std::uint32_t kept = 0;
+    for (std::uint32_t j = begin; j < end; ++j) {
+      out[kept] = j;
+      kept += j != i && search->within(p, j) ? 1 : 0;
+    }
+    return kept;
+  }
+  std::uint32_t avx512_within(std::uint32_t i, const Real4& p, std::uint32_t begin,
+                              std::uint32_t end, std::uint32_t* out) const {
+#if GPUDEM_HOST_LANES
+    const PeriodicBox& box = search->grids.box;
+    const SlotTest test{&search->position_radius[0].x,
+                        {p.x, p.y, p.z, p.w},
+                        i,
+                        search->grids.skin,
+                        {box.length.x, box.length.y, box.length.z},
+                        {box.periodic[0], box.periodic[1], box.periodic[2]}};
+    return slots_within_avx512(test, begin, end, out);
+#else
+    return scalar_within(i, p, begin, end, out);
+#endif
   }
 };
 
@@ -257,11 +311,12 @@ class NeighborList {
     std::vector<std::vector<std::uint32_t>> entries(parts);
     std::vector<std::uint64_t> examined(parts, 0);
     std::uint32_t* length = offsets_.data();
+    const bool in_avx512 = GPUDEM_HOST_LANES && host_runs_x86_64_v4();
     host_numbered_ranges(n_, parts, [&](std::size_t part, std::uint32_t begin, std::uint32_t end) {
-      neighbor_list_kernels::PairAppender append{layout, &entries[part]};
+      neighbor_list_kernels::RunAppender append{&search, layout, &entries[part], in_avx512};
       for (std::uint32_t r = begin; r < end; ++r) {
         const std::size_t first = append.used;
-        search.for_each_candidate(layout.slot_of_row(r), append);
+        search.for_each_run(layout.slot_of_row(r), append);
         length[r] = static_cast<std::uint32_t>(append.used - first);
         if (layout.key) layout.sort_row(entries[part].data() + first, length[r]);
       }

@@ -33,7 +33,8 @@ gpudem_add_engine_instances(Host HostSpace engine/ParallelFor.hpp cpp)
 
 # The host's pair sweeps in AVX-512 lanes (PairLanesInstance.in), one unit per normal law and law
 # scalar, each instantiating the sweep of every damping, tangential, rolling and cohesion choice
-# (enum values; the uncompiled ones are empty). Only these units are built for x86-64-v4.
+# (enum values; the uncompiled ones are empty), and the neighbour search's test of a run of slots
+# (NeighborSlotsAvx512.cpp). Only these units are built for x86-64-v4.
 if(GPUDEM_HOST_LANES)
   set(LANES_INSTANCES "")
   foreach(D RANGE 2)
@@ -54,6 +55,7 @@ if(GPUDEM_HOST_LANES)
       target_sources(gpudem_host_lanes PRIVATE ${file})
     endforeach()
   endforeach()
+  target_sources(gpudem_host_lanes PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/engine/NeighborSlotsAvx512.cpp)
   target_link_libraries(gpudem_host_lanes PRIVATE gpudem_contact_model gpudem_mesh)
   target_compile_options(gpudem_host_lanes PRIVATE -march=x86-64-v4)
   if(GPUDEM_LIBRARY_TYPE STREQUAL "SHARED")

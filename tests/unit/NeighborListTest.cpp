@@ -357,6 +357,71 @@ TEST(NeighborList, AcceptsAnyPeriodicImage) {
   expect_matches(build(cells, list, shifted, box, skin), brute_force(wrapped, box, skin));
 }
 
+/// The host search tests a run of slots eight at a time where the CPU runs AVX-512 and slot by
+/// slot elsewhere: both keep the same slots, in the same order, on runs of every length up to
+/// 40, with the particle's own slot inside or outside the run, and periodic axes whose nearest
+/// images decide (particles crowd both faces of a box a few radii long); partners at exactly the
+/// cutoff are left out by both.
+TEST(NeighborSearch, RunsTestedInAvx512KeepTheSlotsTestedOneByOne) {
+  if (!(GPUDEM_HOST_LANES && host_runs_x86_64_v4())) GTEST_SKIP() << "no AVX-512 on this CPU";
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<Real> unit(0, 1);
+  for (const bool periodic : {false, true}) {
+    NeighborSearch search{};
+    search.grids.box.length = make_vec3(0.03, 0.05, 0.04);
+    for (int k = 0; k < 3; ++k) search.grids.box.periodic[k] = periodic && k != 1;
+    search.grids.skin = 0.002;
+    std::vector<Real4> p(600);
+    for (Real4& q : p) {
+      const auto near_a_face = [&](Real length) {
+        const Real x = 0.2 * length * unit(rng);
+        return unit(rng) < 0.5 ? x : length - x;
+      };
+      q = Real4{near_a_face(0.03), near_a_face(0.05), near_a_face(0.04), 0.003 + 0.004 * unit(rng)};
+    }
+    search.position_radius = p.data();
+    std::size_t kept = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+      const auto self = static_cast<std::uint32_t>(rng() % 560);
+      const std::uint32_t begin = self - std::min<std::uint32_t>(self, rng() % 30);
+      const std::uint32_t end = begin + static_cast<std::uint32_t>(rng() % 41);  // often holds self
+      std::vector<std::uint32_t> one_by_one, in_avx512;
+      neighbor_list_kernels::RunAppender scalar{&search, {}, &one_by_one, false};
+      neighbor_list_kernels::RunAppender lanes{&search, {}, &in_avx512, true};
+      scalar(self, p[self], begin, end);
+      lanes(self, p[self], begin, end);
+      one_by_one.resize(scalar.used);
+      in_avx512.resize(lanes.used);
+      ASSERT_EQ(in_avx512, one_by_one) << "run [" << begin << ", " << end << "), self " << self;
+      ASSERT_EQ(lanes.examined, scalar.examined);
+      std::vector<std::uint32_t> expected;
+      for (std::uint32_t j = begin; j < end; ++j)
+        if (j != self && search.within(p[self], j)) expected.push_back(j);
+      ASSERT_EQ(one_by_one, expected);
+      kept += expected.size();
+    }
+    EXPECT_GT(kept, 2000u) << "too few neighbours to test";
+  }
+  // Partners at exactly the cutoff (dyadic numbers: no rounding anywhere) are not neighbours;
+  // one just inside is.
+  NeighborSearch ties{};
+  ties.grids.box.length = make_vec3(1, 1, 1);
+  ties.grids.skin = 1.0 / 64;
+  const Real r = 1.0 / 128, cutoff = 1.0 / 32, c = 0.25;
+  const std::vector<Real4> t = {{c, c, c, r},
+                                {c + cutoff, c, c, r},
+                                {c, c - cutoff, c, r},
+                                {c, c, c + cutoff - 1.0 / 1024, r}};
+  ties.position_radius = t.data();
+  for (const bool in_avx512 : {false, true}) {
+    std::vector<std::uint32_t> kept;
+    neighbor_list_kernels::RunAppender append{&ties, {}, &kept, in_avx512};
+    append(0, t[0], 0, 4);
+    kept.resize(append.used);
+    EXPECT_EQ(kept, std::vector<std::uint32_t>{3}) << (in_avx512 ? "AVX-512" : "one by one");
+  }
+}
+
 TEST(NeighborList, EmptySetGivesEmptyList) {
   PeriodicBox box;
   box.length = make_vec3(1, 1, 1);
