@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The objects built for x86-64-v4 (engine/PairLanesInstance.in, engine/NeighborSlotsAvx512.cpp)
 # must define no global symbol but the AVX-512 sweeps and the neighbour search's slot test: any
-# other (an inline function emitted out of line, a template
-# instantiation) could be the copy the linker keeps for the generic code too, and stop a CPU
-# without AVX-512 with an illegal instruction.
+# other (an inline function emitted out of line, a template instantiation) could be the copy the
+# linker keeps for the generic code too, and stop a CPU without AVX-512 with an illegal
+# instruction.
 # usage: check_lanes_symbols.sh OBJECT...
 set -euo pipefail
 (($#)) || { echo "usage: check_lanes_symbols.sh OBJECT..." >&2; exit 2; }
