@@ -153,10 +153,11 @@ void print_summary(const Scene& scene, const ParticleStore& deciding, std::uint6
   if (engine) {
     const std::string device =
         engine->backend_name() == "cuda" ? " (" + cuda::device_description() + ")" : "";
-    const std::string lanes =
-        engine->contact_lanes() > 1
-            ? ", " + std::to_string(engine->contact_lanes()) + " contacts at once (AVX-512)"
-            : "";
+    const std::string lanes = engine->contact_lanes() > 1
+                                  ? ", " + std::to_string(engine->contact_lanes()) +
+                                        " contacts at once (" +
+                                        (engine->contact_lanes() == 8 ? "AVX-512" : "AVX2") + ")"
+                                  : "";
     std::printf("backend %s%s%s, %.1f bytes per particle\n", engine->backend_name().c_str(),
                 device.c_str(), lanes.c_str(),
                 count ? engine_bytes / static_cast<double>(count) : 0.0);

@@ -2,9 +2,10 @@
 /// W values of one scalar type computed together, lane by lane, with the operations the contact
 /// laws use (arithmetic, comparisons, select, square_root), so that a law written once for a
 /// scalar S evaluates W contacts at a time as Lanes<S, W>. Built on the compiler's vector types:
-/// in code compiled for AVX-512 (-march=x86-64-v4) each operation on eight doubles is one
-/// instruction; elsewhere the compiler splits it (into four SSE2 ones). Every lane rounds as
-/// the scalar operation does (IEEE add, multiply, divide and square root; the build contracts
+/// each operation on eight doubles is one instruction in code compiled for AVX-512
+/// (-march=x86-64-v4), and so is each on four doubles in code compiled for AVX2
+/// (-march=x86-64-v3); wider vectors than the target's are split by the compiler. Every lane rounds
+/// as the scalar operation does (IEEE add, multiply, divide and square root; the build contracts
 /// nothing into fused multiply-adds), so a lane's result is the same bits as the scalar law's
 /// on the same inputs. Host code only (GCC and Clang).
 #include <type_traits>
@@ -22,6 +23,23 @@ inline bool host_runs_x86_64_v4() {
 #else
   return false;
 #endif
+}
+
+/// Whether this CPU runs code built for -march=x86-64-v3 (AVX2, FMA, BMI2, F16C, MOVBE).
+inline bool host_runs_x86_64_v3() {
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  static const bool runs = __builtin_cpu_supports("x86-64-v3");
+  return runs;
+#else
+  return false;
+#endif
+}
+
+/// The doubles one vector instruction of this CPU holds, of the widths the host's lanes units
+/// are built for: 8 where it runs x86-64-v4 (AVX-512), 4 where x86-64-v3 (AVX2), else 1.
+inline int host_vector_doubles() {
+  if (host_runs_x86_64_v4()) return 8;
+  return host_runs_x86_64_v3() ? 4 : 1;
 }
 
 template <class S, int W>

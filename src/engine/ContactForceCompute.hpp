@@ -28,8 +28,8 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
 
  public:
   /// `pair_params`: the constants of each material pair, material_count² entries, row-major;
-  /// `host_lanes`: the host's sweep evaluates eight contacts at once where it can (PairOnceSweep).
-  ContactForceCompute(const std::vector<ContactPairParams>& pair_params, bool host_lanes)
+  /// `host_lanes`: the most contacts the host's sweep evaluates at once (PairOnceSweep).
+  ContactForceCompute(const std::vector<ContactPairParams>& pair_params, int host_lanes)
       : pair_once_(host_lanes) {
     pair_params_.upload(converted(pair_params, params_cast<S>));
   }

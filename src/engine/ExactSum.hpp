@@ -78,18 +78,48 @@ struct ExactTermLanes {
   }
 };
 
+namespace exact_detail {
+/// Lanes rounded to integers: as doubles and as 64-bit integers.
+template <int W>
+struct RoundedLanes {
+  Lanes<double, W> value;
+  Lanes<long long, W> integer;
+};
+
+/// Per lane y rounded to the nearest integer, ties to even (rint, llrint); |y| < 2^51 (other
+/// lanes give unspecified values).
+template <int W>
+RoundedLanes<W> rounded(const Lanes<double, W>& y) {
+  using Integers = Lanes<long long, W>;
+#if defined(__AVX512DQ__)
+  const Lanes<double, W> value = round_to_integer(y);
+  return {value, Integers(value)};  // one instruction per vector with AVX-512 DQ
+#else
+  // Without AVX-512 DQ a vector of doubles converts to 64-bit integers lane by lane. Instead:
+  // y + 1.5 · 2^52 lies in [2^52, 2^53), where the doubles are the integers, so the sum rounds
+  // y as rint does (to nearest, ties to the even sum, and 1.5 · 2^52 is even), and the sum's
+  // bits less the constant's are that integer in two's complement.
+  constexpr double shift = 6755399441055744.0;          // 1.5 · 2^52
+  constexpr long long shift_bits = 0x4338000000000000;  // its bits
+  const Lanes<double, W> shifted = y + shift;
+  const auto bits = (typename Integers::Vector)shifted.v;  // the same bits, as integers
+  return {shifted - shift, Integers::from(bits) - Integers(shift_bits)};
+#endif
+}
+}  // namespace exact_detail
+
 template <class S, int W>
 ExactTermLanes<W> exact_terms(const Vec3T<Lanes<S, W>>& v) {
   using D = Lanes<double, W>;
-  using Integers = typename ExactTermLanes<W>::Integers;
   const D x[3] = {D(v.x), D(v.y), D(v.z)};
   ExactTermLanes<W> t;
   t.representable = x[0] < exact_term_limit && x[0] > -exact_term_limit;  // NaN: false
   for (int k = 0; k < 3; ++k) {
+    // |y| < 2^50 and |(y − whole) · 2^44| ≤ 2^43 in every representable lane
     const D y = x[k] * exact_units_per_newton;
-    const D whole = round_to_integer(y);
-    t.whole[k] = Integers(whole);
-    t.fraction[k] = Integers(round_to_integer((y - whole) * exact_fractions_per_unit));
+    const exact_detail::RoundedLanes<W> whole = exact_detail::rounded(y);
+    t.whole[k] = whole.integer;
+    t.fraction[k] = exact_detail::rounded((y - whole.value) * exact_fractions_per_unit).integer;
     if (k > 0)
       t.representable = t.representable && (x[k] < exact_term_limit && x[k] > -exact_term_limit);
   }

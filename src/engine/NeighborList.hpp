@@ -154,15 +154,16 @@ struct PairWriter {
 };
 
 /// The host's one-pass search: appends each run's neighbours to a thread's buffer,
-/// entries[0, used), and counts the candidates. A run is tested eight slots at once where the
-/// CPU runs AVX-512 (slots_within_avx512), else slot by slot, each slot written at `used`,
-/// which only a neighbour advances: about one candidate in seven is a neighbour, and a branch on
-/// it would go either way.
+/// entries[0, used), and counts the candidates. A run is tested `vector_doubles` slots at once:
+/// eight where the CPU runs AVX-512 (slots_within_avx512), four where it runs AVX2
+/// (slots_within_avx2), else slot by slot, each slot written at `used`, which only a neighbour
+/// advances: about one candidate in seven is a neighbour, and a branch on it would go either
+/// way.
 struct RunAppender {
   const NeighborSearch* search;
   RowLayout layout;
   std::vector<std::uint32_t>* entries;
-  bool in_avx512 = false;
+  int vector_doubles = 1;  ///< 8, 4 or 1: at most host_vector_doubles()
   std::size_t used = 0;
   std::uint64_t examined = 0;
 
@@ -170,8 +171,8 @@ struct RunAppender {
     const std::size_t room = used + (end - begin) + kSlotsWithinSlack;
     if (room > entries->size()) entries->resize(2 * room + 256);
     std::uint32_t* out = entries->data() + used;
-    const std::uint32_t kept =
-        in_avx512 ? avx512_within(i, p, begin, end, out) : scalar_within(i, p, begin, end, out);
+    const std::uint32_t kept = vector_doubles > 1 ? vector_within(i, p, begin, end, out)
+                                                  : scalar_within(i, p, begin, end, out);
     examined += end - begin - (i >= begin && i < end ? 1 : 0);
     if (layout.index_of_slot)
       for (std::uint32_t k = 0; k < kept; ++k) out[k] = layout.index_of_slot[out[k]];
@@ -188,7 +189,7 @@ struct RunAppender {
     }
     return kept;
   }
-  std::uint32_t avx512_within(std::uint32_t i, const Real4& p, std::uint32_t begin,
+  std::uint32_t vector_within(std::uint32_t i, const Real4& p, std::uint32_t begin,
                               std::uint32_t end, std::uint32_t* out) const {
 #if GPUDEM_HOST_LANES
     const PeriodicBox& box = search->grids.box;
@@ -198,7 +199,8 @@ struct RunAppender {
                         search->grids.skin,
                         {box.length.x, box.length.y, box.length.z},
                         {box.periodic[0], box.periodic[1], box.periodic[2]}};
-    return slots_within_avx512(test, begin, end, out);
+    return vector_doubles == 8 ? slots_within_avx512(test, begin, end, out)
+                               : slots_within_avx2(test, begin, end, out);
 #else
     return scalar_within(i, p, begin, end, out);
 #endif
@@ -311,9 +313,9 @@ class NeighborList {
     std::vector<std::vector<std::uint32_t>> entries(parts);
     std::vector<std::uint64_t> examined(parts, 0);
     std::uint32_t* length = offsets_.data();
-    const bool in_avx512 = GPUDEM_HOST_LANES && host_runs_x86_64_v4();
+    const int vector_doubles = GPUDEM_HOST_LANES ? host_vector_doubles() : 1;
     host_numbered_ranges(n_, parts, [&](std::size_t part, std::uint32_t begin, std::uint32_t end) {
-      neighbor_list_kernels::RunAppender append{&search, layout, &entries[part], in_avx512};
+      neighbor_list_kernels::RunAppender append{&search, layout, &entries[part], vector_doubles};
       for (std::uint32_t r = begin; r < end; ++r) {
         const std::size_t first = append.used;
         search.for_each_run(layout.slot_of_row(r), append);

@@ -1,7 +1,8 @@
 #pragma once
 /// The host search's test of a run of consecutive cell-order slots against one particle, as plain
-/// data, so that a unit compiled for AVX-512 (NeighborSlotsAvx512.cpp) can take it without
-/// including any inline function of the engine. Host code only.
+/// data, so that the units compiled for AVX-512 and AVX2 (NeighborSlotsAvx512.cpp,
+/// NeighborSlotsAvx2.cpp) can take it without including any inline function of the engine. Host
+/// code only.
 #include <cstdint>
 
 namespace gpudem {
@@ -16,7 +17,7 @@ struct SlotTest {
   bool periodic[3];               ///< the axes on which distances take the nearest image
 };
 
-/// Slack past the kept slots that slots_within_avx512 may overwrite.
+/// Slack past the kept slots that slots_within_avx512 and slots_within_avx2 may overwrite.
 inline constexpr std::uint32_t kSlotsWithinSlack = 8;
 
 /// Writes to out, in ascending order, the slots j in [begin, end), j != self, whose particle q
@@ -26,5 +27,8 @@ inline constexpr std::uint32_t kSlotsWithinSlack = 8;
 /// only where GPUDEM_HOST_LANES; call it only where host_runs_x86_64_v4().
 std::uint32_t slots_within_avx512(const SlotTest& test, std::uint32_t begin, std::uint32_t end,
                                   std::uint32_t* out);
+/// The same four slots at a time in AVX2; call it only where host_runs_x86_64_v3().
+std::uint32_t slots_within_avx2(const SlotTest& test, std::uint32_t begin, std::uint32_t end,
+                                std::uint32_t* out);
 
 }  // namespace gpudem

@@ -1,7 +1,7 @@
 #pragma once
-/// The host's pair-once force sweep with the law evaluated on eight contacts at a time, for CPUs
-/// with AVX-512 (PairLanesForces); the same pairs, loads and bits as PairOnceForces. Host code
-/// only.
+/// The host's pair-once force sweep with the law evaluated on several contacts at a time: eight
+/// on CPUs with AVX-512, four on CPUs with AVX2 (PairLanesForces); the same pairs, loads and bits
+/// as PairOnceForces. Host code only.
 #include <cstdint>
 #include <type_traits>
 
@@ -61,13 +61,13 @@ struct PairContactLanes {
 
 /// The host backend's force sweep over one thread's range of particles, as PairOnceForces
 /// (the same pairs, loads and bits) but with the touching entries of 64 particles at a time
-/// gathered into lanes of eight contacts (core/Lanes.hpp) and the law evaluated on the eight
-/// at once; then each particle's walls and meshes, and its loads stored. Built for AVX-512 only
-/// (sweep_in_avx512_lanes): split into narrower vectors it is slower than PairOnceForces.
-template <class Law, class P>
+/// gathered into lanes of W contacts (core/Lanes.hpp) and the law evaluated on the W at once;
+/// then each particle's walls and meshes, and its loads stored. Built only where one vector
+/// instruction holds the W lanes: eight for AVX-512 (sweep_in_avx512_lanes), four for AVX2
+/// (sweep_in_avx2_lanes). Split into narrower vectors it is slower than PairOnceForces.
+template <class Law, class P, int W>
 struct PairLanesForces {
   using S = typename Law::Scalar;
-  static constexpr int W = 8;
   static constexpr std::uint32_t chunk = 64;  ///< particles whose pairs share the lanes
   PairOnceForces<Law, P> once;                ///< the sweep, its groups and its integer sums
 
@@ -163,19 +163,28 @@ struct PairLanesForces {
 };
 
 #if GPUDEM_HOST_LANES
-/// PairLanesForces::sweep_range compiled for -march=x86-64-v4 (AVX-512) with everything it
-/// calls inlined, in translation units of its own (engine/PairLanesInstance.in); call it only
-/// where host_runs_x86_64_v4().
+/// PairLanesForces::sweep_range in eight lanes compiled for -march=x86-64-v4 (AVX-512), with
+/// everything it calls inlined, in translation units of its own (engine/PairLanesInstance.in);
+/// call it only where host_vector_doubles() is 8.
 template <class Law, class P>
-void sweep_in_avx512_lanes(const PairLanesForces<Law, P>& kernel, std::uint32_t begin,
+void sweep_in_avx512_lanes(const PairLanesForces<Law, P, 8>& kernel, std::uint32_t begin,
                            std::uint32_t end);
-
-/// One thread's range of the sweep in AVX-512 lanes.
+/// The same in four lanes compiled for -march=x86-64-v3 (AVX2); call it only where
+/// host_vector_doubles() is at least 4.
 template <class Law, class P>
-struct PairLanesInAvx512 {
-  PairLanesForces<Law, P> kernel;
+void sweep_in_avx2_lanes(const PairLanesForces<Law, P, 4>& kernel, std::uint32_t begin,
+                         std::uint32_t end);
+
+/// One thread's range of the sweep in W lanes, run by the units built for them.
+template <class Law, class P, int W>
+struct PairLanesInVectors {
+  static_assert(W == 8 || W == 4, "lanes units are built for eight and four doubles");
+  PairLanesForces<Law, P, W> kernel;
   void operator()(std::uint32_t begin, std::uint32_t end) const {
-    sweep_in_avx512_lanes(kernel, begin, end);
+    if constexpr (W == 8)
+      sweep_in_avx512_lanes(kernel, begin, end);
+    else
+      sweep_in_avx2_lanes(kernel, begin, end);
   }
 };
 #endif

@@ -44,10 +44,9 @@ class PairOnceSweep {
   using S = typename Law::Scalar;
   using State = typename Law::State;
 
-  /// `in_lanes`: evaluate eight contacts at once where this build and CPU can (the same bits).
-  explicit PairOnceSweep(bool in_lanes = true)
-      : in_lanes_(GPUDEM_HOST_LANES && in_lanes && Law::evaluates_in_lanes &&
-                  host_runs_x86_64_v4()) {}
+  /// `most_lanes`: evaluate up to that many contacts at once, as many as this build and CPU
+  /// can (8, 4 or 1; the same bits).
+  explicit PairOnceSweep(int most_lanes = 8) : lanes_(lanes_for(most_lanes)) {}
 
   /// Runs `kernel` (its subset, rows and sums filled in here) over positions [0, count) of
   /// its subset, on the owned particles' rows `list`.
@@ -75,7 +74,7 @@ class PairOnceSweep {
   }
 
   /// Contacts a thread evaluates at once.
-  int contact_lanes() const { return in_lanes_ ? 8 : 1; }
+  int contact_lanes() const { return lanes_; }
 
   std::size_t bytes() const {
     return group_.capacity() * sizeof(std::uint64_t) +
@@ -94,13 +93,24 @@ class PairOnceSweep {
   }
 
  private:
-  /// The sweep in AVX-512 lanes, where chosen; false where it did not run.
+  /// The widest lanes of at most `most_lanes` this build and CPU run the law's sweep in.
+  static int lanes_for(int most_lanes) {
+    if (!GPUDEM_HOST_LANES || !Law::evaluates_in_lanes) return 1;
+    const int widest = host_vector_doubles();
+    for (const int lanes : {8, 4})
+      if (lanes <= most_lanes && lanes <= widest) return lanes;
+    return 1;
+  }
+
+  /// The sweep in lanes, where chosen; false where it did not run.
   bool sweep_in_lanes(const PairOnceForces<Law, P>& kernel, std::size_t count) const {
 #if GPUDEM_HOST_LANES
     if constexpr (Law::evaluates_in_lanes) {
-      if (!in_lanes_) return false;
-      host_ranges(count, grouping_.ranges, PairLanesInAvx512<Law, P>{{kernel}});
-      return true;
+      if (lanes_ == 8)
+        host_ranges(count, grouping_.ranges, PairLanesInVectors<Law, P, 8>{{kernel}});
+      if (lanes_ == 4)
+        host_ranges(count, grouping_.ranges, PairLanesInVectors<Law, P, 4>{{kernel}});
+      return lanes_ > 1;
     }
 #endif
     (void)kernel, (void)count;
@@ -172,7 +182,7 @@ class PairOnceSweep {
   std::vector<ExactSum3> pair_torque_;
   std::vector<SweepRows> sweeps_;  ///< per subset swept since the last list build
   State* pending_ = nullptr;       ///< the history the last sweeps wrote, other ends not filled in
-  bool in_lanes_;                  ///< PairLanesInAvx512 runs the sweeps
+  int lanes_;                      ///< contacts PairLanesInVectors evaluates at once; 1: none
 };
 
 }  // namespace gpudem

@@ -55,9 +55,10 @@ struct EngineSetup {
   /// Wait for the device at the end of each timed part of a step (StepTimes), so that each
   /// part holds its own kernels' time; a device synchronisation per part on CUDA.
   bool exact_phase_times = false;
-  /// The host's force sweep evaluates eight contacts at once in AVX-512 lanes where the build
-  /// and the CPU have them (PairLanesForces.hpp); the same bits either way.
-  bool host_lanes = true;
+  /// The most contacts the host's force sweep evaluates at once: eight in AVX-512 lanes or four
+  /// in AVX2 lanes where the build and the CPU have them, else one (PairLanesForces.hpp); the
+  /// same bits either way.
+  int host_lanes = 8;
 };
 
 /// Global quantities reduced over all particles; walls' forces are the forces the

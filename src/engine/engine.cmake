@@ -31,10 +31,13 @@ endfunction()
 
 gpudem_add_engine_instances(Host HostSpace engine/ParallelFor.hpp cpp)
 
-# The host's pair sweeps in AVX-512 lanes (PairLanesInstance.in), one unit per normal law and law
-# scalar, each instantiating the sweep of every damping, tangential, rolling and cohesion choice
-# (enum values; the uncompiled ones are empty), and the neighbour search's test of a run of slots
-# (NeighborSlotsAvx512.cpp). Only these units are built for x86-64-v4.
+# The host's pair sweeps in lanes (PairLanesInstance.in), one unit per normal law and law scalar
+# and vector width, each instantiating the sweep of every damping, tangential, rolling and
+# cohesion choice (enum values; the uncompiled ones are empty): eight lanes built for x86-64-v4
+# (AVX-512) in gpudem_host_lanes_avx512 and four built for x86-64-v3 (AVX2) in
+# gpudem_host_lanes_avx2, each with the neighbour search's test of a run of slots in those
+# vectors (NeighborSlotsAvx512.cpp, NeighborSlotsAvx2.cpp). Only these units are built for
+# those targets.
 if(GPUDEM_HOST_LANES)
   set(LANES_INSTANCES "")
   foreach(D RANGE 2)
@@ -46,22 +49,36 @@ if(GPUDEM_HOST_LANES)
       endforeach()
     endforeach()
   endforeach()
-  add_library(gpudem_host_lanes OBJECT)
-  foreach(SCALAR double float)
-    foreach(LAW Hooke Hertz)
-      string(TOLOWER ${LAW} LAW_NAME)
-      set(file ${CMAKE_CURRENT_BINARY_DIR}/generated/PairLanes${LAW}_${SCALAR}.cpp)
-      configure_file(${CMAKE_CURRENT_SOURCE_DIR}/engine/PairLanesInstance.in ${file} @ONLY)
-      target_sources(gpudem_host_lanes PRIVATE ${file})
+  foreach(VECTORS avx512 avx2)
+    if(VECTORS STREQUAL "avx512")
+      set(WIDTH 8)
+      set(LANES_TARGET x86-64-v4)
+    else()
+      set(WIDTH 4)
+      set(LANES_TARGET x86-64-v3)
+    endif()
+    set(SWEEP sweep_in_${VECTORS}_lanes)
+    set(lib gpudem_host_lanes_${VECTORS})
+    add_library(${lib} OBJECT)
+    foreach(SCALAR double float)
+      foreach(LAW Hooke Hertz)
+        string(TOLOWER ${LAW} LAW_NAME)
+        set(file ${CMAKE_CURRENT_BINARY_DIR}/generated/PairLanes${LAW}_${SCALAR}_${VECTORS}.cpp)
+        configure_file(${CMAKE_CURRENT_SOURCE_DIR}/engine/PairLanesInstance.in ${file} @ONLY)
+        target_sources(${lib} PRIVATE ${file})
+      endforeach()
     endforeach()
+    target_link_libraries(${lib} PRIVATE gpudem_contact_model gpudem_mesh)
+    target_compile_options(${lib} PRIVATE -march=${LANES_TARGET})
+    if(GPUDEM_LIBRARY_TYPE STREQUAL "SHARED")
+      set_target_properties(${lib} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    endif()
+    target_sources(gpudem_engine PRIVATE $<TARGET_OBJECTS:${lib}>)
   endforeach()
-  target_sources(gpudem_host_lanes PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/engine/NeighborSlotsAvx512.cpp)
-  target_link_libraries(gpudem_host_lanes PRIVATE gpudem_contact_model gpudem_mesh)
-  target_compile_options(gpudem_host_lanes PRIVATE -march=x86-64-v4)
-  if(GPUDEM_LIBRARY_TYPE STREQUAL "SHARED")
-    set_target_properties(gpudem_host_lanes PROPERTIES POSITION_INDEPENDENT_CODE ON)
-  endif()
-  target_sources(gpudem_engine PRIVATE $<TARGET_OBJECTS:gpudem_host_lanes>)
+  target_sources(gpudem_host_lanes_avx512
+                 PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/engine/NeighborSlotsAvx512.cpp)
+  target_sources(gpudem_host_lanes_avx2
+                 PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/engine/NeighborSlotsAvx2.cpp)
 endif()
 if(GPUDEM_HAVE_CUDA)
   target_sources(gpudem_engine PRIVATE engine/CudaMemory.cu engine/CudaPrimitives.cu

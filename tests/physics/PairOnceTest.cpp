@@ -88,9 +88,9 @@ void set_threads([[maybe_unused]] int threads) {
 }
 
 /// The pour's 1,000 steps on `threads` threads, from step `switch_at` on `then` threads; `lanes`:
-/// eight contacts at once where the CPU can.
+/// the most contacts evaluated at once (as many as the CPU can).
 Outcome pour(const ContactModel& model, Precision precision, int threads, int switch_at = 1000,
-             int then = 1, bool lanes = true) {
+             int then = 1, int lanes = 8) {
   set_threads(threads);
   const Scene scene = sticky_rolling_bed(model);
   const ParticleStore particles = pressed_bed(scene);
@@ -220,26 +220,38 @@ TEST(PairOnce, EachParticleEvaluatesItsGroupsPairsAtTheLowerIndexAndTheOthersAtB
     }
 }
 
-TEST(PairOnce, SameBitsInAvx512LanesAsOneContactAtATime) {
-  if (!GPUDEM_HOST_LANES) GTEST_SKIP() << "built without the AVX-512 sweep (GPUDEM_HOST_LANES)";
-  if (!host_runs_x86_64_v4()) GTEST_SKIP() << "this CPU does not run x86-64-v4 (AVX-512) code";
+/// Every law in double and mixed precision, swept in `lanes` lanes and one contact at a time:
+/// the same bits.
+void expect_same_bits_in_lanes(int lanes) {
   int in_lanes = 0;
   for (const ContactModel& model : valid_contact_models()) {
     const std::string name = contact_model_name(model);
     for (const Precision precision : {Precision::Double, Precision::Mixed}) {
-      const Outcome lanes = pour(model, precision, 2, 1000, 1, true);
-      const Outcome one = pour(model, precision, 2, 1000, 1, false);
+      const Outcome wide = pour(model, precision, 2, 1000, 1, lanes);
+      const Outcome one = pour(model, precision, 2, 1000, 1, 1);
       EXPECT_EQ(one.contact_lanes, 1) << name;
       // Every slot but JKR's cohesion evaluates in lanes (ContactLaw::evaluates_in_lanes).
-      EXPECT_EQ(lanes.contact_lanes, model.cohesion == CohesionLaw::Jkr ? 1 : 8) << name;
-      in_lanes += lanes.contact_lanes == 8;
-      EXPECT_TRUE(same_bits(one.particle_values, lanes.particle_values))
-          << name << ", in lanes: particles differ";
-      EXPECT_TRUE(same_bits(one.history_values, lanes.history_values))
-          << name << ", in lanes: histories differ";
+      EXPECT_EQ(wide.contact_lanes, model.cohesion == CohesionLaw::Jkr ? 1 : lanes) << name;
+      in_lanes += wide.contact_lanes == lanes;
+      EXPECT_TRUE(same_bits(one.particle_values, wide.particle_values))
+          << name << ", in " << lanes << " lanes: particles differ";
+      EXPECT_TRUE(same_bits(one.history_values, wide.history_values))
+          << name << ", in " << lanes << " lanes: histories differ";
     }
   }
   EXPECT_GT(in_lanes, 40);
+}
+
+TEST(PairOnce, SameBitsInAvx512LanesAsOneContactAtATime) {
+  if (!GPUDEM_HOST_LANES) GTEST_SKIP() << "built without the sweeps in lanes (GPUDEM_HOST_LANES)";
+  if (!host_runs_x86_64_v4()) GTEST_SKIP() << "this CPU does not run x86-64-v4 (AVX-512) code";
+  expect_same_bits_in_lanes(8);
+}
+
+TEST(PairOnce, SameBitsInAvx2LanesAsOneContactAtATime) {
+  if (!GPUDEM_HOST_LANES) GTEST_SKIP() << "built without the sweeps in lanes (GPUDEM_HOST_LANES)";
+  if (!host_runs_x86_64_v3()) GTEST_SKIP() << "this CPU does not run x86-64-v3 (AVX2) code";
+  expect_same_bits_in_lanes(4);
 }
 
 }  // namespace

@@ -191,6 +191,8 @@ TEST(LanesExactTerms, EachLaneIsTheScalarTerms) {
       if (l == 5) vectors[l].y = batch % 2 ? exact_term_limit : -2 * exact_term_limit;
       if (l == 6) vectors[l].z = nan;
       if (l == 7) vectors[l].x = (0.5 + batch) / 1048576;  // a tie in units of 2^-20: to even
+      if (l == 4)  // halves of the fraction's unit, 2^-64: to even, −2, −2, 0, 0, 2, 2
+        vectors[l].y = (1 + (batch % 6 - 2.5) * 0x1p-44) / 1048576;
       lanes.x.set(l, vectors[l].x);
       lanes.y.set(l, vectors[l].y);
       lanes.z.set(l, vectors[l].z);

@@ -357,13 +357,12 @@ TEST(NeighborList, AcceptsAnyPeriodicImage) {
   expect_matches(build(cells, list, shifted, box, skin), brute_force(wrapped, box, skin));
 }
 
-/// The host search tests a run of slots eight at a time where the CPU runs AVX-512 and slot by
-/// slot elsewhere: both keep the same slots, in the same order, on runs of every length up to
-/// 40, with the particle's own slot inside or outside the run, and periodic axes whose nearest
-/// images decide (particles crowd both faces of a box a few radii long); partners at exactly the
-/// cutoff are left out by both.
-TEST(NeighborSearch, RunsTestedInAvx512KeepTheSlotsTestedOneByOne) {
-  if (!(GPUDEM_HOST_LANES && host_runs_x86_64_v4())) GTEST_SKIP() << "no AVX-512 on this CPU";
+/// The host search tests a run of slots `vector_doubles` at a time (eight where the CPU runs
+/// AVX-512, four where it runs AVX2) and slot by slot elsewhere: both keep the same slots, in the
+/// same order, on runs of every length up to 40, with the particle's own slot inside or outside
+/// the run, and periodic axes whose nearest images decide (particles crowd both faces of a box a
+/// few radii long); partners at exactly the cutoff are left out by both.
+void expect_runs_in_vectors_keep_the_slots_one_by_one(int vector_doubles) {
   std::mt19937_64 rng(29);
   std::uniform_real_distribution<Real> unit(0, 1);
   for (const bool periodic : {false, true}) {
@@ -385,14 +384,14 @@ TEST(NeighborSearch, RunsTestedInAvx512KeepTheSlotsTestedOneByOne) {
       const auto self = static_cast<std::uint32_t>(rng() % 560);
       const std::uint32_t begin = self - std::min<std::uint32_t>(self, rng() % 30);
       const std::uint32_t end = begin + static_cast<std::uint32_t>(rng() % 41);  // often holds self
-      std::vector<std::uint32_t> one_by_one, in_avx512;
-      neighbor_list_kernels::RunAppender scalar{&search, {}, &one_by_one, false};
-      neighbor_list_kernels::RunAppender lanes{&search, {}, &in_avx512, true};
+      std::vector<std::uint32_t> one_by_one, in_vectors;
+      neighbor_list_kernels::RunAppender scalar{&search, {}, &one_by_one, 1};
+      neighbor_list_kernels::RunAppender lanes{&search, {}, &in_vectors, vector_doubles};
       scalar(self, p[self], begin, end);
       lanes(self, p[self], begin, end);
       one_by_one.resize(scalar.used);
-      in_avx512.resize(lanes.used);
-      ASSERT_EQ(in_avx512, one_by_one) << "run [" << begin << ", " << end << "), self " << self;
+      in_vectors.resize(lanes.used);
+      ASSERT_EQ(in_vectors, one_by_one) << "run [" << begin << ", " << end << "), self " << self;
       ASSERT_EQ(lanes.examined, scalar.examined);
       std::vector<std::uint32_t> expected;
       for (std::uint32_t j = begin; j < end; ++j)
@@ -413,13 +412,23 @@ TEST(NeighborSearch, RunsTestedInAvx512KeepTheSlotsTestedOneByOne) {
                                 {c, c - cutoff, c, r},
                                 {c, c, c + cutoff - 1.0 / 1024, r}};
   ties.position_radius = t.data();
-  for (const bool in_avx512 : {false, true}) {
+  for (const int doubles : {1, vector_doubles}) {
     std::vector<std::uint32_t> kept;
-    neighbor_list_kernels::RunAppender append{&ties, {}, &kept, in_avx512};
+    neighbor_list_kernels::RunAppender append{&ties, {}, &kept, doubles};
     append(0, t[0], 0, 4);
     kept.resize(append.used);
-    EXPECT_EQ(kept, std::vector<std::uint32_t>{3}) << (in_avx512 ? "AVX-512" : "one by one");
+    EXPECT_EQ(kept, std::vector<std::uint32_t>{3}) << doubles << " slots at a time";
   }
+}
+
+TEST(NeighborSearch, RunsTestedInAvx512KeepTheSlotsTestedOneByOne) {
+  if (!(GPUDEM_HOST_LANES && host_runs_x86_64_v4())) GTEST_SKIP() << "no AVX-512 on this CPU";
+  expect_runs_in_vectors_keep_the_slots_one_by_one(8);
+}
+
+TEST(NeighborSearch, RunsTestedInAvx2KeepTheSlotsTestedOneByOne) {
+  if (!(GPUDEM_HOST_LANES && host_runs_x86_64_v3())) GTEST_SKIP() << "no AVX2 on this CPU";
+  expect_runs_in_vectors_keep_the_slots_one_by_one(4);
 }
 
 TEST(NeighborList, EmptySetGivesEmptyList) {
