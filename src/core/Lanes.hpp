@@ -14,33 +14,26 @@
 
 namespace gpudem {
 
-/// Whether this CPU runs code built for -march=x86-64-v4 (AVX-512 F, DQ, VL, BW and CD, with
-/// AVX2, FMA and BMI2).
-inline bool host_runs_x86_64_v4() {
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-  static const bool runs = __builtin_cpu_supports("x86-64-v4");
-  return runs;
-#else
-  return false;
-#endif
-}
-
-/// Whether this CPU runs code built for -march=x86-64-v3 (AVX2, FMA, BMI2, F16C, MOVBE).
-inline bool host_runs_x86_64_v3() {
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-  static const bool runs = __builtin_cpu_supports("x86-64-v3");
-  return runs;
-#else
-  return false;
-#endif
-}
-
 /// The doubles one vector instruction of this CPU holds, of the widths the host's lanes units
-/// are built for: 8 where it runs x86-64-v4 (AVX-512), 4 where x86-64-v3 (AVX2), else 1.
+/// are built for: 8 where it runs code built for -march=x86-64-v4 (AVX-512 F, DQ, VL, BW and CD,
+/// with AVX2, FMA and BMI2), 4 where it runs -march=x86-64-v3 (AVX2, FMA, BMI2, F16C, MOVBE),
+/// else 1.
 inline int host_vector_doubles() {
-  if (host_runs_x86_64_v4()) return 8;
-  return host_runs_x86_64_v3() ? 4 : 1;
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+  static const int doubles = __builtin_cpu_supports("x86-64-v4")   ? 8
+                             : __builtin_cpu_supports("x86-64-v3") ? 4
+                                                                   : 1;
+  return doubles;
+#else
+  return 1;
+#endif
 }
+
+/// Whether this CPU runs code built for -march=x86-64-v4 (AVX-512).
+inline bool host_runs_x86_64_v4() { return host_vector_doubles() == 8; }
+
+/// Whether this CPU runs code built for -march=x86-64-v3 (AVX2).
+inline bool host_runs_x86_64_v3() { return host_vector_doubles() >= 4; }
 
 template <class S, int W>
 struct Lanes;
