@@ -1,6 +1,6 @@
 /// slots_within_avx2 (NeighborSlots.hpp), compiled for -march=x86-64-v3: four slots a test. It
-/// must hold that function and nothing else (test_lanes_symbols checks), so it includes no
-/// header of the engine's but NeighborSlots.hpp.
+/// must hold that function and nothing else (avx2_lanes_objects_hold_only_sweeps checks), so it
+/// includes no header of the engine's but NeighborSlots.hpp.
 #include <immintrin.h>
 
 #include "engine/NeighborSlots.hpp"

@@ -1,6 +1,6 @@
 /// slots_within_avx512 (NeighborSlots.hpp), compiled for -march=x86-64-v4: eight slots a test.
-/// It must hold that function and nothing else (test_lanes_symbols checks), so it includes no
-/// header of the engine's but NeighborSlots.hpp.
+/// It must hold that function and nothing else (lanes_objects_hold_only_sweeps checks), so it
+/// includes no header of the engine's but NeighborSlots.hpp.
 #include <immintrin.h>
 
 #include "engine/NeighborSlots.hpp"
