@@ -1,6 +1,6 @@
 // The host backend evaluates each pair contact once, at one end, and sums every particle's
 // pair loads as integers (engine/PairOnceForces.hpp, engine/ExactSum.hpp). Which end evaluates a
-// pair depends on how the particles are split between threads, so a bed poured on 1 and 3
+// pair depends on how the particles are split between threads, so a bed poured on 1 and 2
 // threads differs in which end advanced each history, yet must end in the same bits: positions,
 // velocities, spins, forces, torques and each contact's history on both its ends (the other
 // end's filled in from the evaluating end's, mirrored, before it is read). Run for every
@@ -136,7 +136,10 @@ Outcome pour(const ContactModel& model, Precision precision, int threads, int sw
   return out;
 }
 
-TEST(PairOnce, SameBitsOnOneAndThreeThreads) {
+// Two threads, not more: each step opens several parallel regions, and threads beyond the
+// cores wait at their ends for a core (on two cores this test took 121 s with three threads,
+// 10 s with two). Three ranges are the next test's.
+TEST(PairOnce, SameBitsOnOneAndTwoThreads) {
 #if !defined(_OPENMP)
   GTEST_SKIP() << "built without OpenMP: the host sweep runs on one thread";
 #endif
@@ -150,11 +153,11 @@ TEST(PairOnce, SameBitsOnOneAndThreeThreads) {
         ASSERT_GT(one.contacts, 0u) << name << ": the bed should hold loaded contacts";
       }
       ASSERT_GT(one.rebuilds, 2u) << name << ": the pour should rebuild its lists";
-      const Outcome many = pour(model, precision, 3);
+      const Outcome many = pour(model, precision, 2);
       EXPECT_TRUE(same_bits(one.particle_values, many.particle_values))
-          << name << ", 3 threads: particles differ";
+          << name << ", 2 threads: particles differ";
       EXPECT_TRUE(same_bits(one.history_values, many.history_values))
-          << name << ", 3 threads: histories differ (" << one.contacts << " and " << many.contacts
+          << name << ", 2 threads: histories differ (" << one.contacts << " and " << many.contacts
           << " records)";
     }
   }
