@@ -2,6 +2,8 @@ gpudem_add_test(test_dynamics SOURCES physics/DynamicsTest.cpp LIBS gpudem_sim L
 gpudem_add_test(test_settling SOURCES physics/SettlingTest.cpp LIBS gpudem_sim LABELS physics TIMEOUT 900)
 gpudem_add_test(test_contact_history SOURCES physics/ContactHistoryTest.cpp LIBS gpudem_sim LABELS physics)
 gpudem_add_test(test_pair_once SOURCES physics/PairOnceTest.cpp LIBS gpudem_sim LABELS physics)
+# Its beds run on two threads: with a test beside them on two cores they wait for each other.
+set_tests_properties(test_pair_once PROPERTIES PROCESSORS 2)
 gpudem_add_test(test_backend_agreement SOURCES physics/BackendAgreementTest.cpp LIBS gpudem_sim LABELS physics TIMEOUT 900)
 gpudem_add_test(test_precision SOURCES physics/PrecisionTest.cpp LIBS gpudem_sim LABELS physics)
 gpudem_add_test(test_janssen SOURCES physics/JanssenTest.cpp LIBS gpudem_sim LABELS physics TIMEOUT 900)
