@@ -4,25 +4,40 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string>
+#include <system_error>
 
 namespace gpudem::fuzz {
 namespace {
 
 namespace fs = std::filesystem;
 
-/// The scratch folder, made on first use and removed when the program exits.
-const fs::path& scratch_folder() {
-  static const fs::path folder = [] {
+/// A folder made in $TMPDIR (or /tmp) that is removed with everything in it when the object
+/// is destroyed.
+class ScratchFolder {
+ public:
+  ScratchFolder() {
     const char* tmp = std::getenv("TMPDIR");
     std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/gpudem-fuzz-XXXXXX";
     if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot make " + pattern);
-    std::atexit([] {
-      std::error_code ignored;
-      fs::remove_all(scratch_folder(), ignored);
-    });
-    return fs::path(pattern);
-  }();
-  return folder;
+    path_ = pattern;
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  ~ScratchFolder() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+/// The scratch folder, made on first use and removed when the program exits.
+const fs::path& scratch_folder() {
+  static const ScratchFolder folder;
+  return folder.path();
 }
 
 }  // namespace
