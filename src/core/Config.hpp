@@ -19,10 +19,11 @@
 
 /// On a per-particle kernel body whose callees the host compiler should inline whole (the
 /// contact sweep: the law, the contact's description and its visitor), so that the contact's
-/// record stays in registers; device code inlines them anyway. A sanitized build
-/// (GPUDEM_SANITIZED) leaves inlining to the compiler: flattened and instrumented, a host force
-/// compute unit took three times as long to compile, and speed is not what it is built for.
-#if defined(__CUDA_ARCH__) || !defined(__GNUC__) || defined(GPUDEM_SANITIZED)
+/// record stays in registers; device code inlines them anyway. A build with AddressSanitizer
+/// (the compiler defines __SANITIZE_ADDRESS__) leaves inlining to the compiler: flattened and
+/// instrumented, a host force compute unit took three times as long to compile, and speed is
+/// not what it is built for.
+#if defined(__CUDA_ARCH__) || !defined(__GNUC__) || defined(__SANITIZE_ADDRESS__)
 #define GPUDEM_HOST_FLATTEN
 #else
 #define GPUDEM_HOST_FLATTEN __attribute__((flatten))
