@@ -19,6 +19,7 @@
 #include "app/ThreadCores.hpp"
 #include "app/TimeLoop.hpp"
 #include "comm/Checkpoint.hpp"
+#include "comm/MpiWait.hpp"
 #include "comm/OutputDirectory.hpp"
 #include "comm/SnapshotQueue.hpp"
 #include "comm/StartParts.hpp"
@@ -394,6 +395,7 @@ std::optional<AdaptiveStep> adaptive_step(const Scene& scene, const ParticleStor
 
 int run_scene(const RunOptions& command_line, const MpiContext& mpi) {
   const ThreadPlan threads = share_node_cores(mpi);
+  set_mpi_waiting(threads.ranks_take_turns ? MpiWaiting::nap : MpiWaiting::spin);
   Scene scene = load_scene(command_line.scene_file, command_line.overrides);
   print_warnings(scene.warnings, mpi);
   if (!command_line.output_dir.empty()) scene.output.dir = command_line.output_dir;

@@ -91,10 +91,13 @@ ThreadPlan share_node_cores(const MpiContext& mpi) {
   }
 #endif
   ThreadPlan plan;
+  plan.ranks_take_turns = node_has_more_ranks_than_cores(all, mpi.rank());
   if (!mpi.is_root()) return plan;
   plan.note = "host backend: " + std::to_string(threads) + " OpenMP thread(s) on rank 0 (" +
               thread_source(chosen, cpu_count(all[0].mask)) + ")";
   plan.warning = crowded_threads_warning(all);
+  if (plan.ranks_take_turns)
+    plan.warning += "; meanwhile a rank that waits for another's messages sleeps between its tests";
   return plan;
 }
 

@@ -18,6 +18,8 @@ struct ThreadPlan {
   /// them or the cores were shared (rank 0; empty elsewhere)
   std::string note;
   std::string warning;  ///< crowded_threads_warning over all ranks (rank 0; empty elsewhere)
+  /// node_has_more_ranks_than_cores for this rank (every rank)
+  bool ranks_take_turns = false;
 };
 
 /// Sets this rank's OpenMP threads to shared_thread_count when OMP_NUM_THREADS is unset (and

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "comm/MpiWait.hpp"
+
 namespace gpudem {
 
 namespace {
@@ -89,8 +91,7 @@ std::unique_ptr<PendingExchange> MpiDomain::start_exchange(
 void MpiDomain::finish_exchange(std::unique_ptr<PendingExchange> exchange) const {
   auto* pending = dynamic_cast<MpiPendingExchange*>(exchange.get());
   if (!pending) throw std::invalid_argument("MpiDomain: not an exchange this domain started");
-  MPI_Waitall(static_cast<int>(pending->requests.size()), pending->requests.data(),
-              MPI_STATUSES_IGNORE);
+  complete_requests(static_cast<int>(pending->requests.size()), pending->requests.data());
 }
 
 }  // namespace gpudem

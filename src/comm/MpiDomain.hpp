@@ -1,7 +1,8 @@
 #pragma once
 /// The engine's DomainLink over MPI (docs/architecture.md, "Ranks"): ownership, ghost destinations
 /// and bin region from a Decomposition, collectives by an MpiRankGroup, the ghost refresh's
-/// contiguous exchange by non-blocking point-to-point messages.
+/// contiguous exchange by non-blocking point-to-point messages (completed by complete_requests,
+/// comm/MpiWait.hpp).
 #include <mpi.h>
 
 #include <memory>

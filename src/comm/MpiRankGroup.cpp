@@ -6,11 +6,16 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "comm/MpiWait.hpp"
+
 namespace gpudem {
 
 namespace {
 
 constexpr int kBuffersTag = 7;  ///< exchange of RankBuffers
+
+/// Waits for the one request of a non-blocking collective (complete_requests).
+void complete(MPI_Request request) { complete_requests(1, &request); }
 
 MPI_Op mpi_op(Reduction op) {
   switch (op) {
@@ -38,31 +43,44 @@ MpiRankGroup::MpiRankGroup(MPI_Comm comm) : comm_(comm) {
 }
 
 void MpiRankGroup::reduce(Reduction op, double* values, std::size_t n) const {
-  MPI_Allreduce(MPI_IN_PLACE, values, mpi_message_size(n), MPI_DOUBLE, mpi_op(op), comm_);
+  MPI_Request request;
+  MPI_Iallreduce(MPI_IN_PLACE, values, mpi_message_size(n), MPI_DOUBLE, mpi_op(op), comm_,
+                 &request);
+  complete(request);
 }
 
 void MpiRankGroup::reduce(Reduction op, std::uint64_t* values, std::size_t n) const {
-  MPI_Allreduce(MPI_IN_PLACE, values, mpi_message_size(n), MPI_UINT64_T, mpi_op(op), comm_);
+  MPI_Request request;
+  MPI_Iallreduce(MPI_IN_PLACE, values, mpi_message_size(n), MPI_UINT64_T, mpi_op(op), comm_,
+                 &request);
+  complete(request);
 }
 
 void MpiRankGroup::broadcast(std::vector<char>& bytes, int root) const {
   std::uint64_t n = bytes.size();
-  MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm_);
+  MPI_Request request;
+  MPI_Ibcast(&n, 1, MPI_UINT64_T, root, comm_, &request);
+  complete(request);
   bytes.resize(n);
-  if (n > 0) MPI_Bcast(bytes.data(), mpi_message_size(n), MPI_BYTE, root, comm_);
+  if (n == 0) return;
+  MPI_Ibcast(bytes.data(), mpi_message_size(n), MPI_BYTE, root, comm_, &request);
+  complete(request);
 }
 
 void MpiRankGroup::all_gather(const std::vector<char>& mine, RankBuffers& all) const {
   const int bytes = mpi_message_size(mine.size());
   std::vector<int> counts(size_), offsets(size_, 0);
-  MPI_Allgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+  MPI_Request request;
+  MPI_Iallgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_, &request);
+  complete(request);
   std::uint64_t total = 0;
   for (int c : counts) total += static_cast<std::uint64_t>(c);
   mpi_message_size(total);
   std::partial_sum(counts.begin(), counts.end() - 1, offsets.begin() + 1);
   std::vector<char> joined(total);
-  MPI_Allgatherv(mine.data(), bytes, MPI_BYTE, joined.data(), counts.data(), offsets.data(),
-                 MPI_BYTE, comm_);
+  MPI_Iallgatherv(mine.data(), bytes, MPI_BYTE, joined.data(), counts.data(), offsets.data(),
+                  MPI_BYTE, comm_, &request);
+  complete(request);
   all.assign(size_, {});
   for (int q = 0; q < size_; ++q)
     all[q].assign(joined.begin() + offsets[q], joined.begin() + offsets[q] + counts[q]);
@@ -73,7 +91,10 @@ void MpiRankGroup::exchange(const RankBuffers& outgoing, RankBuffers& incoming) 
     throw std::invalid_argument("MpiRankGroup::exchange: outgoing has a buffer per rank");
   std::vector<std::uint64_t> send_bytes(size_), receive_bytes(size_);
   for (int q = 0; q < size_; ++q) send_bytes[q] = outgoing[q].size();
-  MPI_Alltoall(send_bytes.data(), 1, MPI_UINT64_T, receive_bytes.data(), 1, MPI_UINT64_T, comm_);
+  MPI_Request request;
+  MPI_Ialltoall(send_bytes.data(), 1, MPI_UINT64_T, receive_bytes.data(), 1, MPI_UINT64_T, comm_,
+                &request);
+  complete(request);
   incoming.assign(size_, {});
   for (int q = 0; q < size_; ++q) incoming[q].resize(receive_bytes[q]);
   exchange_known(outgoing, incoming);
@@ -106,7 +127,7 @@ void MpiRankGroup::exchange_known(const RankBuffers& outgoing, RankBuffers& inco
       MPI_Isend(data + at, count, MPI_BYTE, q, kBuffersTag, comm_, request);
     });
   }
-  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  complete_requests(static_cast<int>(requests.size()), requests.data());
 }
 
 }  // namespace gpudem

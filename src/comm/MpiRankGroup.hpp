@@ -1,7 +1,9 @@
 #pragma once
-/// RankGroup over an MPI communicator: reductions by MPI_Allreduce, broadcast and gather with
+/// RankGroup over an MPI communicator: reductions by MPI_Iallreduce, broadcast and gather with
 /// their sizes first, all-to-all byte exchange by point-to-point messages (sizes first by
-/// MPI_Alltoall), each buffer split into messages of at most 2^30 bytes (MPI counts are ints).
+/// MPI_Ialltoall), each buffer split into messages of at most 2^30 bytes (MPI counts are ints).
+/// Every operation is non-blocking, completed by complete_requests (comm/MpiWait.hpp), which
+/// waits as the process was told to.
 #include <mpi.h>
 
 #include <cstddef>

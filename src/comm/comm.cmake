@@ -5,6 +5,7 @@ add_library(gpudem_comm ${GPUDEM_LIBRARY_TYPE}
   comm/GpuAwareMpi.cpp
   comm/MpiDomain.cpp
   comm/MpiRankGroup.cpp
+  comm/MpiWait.cpp
   comm/OutputDirectory.cpp
   comm/SnapshotQueue.cpp
   comm/SnapshotWriter.cpp

@@ -28,6 +28,12 @@ inline int cpu_count(const std::vector<std::uint64_t>& mask) {
 
 namespace detail {
 
+/// Adds the CPUs of `mask` to `cpus`.
+inline void add_cpus(std::vector<std::uint64_t>& cpus, const std::vector<std::uint64_t>& mask) {
+  cpus.resize(std::max(cpus.size(), mask.size()), 0);
+  for (std::size_t w = 0; w < mask.size(); ++w) cpus[w] |= mask[w];
+}
+
 inline bool overlap(const std::vector<std::uint64_t>& a, const std::vector<std::uint64_t>& b) {
   for (std::size_t w = 0; w < std::min(a.size(), b.size()); ++w)
     if (a[w] & b[w]) return true;
@@ -45,8 +51,7 @@ inline std::string node_crowding_warning(const std::vector<RankCpus>& all) {
     Node& n = nodes[r.node];
     ++n.ranks;
     n.threads += r.threads;
-    n.cpus.resize(std::max(n.cpus.size(), r.mask.size()), 0);
-    for (std::size_t w = 0; w < r.mask.size(); ++w) n.cpus[w] |= r.mask[w];
+    add_cpus(n.cpus, r.mask);
   }
   for (const auto& [id, n] : nodes) {
     const int cores = cpu_count(n.cpus);
@@ -94,6 +99,20 @@ inline int shared_thread_count(const std::vector<RankCpus>& all, int rank) {
   for (const RankCpus& other : all)
     if (other.node == me.node && detail::overlap(other.mask, me.mask)) ++sharers;
   return std::max(1, cpu_count(me.mask) / std::max(1, sharers));
+}
+
+/// Whether the node of rank `rank` of `all` runs more ranks than the cores of their masks
+/// together: then they take turns on the cores, whatever their threads.
+inline bool node_has_more_ranks_than_cores(const std::vector<RankCpus>& all, int rank) {
+  const std::uint64_t node = all[static_cast<std::size_t>(rank)].node;
+  int ranks = 0;
+  std::vector<std::uint64_t> cpus;
+  for (const RankCpus& r : all) {
+    if (r.node != node) continue;
+    ++ranks;
+    detail::add_cpus(cpus, r.mask);
+  }
+  return ranks > cpu_count(cpus);
 }
 
 /// The warning for ranks with more threads than cores, or empty: either a rank with more

@@ -1,7 +1,9 @@
-// The non-blocking exchange of contiguous buffers (DomainLink::start_exchange): MpiDomain on
-// however many ranks this runs (1, 2 and 4 through ctest), with uneven and zero byte counts and
-// messages to a rank itself, and OneRankDomain. Each byte a rank receives is compared with the
-// byte its sender must have put there, computed here from the sender's and receiver's ranks.
+// The non-blocking exchange of contiguous buffers (DomainLink::start_exchange) and the
+// collectives of MpiRankGroup: MpiDomain on however many ranks this runs (1, 2 and 4 through
+// ctest), with uneven and zero byte counts and messages to a rank itself, each with MPI waits
+// that spin and waits that sleep (comm/MpiWait.hpp), and OneRankDomain. Each byte a rank receives
+// is compared with the byte its sender must have put there, computed here from the sender's and
+// receiver's ranks.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -15,6 +17,8 @@
 
 #include "comm/Decomposition.hpp"
 #include "comm/MpiDomain.hpp"
+#include "comm/MpiWait.hpp"
+#include "core/RankGroup.hpp"
 #include "engine/DomainLink.hpp"
 #include "support/MpiRank.hpp"
 
@@ -77,7 +81,20 @@ std::vector<char> expected_incoming(int round, std::vector<std::size_t>& bytes) 
 constexpr char kUntouched = '\x5a';
 constexpr std::size_t kGuard = 16;  ///< bytes past the receive buffer that must stay untouched
 
-TEST(DomainExchange, UnevenAndZeroMessagesArriveInRankOrder) {
+/// Runs each case with the MPI waits of its parameter, then spinning ones again.
+class DomainExchange : public ::testing::TestWithParam<MpiWaiting> {
+ protected:
+  void SetUp() override { set_mpi_waiting(GetParam()); }
+  void TearDown() override { set_mpi_waiting(MpiWaiting::spin); }
+};
+
+INSTANTIATE_TEST_SUITE_P(Waits, DomainExchange,
+                         ::testing::Values(MpiWaiting::spin, MpiWaiting::nap),
+                         [](const auto& info) {
+                           return info.param == MpiWaiting::spin ? "spin" : "nap";
+                         });
+
+TEST_P(DomainExchange, UnevenAndZeroMessagesArriveInRankOrder) {
   const MpiDomain domain = world_domain();
   for (int round = 0; round < 3; ++round) {
     std::vector<std::size_t> send_bytes, receive_bytes;
@@ -94,7 +111,7 @@ TEST(DomainExchange, UnevenAndZeroMessagesArriveInRankOrder) {
   }
 }
 
-TEST(DomainExchange, BuffersLongerThanTheMessageLimitArriveWhole) {
+TEST_P(DomainExchange, BuffersLongerThanTheMessageLimitArriveWhole) {
   MpiDomain domain = world_domain();
   domain.limit_message_bytes(5);  // buffers of 0 to 36 bytes: up to 8 messages each
   for (int round = 0; round < 3; ++round) {
@@ -113,7 +130,7 @@ TEST(DomainExchange, BuffersLongerThanTheMessageLimitArriveWhole) {
   }
 }
 
-TEST(DomainExchange, TwoExchangesInFlightCompleteInOrder) {
+TEST_P(DomainExchange, TwoExchangesInFlightCompleteInOrder) {
   const MpiDomain domain = world_domain();
   std::vector<std::size_t> send_bytes[2], receive_bytes[2];
   const std::vector<char> send[2] = {outgoing(0, send_bytes[0]), outgoing(1, send_bytes[1])};
@@ -131,7 +148,7 @@ TEST(DomainExchange, TwoExchangesInFlightCompleteInOrder) {
   EXPECT_EQ(receive[1], expected[1]);
 }
 
-TEST(DomainExchange, NothingToSendCompletes) {
+TEST_P(DomainExchange, NothingToSendCompletes) {
   const MpiDomain domain = world_domain();
   const std::vector<std::size_t> none(comm_size(), 0);
   char untouched = kUntouched;
@@ -139,14 +156,36 @@ TEST(DomainExchange, NothingToSendCompletes) {
   EXPECT_EQ(untouched, kUntouched);
 }
 
-TEST(DomainExchange, CountsForAnotherRankCountAreRefused) {
+/// Reductions, broadcasts and gathers give every rank the values computed here from the ranks.
+TEST_P(DomainExchange, CollectivesAgreeOnEveryRank) {
+  const MpiDomain domain = world_domain();
+  const RankGroup& group = domain.group();
+  const int n = comm_size(), r = comm_rank();
+  std::vector<double> values{double(r), 0.5 * r - 1};
+  group.sum(values);
+  EXPECT_EQ(values, (std::vector<double>{n * (n - 1) / 2.0, 0.25 * n * (n - 1) - n}));
+  EXPECT_EQ(group.max<double>(-double(r)), 0.0);
+  EXPECT_EQ(group.min<std::uint64_t>(std::uint64_t(r) + 5), 5u);
+  EXPECT_EQ(group.sum<std::uint64_t>(std::uint64_t(1) << 40), std::uint64_t(n) << 40);
+  const int root = n - 1;
+  EXPECT_EQ(group.broadcast_value(r == root ? 77 : r, root), 77);
+  std::vector<char> text(r == root ? 3 : 0, 'x');
+  group.broadcast(text, root);
+  EXPECT_EQ(text, std::vector<char>(3, 'x'));
+  const std::vector<int> all = group.gather(std::vector<int>(static_cast<std::size_t>(r), r));
+  std::vector<int> expected;
+  for (int q = 0; q < n; ++q) expected.insert(expected.end(), static_cast<std::size_t>(q), q);
+  EXPECT_EQ(all, expected);
+}
+
+TEST(DomainRefusal, CountsForAnotherRankCountAreRefused) {
   const MpiDomain domain = world_domain();
   const std::vector<std::size_t> counts(comm_size() + 1, 0);
   char byte = 0;
   EXPECT_THROW(domain.start_exchange(&byte, counts, &byte, counts), std::invalid_argument);
 }
 
-TEST(DomainExchange, GhostWidthBeyondACellEdgeIsRefused) {
+TEST(DomainRefusal, GhostWidthBeyondACellEdgeIsRefused) {
   const CoarseGrid cells = CoarseGrid::over(unit_cube(), Real(0.25));  // edge 0.25 m
   const auto slabs = [&] {
     std::vector<int> owner(cells.count());

@@ -199,7 +199,7 @@ TEST_F(CommandLine, MoreThreadsThanCoresIsWarnedOf) {
 
 /// With OMP_NUM_THREADS unset a lone rank takes every core of its mask, and ranks that share
 /// their cores split them: three ranks on one core take one thread each and are told that the
-/// node has fewer cores than ranks.
+/// node has fewer cores than ranks, and that their MPI waits sleep.
 TEST_F(CommandLine, RanksShareTheirCoresWhenNoThreadCountIsSet) {
 #if !defined(GPUDEM_HAVE_OPENMP)
   GTEST_SKIP() << "built without OpenMP";
@@ -222,6 +222,10 @@ TEST_F(CommandLine, RanksShareTheirCoresWhenNoThreadCountIsSet) {
       << three.output;
   EXPECT_NE(three.output.find("warning: 3 ranks on one node run 3 OpenMP threads in all on its 1 "
                               "core(s), so they take turns; run at most 1 rank(s) per node"),
+            std::string::npos)
+      << three.output;
+  EXPECT_NE(three.output.find("(mpirun -np 1 on one node); meanwhile a rank that waits for "
+                              "another's messages sleeps between its tests"),
             std::string::npos)
       << three.output;
 }

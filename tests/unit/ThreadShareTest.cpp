@@ -55,6 +55,21 @@ TEST(ThreadShare, DisjointMasksAndOtherNodesAreNotShared) {
   EXPECT_EQ(gpudem::shared_thread_count(all, 3), 2);  // 8 cores over 3 sharers
 }
 
+/// Ranks take turns where their node's cores (the union of its ranks' masks) are fewer than the
+/// node's ranks, however many threads each runs; other nodes do not count.
+TEST(ThreadShare, RanksTakeTurnsWhereANodeHasMoreRanksThanCores) {
+  EXPECT_TRUE(gpudem::node_has_more_ranks_than_cores(ranks_on(1, 3, cpus(0, 2), 1), 2));
+  EXPECT_FALSE(gpudem::node_has_more_ranks_than_cores(ranks_on(1, 2, cpus(0, 2), 1), 0));
+  EXPECT_TRUE(gpudem::node_has_more_ranks_than_cores(ranks_on(1, 2, cpus(0, 1), 1), 1));
+  std::vector<RankCpus> bound = ranks_on(1, 1, cpus(0, 1), 4);
+  bound.push_back(RankCpus{1, cpus(1, 1), 4});
+  EXPECT_FALSE(gpudem::node_has_more_ranks_than_cores(bound, 1));
+  std::vector<RankCpus> two_nodes = ranks_on(1, 2, cpus(0, 2), 1);
+  for (const RankCpus& r : ranks_on(2, 4, cpus(0, 2), 1)) two_nodes.push_back(r);
+  EXPECT_FALSE(gpudem::node_has_more_ranks_than_cores(two_nodes, 1));
+  EXPECT_TRUE(gpudem::node_has_more_ranks_than_cores(two_nodes, 2));
+}
+
 TEST(ThreadShare, NoWarningWhenThreadsFitTheirCores) {
   EXPECT_EQ(gpudem::crowded_threads_warning(ranks_on(1, 2, cpus(0, 4), 2)), "");
   std::vector<RankCpus> bound = ranks_on(1, 1, cpus(0, 1), 1);
