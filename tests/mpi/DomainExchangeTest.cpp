@@ -81,7 +81,7 @@ std::vector<char> expected_incoming(int round, std::vector<std::size_t>& bytes) 
 constexpr char kUntouched = '\x5a';
 constexpr std::size_t kGuard = 16;  ///< bytes past the receive buffer that must stay untouched
 
-/// Runs each case with the MPI waits of its parameter, then spinning ones again.
+/// Runs each case with the MPI waits of its parameter, and restores spinning waits after it.
 class DomainExchange : public ::testing::TestWithParam<MpiWaiting> {
  protected:
   void SetUp() override { set_mpi_waiting(GetParam()); }
