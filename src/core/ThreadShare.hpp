@@ -28,10 +28,23 @@ inline int cpu_count(const std::vector<std::uint64_t>& mask) {
 
 namespace detail {
 
-/// Adds the CPUs of `mask` to `cpus`.
-inline void add_cpus(std::vector<std::uint64_t>& cpus, const std::vector<std::uint64_t>& mask) {
-  cpus.resize(std::max(cpus.size(), mask.size()), 0);
-  for (std::size_t w = 0; w < mask.size(); ++w) cpus[w] |= mask[w];
+/// A node's ranks, their threads in all and the CPUs of their masks together.
+struct NodeShare {
+  int ranks = 0, threads = 0;
+  std::vector<std::uint64_t> cpus;
+};
+
+/// Each node's NodeShare, by node.
+inline std::map<std::uint64_t, NodeShare> node_shares(const std::vector<RankCpus>& all) {
+  std::map<std::uint64_t, NodeShare> nodes;
+  for (const RankCpus& r : all) {
+    NodeShare& n = nodes[r.node];
+    ++n.ranks;
+    n.threads += r.threads;
+    n.cpus.resize(std::max(n.cpus.size(), r.mask.size()), 0);
+    for (std::size_t w = 0; w < r.mask.size(); ++w) n.cpus[w] |= r.mask[w];
+  }
+  return nodes;
 }
 
 inline bool overlap(const std::vector<std::uint64_t>& a, const std::vector<std::uint64_t>& b) {
@@ -42,18 +55,7 @@ inline bool overlap(const std::vector<std::uint64_t>& a, const std::vector<std::
 
 /// The first node whose ranks run more threads in all than the cores of their masks together.
 inline std::string node_crowding_warning(const std::vector<RankCpus>& all) {
-  struct Node {
-    int ranks = 0, threads = 0;
-    std::vector<std::uint64_t> cpus;
-  };
-  std::map<std::uint64_t, Node> nodes;
-  for (const RankCpus& r : all) {
-    Node& n = nodes[r.node];
-    ++n.ranks;
-    n.threads += r.threads;
-    add_cpus(n.cpus, r.mask);
-  }
-  for (const auto& [id, n] : nodes) {
+  for (const auto& [id, n] : node_shares(all)) {
     const int cores = cpu_count(n.cpus);
     if (n.threads <= cores) continue;
     const std::string fix =
@@ -104,15 +106,8 @@ inline int shared_thread_count(const std::vector<RankCpus>& all, int rank) {
 /// Whether the node of rank `rank` of `all` runs more ranks than the cores of their masks
 /// together: then they take turns on the cores, whatever their threads.
 inline bool node_has_more_ranks_than_cores(const std::vector<RankCpus>& all, int rank) {
-  const std::uint64_t node = all[static_cast<std::size_t>(rank)].node;
-  int ranks = 0;
-  std::vector<std::uint64_t> cpus;
-  for (const RankCpus& r : all) {
-    if (r.node != node) continue;
-    ++ranks;
-    detail::add_cpus(cpus, r.mask);
-  }
-  return ranks > cpu_count(cpus);
+  const detail::NodeShare n = detail::node_shares(all).at(all[static_cast<std::size_t>(rank)].node);
+  return n.ranks > cpu_count(n.cpus);
 }
 
 /// The warning for ranks with more threads than cores, or empty: either a rank with more
