@@ -169,7 +169,8 @@ void print_summary(const Scene& scene, const ParticleStore& deciding, std::uint6
 /// A restart continues with the checkpoint's time step and skin (docs/architecture.md, "Checkpoints
 /// and restart"): an explicit simulation.dt must equal the stored step; with dt = "auto" the stored
 /// step is used (it was computed from the particles the run started with) provided dt_fraction is
-/// unchanged. An automatic skin is the stored one. The checkpoint must lie before end_time.
+/// unchanged. An automatic skin is the stored one, and so are the units of the host's integer
+/// sums where the checkpoint records them. The checkpoint must lie before end_time.
 void adopt_checkpoint_step(EngineSetup& setup, const Scene& scene, const Checkpoint& c,
                            const std::string& path) {
   const SimulationSettings& sim = scene.simulation;
@@ -194,6 +195,7 @@ void adopt_checkpoint_step(EngineSetup& setup, const Scene& scene, const Checkpo
   setup.dt = c.dt;
   setup.start_step = c.step;
   if (scene.neighbor.skin <= 0) setup.skin = c.skin;
+  if (c.sum_force_unit > 0) setup.exact_units = exact_units_of(c.sum_force_unit, c.sum_torque_unit);
   if (c.step >= step_count(sim.end_time, c.dt))
     throw InputError(scene.file, 0, "simulation.end_time",
                      "checkpoint '" + path + "' is at t = " + exact_decimal(c.time) +

@@ -106,6 +106,7 @@ TimeLoop::TimeLoop(const Scene& scene, const MpiContext& mpi, StepEngine& engine
       balance_(balance),
       dt_(setup.dt),
       skin_(setup.skin),
+      sum_units_(setup.exact_units),
       first_step_(start.step),
       first_list_builds_(engine.rebuild_count()),
       total_steps_(step_count(scene.simulation.end_time, setup.dt)),
@@ -181,6 +182,8 @@ Checkpoint TimeLoop::capture(std::uint64_t step) const {
   c.dt_fraction = scene_.simulation.dt_auto ? scene_.simulation.dt_fraction : 0.0;
   c.dt_adaptive = scene_.simulation.dt_adaptive;
   c.skin = skin_;
+  c.sum_force_unit = sum_units_.force;
+  c.sum_torque_unit = sum_units_.torque;
   for (const Material& m : scene_.materials) c.material_names.push_back(m.name);
   return c;
 }

@@ -95,6 +95,7 @@ class TimeLoop {
   const LoadBalance& balance_;
   double dt_;
   double skin_;
+  ExactUnits sum_units_;  ///< of the host's integer sums, recorded in checkpoints
   std::uint64_t first_step_;
   std::uint64_t first_list_builds_;  ///< the engine's list builds before the first step
   std::uint64_t total_steps_;

@@ -39,7 +39,8 @@
 /// the substeps of the last base step, dt = "adaptive"; optional when read: 1), dt_adaptive
 /// (u8: 1 when the run's dt was "adaptive"; optional when read: 0), bonds_made (u64; the bonds
 /// made at the run's start, or held by the bed it started from; in a bed, its intact bonds;
-/// written with the bond datasets).
+/// written with the bond datasets), sum_force_unit and sum_torque_unit (f64, powers of two;
+/// optional when read: 0).
 #include <mpi.h>
 
 #include <cstdint>
@@ -80,6 +81,10 @@ struct Checkpoint {
   double dt_fraction = 0;      ///< fraction of the critical step when dt was "auto", else 0
   bool dt_adaptive = false;    ///< dt was "adaptive": dt is the base step
   double skin = 0;             ///< [m] Verlet skin of the run
+  /// The units of the host's integer force and torque sums (engine/ExactUnits.hpp) [N, N m];
+  /// 0 in files written before they were recorded.
+  double sum_force_unit = 0;
+  double sum_torque_unit = 0;
 };
 
 /// `<dir>/checkpoint.h5`.

@@ -180,6 +180,8 @@ void write_attributes(const ParallelFile& file, const Checkpoint& c) {
   file.write_attribute("dt_fraction", H5T_IEEE_F64LE, c.dt_fraction);
   file.write_attribute("dt_adaptive", H5T_STD_U8LE, std::uint8_t(c.dt_adaptive ? 1 : 0));
   file.write_attribute("skin", H5T_IEEE_F64LE, c.skin);
+  file.write_attribute("sum_force_unit", H5T_IEEE_F64LE, c.sum_force_unit);
+  file.write_attribute("sum_torque_unit", H5T_IEEE_F64LE, c.sum_torque_unit);
 }
 
 /// fsync on a file or directory; returns false when it cannot be done.

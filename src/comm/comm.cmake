@@ -1,5 +1,5 @@
 add_library(gpudem_comm ${GPUDEM_LIBRARY_TYPE}
-  comm/CheckpointRead.cpp comm/CheckpointWrite.cpp
+  comm/CheckpointFit.cpp comm/CheckpointRead.cpp comm/CheckpointWrite.cpp
   comm/Hdf5Io.cpp
   comm/MpiContext.cpp
   comm/GpuAwareMpi.cpp

@@ -135,9 +135,24 @@ LaneMask<S, W> select(const LaneMask<S, W>& take_a, const LaneMask<S, W>& a,
   return {take_a.bits ? a.bits : b.bits};
 }
 
-/// Whether any lane is true.
+/// Whether any lane is true: one test instruction where the mask fills an AVX or an SSE 4.1
+/// register and the target has them, else lane by lane.
 template <class S, int W>
 bool any(const LaneMask<S, W>& m) {
+#if defined(__AVX__)
+  if constexpr (sizeof(m.bits) == 32) {
+    typedef long long Quads __attribute__((vector_size(32)));
+    const Quads bits = (Quads)m.bits;
+    return !__builtin_ia32_ptestz256(bits, bits);
+  }
+#endif
+#if defined(__SSE4_1__)
+  if constexpr (sizeof(m.bits) == 16) {
+    typedef long long Pairs __attribute__((vector_size(16)));
+    const Pairs bits = (Pairs)m.bits;
+    return !__builtin_ia32_ptestz128(bits, bits);
+  }
+#endif
   bool found = false;
   for (int lane = 0; lane < W; ++lane) found = found || m.bits[lane] != 0;
   return found;

@@ -28,9 +28,11 @@ class ContactForceCompute final : public ForceCompute<Space, P, typename Law::Sc
 
  public:
   /// `pair_params`: the constants of each material pair, material_count² entries, row-major;
-  /// `host_lanes`: the most contacts the host's sweep evaluates at once (PairOnceSweep).
-  ContactForceCompute(const std::vector<ContactPairParams>& pair_params, int host_lanes)
-      : pair_once_(host_lanes) {
+  /// `exact_units` and `host_lanes`: the units of the host sweep's integer sums and the most
+  /// contacts it evaluates at once (PairOnceSweep).
+  ContactForceCompute(const std::vector<ContactPairParams>& pair_params,
+                      const ExactUnits& exact_units, int host_lanes)
+      : pair_once_(exact_units, host_lanes) {
     pair_params_.upload(converted(pair_params, params_cast<S>));
   }
 

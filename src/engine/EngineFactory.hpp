@@ -20,7 +20,7 @@ LawForceCompute<Space, S> make(const EngineSetup& setup) {
     static_assert(Law::history_size == contact_history_width(ContactModel{N, D, T, R, C}),
                   "the history width the host side declares (ContactModel.hpp) is the law's");
     return std::make_unique<ContactForceCompute<Space, Law, ContactViewScalar<S>>>(
-        setup.pair_params, setup.host_lanes);
+        setup.pair_params, setup.exact_units, setup.host_lanes);
   } else {
     throw std::invalid_argument("no force compute for contact law " +
                                 contact_model_name(setup.contact_model));

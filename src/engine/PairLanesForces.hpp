@@ -118,14 +118,37 @@ struct PairLanesForces {
     describe_pair<Law>(point, arm, c.d, c.dist2, c.xi, c.vi, c.wi, c.xj, c.vj, c.wj);
     const ContactForce<L> f =
         Law::evaluate(c.params, point_cast<L>(point), c.history, L(static_cast<S>(once.sweep.dt)));
-    const auto force_terms = exact_terms(f.force);
-    std::remove_const_t<decltype(force_terms)> torque_terms{}, partner_terms{};
+    const ExactUnits& units = once.units;
+    LoadTerms terms{exact_terms(f.force, units.per_force), {}, {}};
     if constexpr (Law::needs_spin) {
-      torque_terms = exact_terms(lever_torque<Law>(arm, point.normal, f));
-      partner_terms =
-          exact_terms(partner_torque<Law>(c.xj.w - Real(0.5) * point.overlap, point.normal, f));
+      terms.torque = exact_terms(lever_torque<Law>(arm, point.normal, f), units.per_torque);
+      terms.partner_torque =
+          exact_terms(partner_torque<Law>(c.xj.w - Real(0.5) * point.overlap, point.normal, f),
+                      units.per_torque);
     }
-    const auto ratio = point.overlap / c.min_radius;
+    if (terms.force.spills || terms.torque.spills || terms.partner_torque.spills)
+      store_loads<true>(c, terms, point.overlap / c.min_radius);
+    else
+      store_loads<false>(c, terms, point.overlap / c.min_radius);
+    c.count = 0;
+  }
+
+  /// The integer terms of the lanes' loads.
+  struct LoadTerms {
+    ExactTermLanes<W> force, torque, partner_torque;
+  };
+
+  /// Each lane's history written back and its loads added to its ends' sums (in one word each
+  /// unless some lane `Spills`), with its overlap ratio.
+  template <bool Spills, class Ratio>
+  void store_loads(const PairContactLanes<Law, W>& c, const LoadTerms& t,
+                   const Ratio& ratio) const {
+    const auto term = [](const ExactTermLanes<W>& terms, int l) {
+      if constexpr (Spills)
+        return terms.lane(l);
+      else
+        return terms.words(l);
+    };
     for (int l = 0; l < c.count; ++l) {
       if constexpr (Law::history_size > 0) {
         typename Law::State state;
@@ -134,19 +157,18 @@ struct PairLanesForces {
         once.sweep.history.pair[c.entry[l]] = Law::without_negative_zeros(state);
       }
       const std::uint32_t i = c.i[l], j = c.j[l];
-      const ExactTerm3 force_term = lane_of(force_terms, l);
-      once.pair_force[i].add(force_term);
-      if (c.grouped[l]) once.pair_force[j].subtract(force_term);
+      const auto force_term = term(t.force, l);
+      once.pair_force.add(i, force_term);
+      if (c.grouped[l]) once.pair_force.subtract(j, force_term);
       if constexpr (Law::needs_spin) {
-        once.pair_torque[i].add(lane_of(torque_terms, l));
-        if (c.grouped[l]) once.pair_torque[j].add(lane_of(partner_terms, l));
+        once.pair_torque.add(i, term(t.torque, l));
+        if (c.grouped[l]) once.pair_torque.add(j, term(t.partner_torque, l));
       }
       const Real lane_ratio = lane_of(ratio, l);
       Real* worst = once.sweep.overlap_ratio;
       if (lane_ratio > worst[i]) worst[i] = lane_ratio;
       if (c.grouped[l] && lane_ratio > worst[j]) worst[j] = lane_ratio;
     }
-    c.count = 0;
   }
 
   /// Particle i's walls and meshes, then its force, torque and worst ratio stored.
@@ -156,8 +178,10 @@ struct PairLanesForces {
     ForceSum<Law> bodies{s.history, s.dt, {}, {}, s.overlap_ratio[i], s.wall_push};
     visit_body_contacts(i, me, s.scene, bodies);
     Vec3T<S> torque{};  // summed only for a law with torques
-    if constexpr (Law::needs_spin) torque = once.pair_torque[i].template value<S>() + bodies.torque;
-    s.store(i, me.v.w, once.pair_force[i].template value<S>() + bodies.force, torque,
+    const ExactUnits& units = once.units;
+    if constexpr (Law::needs_spin)
+      torque = once.pair_torque[i].template value<S>(units.torque) + bodies.torque;
+    s.store(i, me.v.w, once.pair_force[i].template value<S>(units.force) + bodies.force, torque,
             bodies.worst_overlap_ratio);
   }
 };

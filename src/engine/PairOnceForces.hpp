@@ -8,13 +8,13 @@
 /// its particles in ascending order); any other pair (across ranges or sweeps, or with a ghost)
 /// is evaluated at both ends, each writing only its own. The entries each particle evaluates are
 /// selected once per list and grouping (SelectEvaluated), so that the sweep walks only those.
-/// Loads are summed as integers (ExactSum.hpp), so each particle's force and torque are the same
-/// bits on any number of threads or ranks: the two ends of a pair evaluate to exact mirrors (n,
-/// v_rel and the history change sign, every other input is symmetric), a term and its negative
-/// round to exact negatives, and integer sums do not depend on their order. Only the evaluating
-/// end's history advances; PairOnceSweep::mirror copies it to the other end before anything
-/// reads it. Where the CPU runs AVX-512, PairLanesForces sweeps the same pairs eight contacts at
-/// a time. Host code only.
+/// Loads are summed as integers in the run's units (ExactSum.hpp), so each particle's force and
+/// torque are the same bits on any number of threads or ranks: the two ends of a pair evaluate to
+/// exact mirrors (n, v_rel and the history change sign, every other input is symmetric), a term and
+/// its negative round to exact negatives, and integer sums do not depend on their order. Only the
+/// evaluating end's history advances; PairOnceSweep::mirror copies it to the other end before
+/// anything reads it. Where the CPU runs AVX-512, PairLanesForces sweeps the same pairs eight
+/// contacts at a time. Host code only.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -32,6 +32,7 @@ struct PairOnceSum {
   using S = typename Law::Scalar;
   HistoryArrays<Law> history;
   Real dt;
+  const ExactUnits& units;
   ExactSum3 force;
   ExactSum3 torque;
   Real worst_overlap_ratio;
@@ -47,9 +48,10 @@ struct PairOnceSum {
     // −0 stored as +0: the same bits whether this end or the partner's mirror writes the record
     if constexpr (Law::history_size > 0)
       history.pair[c.slot] = Law::without_negative_zeros(c.state);
-    force_term = exact_terms(last.force);
+    force_term = exact_terms(last.force, units.per_force);
     force.add(force_term);
-    if constexpr (Law::needs_spin) torque.add(exact_terms(contact_torque(c, last)));
+    if constexpr (Law::needs_spin)
+      torque.add(exact_terms(contact_torque(c, last), units.per_torque));
     normal = c.point.normal;
     overlap = c.point.overlap;
     ratio = c.point.overlap / c.min_radius;
@@ -122,8 +124,8 @@ struct GroupRange {
   const std::uint32_t* subset;
   std::uint64_t generation;
   std::uint64_t* group;
-  ExactSum3* pair_force;
-  ExactSum3* pair_torque;  ///< null for a law without torques
+  ExactSumArrays pair_force;
+  ExactSumArrays pair_torque;  ///< empty for a law without torques
   Real* overlap_ratio;
 
   void operator()(std::uint32_t begin, std::uint32_t end) const {
@@ -132,8 +134,8 @@ struct GroupRange {
     for (std::uint32_t k = begin; k < end; ++k) {
       const std::uint32_t i = swept_index(subset, k);
       group[i] = tag;
-      pair_force[i] = ExactSum3{};
-      if (pair_torque) pair_torque[i] = ExactSum3{};
+      pair_force.clear(i);
+      if (pair_torque) pair_torque.clear(i);
       overlap_ratio[i] = 0;
     }
   }
@@ -144,9 +146,10 @@ struct PairOnceForces {
   using S = typename Law::Scalar;
   ForceSweep<Law, P> sweep;
   // Filled in by PairOnceSweep::run.
-  EvaluatedRows evaluated{};         ///< the entries each particle evaluates
-  ExactSum3* pair_force = nullptr;   ///< per particle: what its group's lower partners left
-  ExactSum3* pair_torque = nullptr;  ///< idem, torques; null for a law without torques
+  EvaluatedRows evaluated{};     ///< the entries each particle evaluates
+  ExactUnits units{};            ///< of the integer sums
+  ExactSumArrays pair_force{};   ///< per particle: what its group's lower partners left
+  ExactSumArrays pair_torque{};  ///< idem, torques; empty for a law without torques
 
   /// The particles at positions [begin, end) of the sweep, in order.
   GPUDEM_HOST_FLATTEN void operator()(std::uint32_t begin, std::uint32_t end) const {
@@ -162,7 +165,7 @@ struct PairOnceForces {
     const SweptParticle me = swept_particle<Law>(i, s.particles);
     ExactSum3 torque_so_far{};
     if constexpr (Law::needs_spin) torque_so_far = pair_torque[i];
-    PairOnceSum<Law> sum{s.history, s.dt, pair_force[i], torque_so_far, s.overlap_ratio[i]};
+    PairOnceSum<Law> sum{s.history, s.dt, units, pair_force[i], torque_so_far, s.overlap_ratio[i]};
     const std::uint32_t group_end = evaluated.group_end[position];
     for (std::uint32_t h = evaluated.begin[position]; h < evaluated.end[position]; ++h) {
       const std::uint32_t k = evaluated.entry[h];
@@ -171,16 +174,18 @@ struct PairOnceForces {
       sum.touched = false;
       visit_pair_entry(me, k, s.particles, s.scene, sum);
       if (!sum.touched || !grouped) continue;
-      pair_force[j].subtract(sum.force_term);
+      pair_force.subtract(j, sum.force_term);
       if constexpr (Law::needs_spin)
-        pair_torque[j].add(exact_terms(sum.partner_torque(s.particles.position(j).w)));
+        pair_torque.add(
+            j, exact_terms(sum.partner_torque(s.particles.position(j).w), units.per_torque));
       if (sum.ratio > s.overlap_ratio[j]) s.overlap_ratio[j] = sum.ratio;
     }
     ForceSum<Law> bodies{s.history, s.dt, {}, {}, sum.worst_overlap_ratio, s.wall_push};
     visit_body_contacts(i, me, s.scene, bodies);
     Vec3T<S> torque{};  // summed only for a law with torques
-    if constexpr (Law::needs_spin) torque = sum.torque.template value<S>() + bodies.torque;
-    s.store(i, me.v.w, sum.force.template value<S>() + bodies.force, torque,
+    if constexpr (Law::needs_spin)
+      torque = sum.torque.template value<S>(units.torque) + bodies.torque;
+    s.store(i, me.v.w, sum.force.template value<S>(units.force) + bodies.force, torque,
             bodies.worst_overlap_ratio);
   }
 };

@@ -44,9 +44,10 @@ class PairOnceSweep {
   using S = typename Law::Scalar;
   using State = typename Law::State;
 
-  /// `most_lanes`: evaluate up to that many contacts at once, as many as this build and CPU
-  /// can (8, 4 or 1; the same bits).
-  explicit PairOnceSweep(int most_lanes = 8) : lanes_(lanes_for(most_lanes)) {}
+  /// `units`: of the integer sums; `most_lanes`: evaluate up to that many contacts at once, as
+  /// many as this build and CPU can (8, 4 or 1; the same bits).
+  PairOnceSweep(const ExactUnits& units, int most_lanes)
+      : units_(units), lanes_(lanes_for(most_lanes)) {}
 
   /// Runs `kernel` (its subset, rows and sums filled in here) over positions [0, count) of
   /// its subset, on the owned particles' rows `list`.
@@ -63,8 +64,9 @@ class PairOnceSweep {
       if constexpr (Law::needs_spin) pair_torque_.resize(list.owned);
     }
     ++generation_;
-    kernel.pair_force = pair_force_.data();
-    kernel.pair_torque = Law::needs_spin ? pair_torque_.data() : nullptr;
+    kernel.units = units_;
+    kernel.pair_force = pair_force_.arrays();
+    if constexpr (Law::needs_spin) kernel.pair_torque = pair_torque_.arrays();
     host_ranges(count, grouping_.ranges,
                 GroupRange{kernel.sweep.subset, generation_, group_.data(), kernel.pair_force,
                            kernel.pair_torque, kernel.sweep.overlap_ratio});
@@ -77,8 +79,8 @@ class PairOnceSweep {
   int contact_lanes() const { return lanes_; }
 
   std::size_t bytes() const {
-    return group_.capacity() * sizeof(std::uint64_t) +
-           (pair_force_.capacity() + pair_torque_.capacity()) * sizeof(ExactSum3) + rows_bytes();
+    return group_.capacity() * sizeof(std::uint64_t) + pair_force_.bytes() + pair_torque_.bytes() +
+           rows_bytes();
   }
 
   /// Fills in the other ends of the pairs the sweeps since the last call evaluated once, in the
@@ -178,8 +180,9 @@ class PairOnceSweep {
   /// tagged anew each step, so a tag is at most a few sweeps old (the count wraps after 2^32).
   std::uint32_t generation_ = 0;
   std::vector<std::uint64_t> group_;
-  std::vector<ExactSum3> pair_force_;
-  std::vector<ExactSum3> pair_torque_;
+  ExactUnits units_;
+  ExactSumStore pair_force_;
+  ExactSumStore pair_torque_;
   std::vector<SweepRows> sweeps_;  ///< per subset swept since the last list build
   State* pending_ = nullptr;       ///< the history the last sweeps wrote, other ends not filled in
   int lanes_;                      ///< contacts PairLanesInVectors evaluates at once; 1: none

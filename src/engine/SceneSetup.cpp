@@ -311,6 +311,23 @@ std::vector<std::string> time_step_warnings(const Scene& scene, const ParticleSt
   return warnings;
 }
 
+ExactUnits exact_units(const Scene& scene, const ParticleStore& particles) {
+  constexpr double standard_gravity = 9.80665;  // m/s² (CGPM 1901)
+  double lightest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const Real4& x = particles.position_radius[i];
+    const double inv_mass = particles.velocity_inv_mass[i].w;
+    const double mass = inv_mass > 0 ? 1 / inv_mass
+                                     : scene.materials[particles.material[i]].density * 4.0 / 3.0 *
+                                           kPi * x.w * x.w * x.w;
+    lightest = std::min(lightest, mass);
+  }
+  const double r_min = smallest_radius(particles);
+  if (!(std::isfinite(lightest) && lightest > 0 && std::isfinite(r_min) && r_min > 0))
+    return exact_units_for_grains(1.0, 1.0);  // nothing to sum
+  return exact_units_for_grains(lightest * standard_gravity, r_min);
+}
+
 EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles) {
   EngineSetup s;
   s.box.lo = scene.domain.min;
@@ -329,6 +346,7 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
   }
   require_pistons_outweigh_a_layer(scene, particles);
   s.meshes = mesh_walls(scene);
+  s.exact_units = exact_units(scene, particles);
   const double r_min = smallest_radius(particles);
   s.skin =
       scene.neighbor.skin > 0 ? scene.neighbor.skin : (std::isfinite(r_min) ? 0.5 * r_min : 0.0);

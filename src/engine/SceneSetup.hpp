@@ -19,6 +19,10 @@ std::vector<std::string> time_step_warnings(const Scene& scene, const ParticleSt
 /// else the mixing rule.
 ContactPairParams pair_params(const Scene& scene, MaterialId a, MaterialId b);
 
+/// The units of the host sweep's integer sums (exact_units_for_grains): of the lightest particle
+/// (by its mass, or for a fixed one its material's density and radius) and the smallest.
+ExactUnits exact_units(const Scene& scene, const ParticleStore& particles);
+
 /// The engine setup: contact model, pair table (material_count² entries, row-major,
 /// symmetric), walls and pistons, skin and dt (TimeStepLimits::automatic when the scene says
 /// "auto"; dt_fraction × TimeStepLimits::critical, the base step, when it says "adaptive";
@@ -32,7 +36,8 @@ ContactPairParams pair_params(const Scene& scene, MaterialId a, MaterialId b);
 /// rotates the largest distance from its bounding-box centre to a vertex), and as
 /// require_meshes_meet_the_domain (MeshReach.hpp) when a mesh never meets the domain or is smaller
 /// than the smallest particle; naming neighbor.skin when JKR adhesion holds a contact further
-/// past touch than the skin (the neighbour list would lose it).
+/// past touch than the skin (the neighbour list would lose it). Its integer sums' units are
+/// exact_units'.
 EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles);
 
 /// The particles of `particles` that decide time_step_limits and make_engine_setup: of each
@@ -40,7 +45,7 @@ EngineSetup make_engine_setup(const Scene& scene, const ParticleStore& particles
 /// smallest inverse mass and of highest speed, in store order. Both functions give the same for
 /// them as for all the particles; and the selections of consecutive shares of a store, concatenated
 /// in order, give the same as the store's, so each rank selects from its share and the ranks
-/// gather.
+/// gather. So does exact_units.
 ParticleStore setup_deciding_particles(const Scene& scene, const ParticleStore& particles);
 
 }  // namespace gpudem

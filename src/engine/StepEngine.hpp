@@ -19,6 +19,7 @@
 #include "core/Scene.hpp"
 #include "core/StepClock.hpp"
 #include "engine/DomainLink.hpp"
+#include "engine/ExactUnits.hpp"
 #include "engine/Integrators.hpp"
 #include "engine/MeshWallSetup.hpp"
 #include "engine/PeriodicBox.hpp"
@@ -55,6 +56,9 @@ struct EngineSetup {
   /// Wait for the device at the end of each timed part of a step (StepTimes), so that each
   /// part holds its own kernels' time; a device synchronisation per part on CUDA.
   bool exact_phase_times = false;
+  /// The units of the host force sweep's integer sums (exact_units_for_grains); the same on
+  /// every rank and after a restart.
+  ExactUnits exact_units{};
   /// The most contacts the host's force sweep evaluates at once: eight in AVX-512 lanes or four
   /// in AVX2 lanes where the build and the CPU have them, else one (PairLanesForces.hpp); the
   /// same bits either way.

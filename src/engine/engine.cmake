@@ -2,7 +2,7 @@
 # (ParticleSystemInstance.in) and the force computes once per normal law and law scalar, double
 # or float (ForceComputeInstance.in, EngineFactory.hpp), one generated translation unit each so
 # that they compile in parallel; launch tuning.
-add_library(gpudem_engine ${GPUDEM_LIBRARY_TYPE} engine/CoarseGrid.cpp engine/LaunchTuning.cpp
+add_library(gpudem_engine ${GPUDEM_LIBRARY_TYPE} engine/CoarseGrid.cpp engine/ExactSum.cpp engine/LaunchTuning.cpp
             engine/StepEngineHost.cpp)
 target_link_libraries(gpudem_engine PUBLIC gpudem_contact_model gpudem_mesh)
 

@@ -166,7 +166,8 @@ std::map<std::string, std::size_t> needed_bytes(const StepEngine& engine, std::s
   // evaluates: three bounds and one word per entry of its row (one sweep of all particles).
   const std::size_t pair_once =
       backend == Backend::Host
-          ? n * (sizeof(std::uint64_t) + 2 * sizeof(ExactSum3)) + (3 * n + entries) * index
+          ? n * (sizeof(std::uint64_t) + 2 * (sizeof(ExactWords3) + sizeof(ExactSpill3))) +
+                (3 * n + entries) * index
           : 0;
   return {{"position, radius", n * 4 * state},
           {"velocity, inverse mass", n * 4 * state},

@@ -88,13 +88,16 @@ void set_threads([[maybe_unused]] int threads) {
 }
 
 /// The pour's 1,000 steps on `threads` threads, from step `switch_at` on `then` threads; `lanes`:
-/// the most contacts evaluated at once (as many as the CPU can).
+/// the most contacts evaluated at once (as many as the CPU can); the loads summed in the
+/// run's units times `unit_factor`.
 Outcome pour(const ContactModel& model, Precision precision, int threads, int switch_at = 1000,
-             int then = 1, int lanes = 8) {
+             int then = 1, int lanes = 8, double unit_factor = 1) {
   set_threads(threads);
   const Scene scene = sticky_rolling_bed(model);
   const ParticleStore particles = pressed_bed(scene);
   EngineSetup setup = make_engine_setup(scene, particles);
+  const ExactUnits& units = setup.exact_units;
+  setup.exact_units = exact_units_of(units.force * unit_factor, units.torque * unit_factor);
   setup.precision = precision;
   setup.host_lanes = lanes;
   auto engine = make_host_engine(setup);
@@ -176,6 +179,26 @@ TEST(PairOnce, SameBitsWhenTheThreadCountChangesMidRun) {
   const Outcome switched = pour(model, Precision::Double, 1, 137, 3);
   EXPECT_TRUE(same_bits(one.particle_values, switched.particle_values));
   EXPECT_TRUE(same_bits(one.history_values, switched.history_values));
+}
+
+// In units 2^-24 of the run's, one word holds loads of up to about 2^-14 of the lightest grain's
+// weight, far below the pressed bed's contact loads, so nearly every term spills into the second
+// word: the sums stay the same bits
+// on one and two threads and in lanes, and the units are in effect (the run differs from one in
+// the run's own units).
+TEST(PairOnce, SameBitsWhenNearlyEveryTermSpills) {
+  const ContactModel model{NormalLaw::Hertz, DampingLaw::Restitution, TangentialLaw::Mindlin,
+                           RollingLaw::Epsd, CohesionLaw::None};
+  const double fine = 0x1p-24;
+  const Outcome one = pour(model, Precision::Double, 1, 1000, 1, 1, fine);
+  const Outcome two = pour(model, Precision::Double, 2, 1000, 1, 1, fine);
+  const Outcome lanes = pour(model, Precision::Double, 2, 1000, 1, 8, fine);
+  EXPECT_TRUE(same_bits(one.particle_values, two.particle_values));
+  EXPECT_TRUE(same_bits(one.history_values, two.history_values));
+  EXPECT_TRUE(same_bits(one.particle_values, lanes.particle_values)) << lanes.contact_lanes;
+  EXPECT_TRUE(same_bits(one.history_values, lanes.history_values)) << lanes.contact_lanes;
+  const Outcome own_units = pour(model, Precision::Double, 1, 1000, 1, 1);
+  EXPECT_FALSE(same_bits(one.particle_values, own_units.particle_values));
 }
 
 // Each particle walks only the entries it evaluates (SelectEvaluated): of a pair in one group,

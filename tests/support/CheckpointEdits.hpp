@@ -14,13 +14,22 @@
 
 namespace gpudem::test {
 
-/// Sets the u32 attribute `name` of the file's root group.
-inline void set_u32_attribute(const std::string& path, const char* name, std::uint32_t value) {
+/// Sets the attribute `name` of the file's root group to `value`, of memory type `memory`.
+template <class T>
+void set_attribute(const std::string& path, const char* name, hid_t memory, T value) {
   H5Id<H5Fclose> file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
   ASSERT_GE(file.id, 0) << path;
   H5Id<H5Aclose> attribute(H5Aopen(file.id, name, H5P_DEFAULT));
   ASSERT_GE(attribute.id, 0) << name;
-  ASSERT_GE(H5Awrite(attribute.id, H5T_NATIVE_UINT32, &value), 0);
+  ASSERT_GE(H5Awrite(attribute.id, memory, &value), 0);
+}
+
+inline void set_u32_attribute(const std::string& path, const char* name, std::uint32_t value) {
+  set_attribute(path, name, H5T_NATIVE_UINT32, value);
+}
+
+inline void set_f64_attribute(const std::string& path, const char* name, double value) {
+  set_attribute(path, name, H5T_NATIVE_DOUBLE, value);
 }
 
 inline void remove_dataset(const std::string& path, const char* name) {

@@ -89,6 +89,8 @@ Checkpoint random_part(int rank, std::uint32_t width = kSpringWidth) {
   c.dt = 2.0 / 3.0 * 1e-5;
   c.dt_fraction = 0.1;
   c.skin = 1.0 / 7.0 * 1e-3;
+  c.sum_force_unit = 0x1p-45;
+  c.sum_torque_unit = 0x1p-52;
   return c;
 }
 
@@ -189,6 +191,8 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
   EXPECT_EQ(a.dt, b.dt);
   EXPECT_EQ(a.dt_fraction, b.dt_fraction);
   EXPECT_EQ(a.skin, b.skin);
+  EXPECT_EQ(a.sum_force_unit, b.sum_force_unit);
+  EXPECT_EQ(a.sum_torque_unit, b.sum_torque_unit);
 }
 
 /// A fresh directory, the same on every rank, removed after the test.
@@ -407,13 +411,14 @@ TEST_F(DamagedCheckpoint, RankFieldFlagsAreStoredAsOneByteEach) {
             (std::vector<unsigned char>{1, 0}));  // random_part's table: with, without
 }
 
-/// A checkpoint written before mesh springs, the list-build step and adaptive steps were
-/// stored: no mesh records, the list built at the checkpoint's step, one step per base step.
+/// A checkpoint written before mesh springs, the list-build step, adaptive steps and the units of
+/// the integer sums were stored: no mesh records, the list built at the checkpoint's step, one
+/// step per base step, no units (the run's own).
 TEST_F(DamagedCheckpoint, CheckpointWithoutMeshRecordsOrBuildStepReadsAsNoneAndTheStep) {
   for (const char* name : {"mesh_owner", "mesh_triangle", "mesh_history"})
     test::remove_dataset(path(), name);
-  for (const char* name :
-       {"list_build_step", "list_build_substep", "list_build_substeps", "substeps", "dt_adaptive"})
+  for (const char* name : {"list_build_step", "list_build_substep", "list_build_substeps",
+                           "substeps", "dt_adaptive", "sum_force_unit", "sum_torque_unit"})
     test::remove_attribute(path(), name);
   Checkpoint expected = random_part(0);
   expected.history.mesh_owner.clear();
@@ -422,7 +427,19 @@ TEST_F(DamagedCheckpoint, CheckpointWithoutMeshRecordsOrBuildStepReadsAsNoneAndT
   expected.list_build = {expected.step, 0, 1};
   expected.substeps = 1;
   expected.dt_adaptive = false;
+  expected.sum_force_unit = 0;
+  expected.sum_torque_unit = 0;
   expect_identical(read_checkpoint(path()), expected);
+}
+
+TEST_F(DamagedCheckpoint, SumUnitsOtherThanPositivePowersOfTwoAreRejected) {
+  test::set_f64_attribute(path(), "sum_force_unit", 3e-14);
+  expect_rejected("attribute 'sum_force_unit' is not a positive power of two");
+  test::set_f64_attribute(path(), "sum_force_unit", 0x1p-45);
+  test::set_f64_attribute(path(), "sum_torque_unit", -0x1p-52);
+  expect_rejected("attribute 'sum_torque_unit' is not a positive power of two");
+  test::set_f64_attribute(path(), "sum_torque_unit", std::numeric_limits<double>::infinity());
+  expect_rejected("attribute 'sum_torque_unit' is not a positive power of two");
 }
 
 TEST_F(DamagedCheckpoint, SubstepsOutsideTheirRangeAreRejected) {

@@ -2,8 +2,8 @@
 // them: every lane's contact point (from the two particles' states) and its force, tangential
 // force, rolling torque and new history are the same bits as the scalar law's on that lane's
 // contact, sliding or sticking, rolling at the limit or not, advancing the history or reading it
-// (dt = 0); and the exact sums' terms of a vector in lanes are the scalar terms, also beyond the
-// limit and for NaN.
+// (dt = 0); and the exact sums' terms of a vector in lanes are the scalar terms, in one word or
+// spilled, also beyond the limit and for NaN.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -178,35 +178,47 @@ TYPED_TEST(LanesLaw, EachLaneIsTheScalarLawsBits) {
 
 TYPED_TEST(LanesLaw, ReadingTheStoredStateToo) { expect_lanes_match_scalar<TypeParam>(0, 50, 5); }
 
+/// The integer a term's component k stands for, word + spill · 2^50 units.
+__extension__ typedef __int128 Units;
+Units units_of(const ExactTerm3& t, int k) {
+  return static_cast<Units>(static_cast<std::int64_t>(t.word[k])) +
+         static_cast<Units>(static_cast<std::int64_t>(t.spill[k])) * (Units(1) << 50);
+}
+
 TEST(LanesExactTerms, EachLaneIsTheScalarTerms) {
   using L = Lanes<double, kLanes>;
+  const ExactUnits units{};  // 2^-44 N: one word up to 64 N
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (int batch = 0; batch < 100; ++batch) {
+    // odd batches within one word, rounded in the lanes; even ones with lanes that spill, beyond
+    // the limit or NaN, which take every lane of the batch through the spilling path
+    const bool spilling = batch % 2 == 0;
     Vec3T<L> lanes;
     Vec3 vectors[kLanes];
     for (int l = 0; l < kLanes; ++l) {
-      vectors[l] = {u(rng) * std::pow(10.0, 9 * u(rng)), u(rng) * 1e-12, u(rng)};
-      if (l == 5) vectors[l].y = batch % 2 ? exact_term_limit : -2 * exact_term_limit;
-      if (l == 6) vectors[l].z = nan;
-      if (l == 7) vectors[l].x = (0.5 + batch) / 1048576;  // a tie in units of 2^-20: to even
-      if (l == 4)  // halves of the fraction's unit, 2^-64: to even, −2, −2, 0, 0, 2, 2
-        vectors[l].y = (1 + (batch % 6 - 2.5) * 0x1p-44) / 1048576;
+      vectors[l] = {u(rng) * std::pow(10.0, 1.5 * u(rng)), u(rng) * 1e-12, u(rng)};
+      if (spilling && l == 5) vectors[l].y = batch % 4 ? exact_spill_limit * units.force : -1e9;
+      if (spilling && l == 6) vectors[l].z = nan;
+      if (spilling && l == 3) vectors[l].x = 1e6 * u(rng);
+      if (l == 7) vectors[l].x = (0.5 + batch) * units.force;  // a tie in units: to even
+      if (l == 4)  // 0.75 · 2^50 units and a half: to even, the value kept when it spills
+        vectors[l].y = (0.75 * exact_word_limit + 0.5 + batch % 3) * units.force;
       lanes.x.set(l, vectors[l].x);
       lanes.y.set(l, vectors[l].y);
       lanes.z.set(l, vectors[l].z);
     }
-    const ExactTermLanes<kLanes> terms = exact_terms(lanes);
+    const ExactTermLanes<kLanes> terms = exact_terms(lanes, units.per_force);
+    EXPECT_EQ(terms.spills, spilling) << "batch " << batch;
     for (int l = 0; l < kLanes; ++l) {
-      const ExactTerm3 want = exact_terms(vectors[l]);
+      const ExactTerm3 want = exact_terms(vectors[l], units.per_force);
       const ExactTerm3 got = terms.lane(l);
       EXPECT_EQ(got.representable, want.representable) << "batch " << batch << " lane " << l;
-      const auto same = [](const ExactTerm& a, const ExactTerm& b) {
-        return a.whole == b.whole && a.fraction == b.fraction;
-      };
-      EXPECT_TRUE(same(got.x, want.x) && same(got.y, want.y) && same(got.z, want.z))
-          << "batch " << batch << " lane " << l;
+      if (!want.representable) continue;
+      for (int k = 0; k < 3; ++k)
+        EXPECT_TRUE(units_of(got, k) == units_of(want, k))
+            << "batch " << batch << " lane " << l << " component " << k;
     }
   }
 }

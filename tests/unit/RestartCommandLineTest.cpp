@@ -1,11 +1,12 @@
 // gpudem-mpi --restart end to end: a run of 2T equals, snapshot for snapshot and bit for bit,
-// a run of T continued from its checkpoint (same .xmf, same time series); continued with other
-// snapshot fields and precision, the .xmf describes each snapshot as written; a run killed with
-// SIGKILL while writing a checkpoint every step always leaves a checkpoint that reads back and
-// continues; a bad checkpoint or a restart that cannot continue (another time step, a contact
-// law keeping another number of history values per contact) exits 2 with a message naming the
-// problem and writes nothing. With --resume a chain of jobs on the same command line starts the
-// run, continues it from its own checkpoint and stops once it is complete.
+// a run of T continued from its checkpoint (same .xmf, same time series), summing its loads in
+// the units the checkpoint records; continued with other snapshot fields and precision, the .xmf
+// describes each snapshot as written; a run killed with SIGKILL while writing a checkpoint every
+// step always leaves a checkpoint that reads back and continues; a bad checkpoint or a restart that
+// cannot continue (another time step, a contact law keeping another number of history values per
+// contact) exits 2 with a message naming the problem and writes nothing. With --resume a chain of
+// jobs on the same command line starts the run, continues it from its own checkpoint and stops once
+// it is complete.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -13,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -116,6 +118,41 @@ TEST_F(RestartCommandLine, RestartedRunEqualsStraightRun) {
   EXPECT_EQ(read_text(legs / "particles.xmf"), read_text(straight / "particles.xmf"));
   EXPECT_EQ(read_text(legs / "timeseries.csv"), read_text(straight / "timeseries.csv"));
   EXPECT_EQ(read_checkpoint(checkpoint).step, 4000u) << "a checkpoint ends the run";
+}
+
+/// A restart sums the contact loads in the units its checkpoint records, not in those of the
+/// particles it starts from (which may have lost the lightest grain by then): the units written
+/// are the run's, and a checkpoint whose units are edited continues into another run.
+TEST_F(RestartCommandLine, RestartSumsLoadsInTheUnitsOfItsCheckpoint) {
+  const std::string bed = scene(kBedScene);
+  const fs::path legs = dir_ / "legs", edited = dir_ / "edited";
+  const Result first =
+      run(bed + " --quiet --set simulation.end_time=0.1 --output-dir " + legs.string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const fs::path checkpoint = legs / "checkpoint.h5";
+  const Checkpoint c = read_checkpoint(checkpoint.string());
+  // the run's units: the power of two at or below 2^-40 of its lightest grain's weight, and
+  // that times its smallest radius (no grain leaves the bin)
+  double lightest = std::numeric_limits<double>::infinity(), smallest = lightest;
+  for (std::size_t i = 0; i < c.particles.size(); ++i) {
+    lightest = std::min(lightest, 9.80665 / c.particles.velocity_inv_mass[i].w);
+    smallest = std::min(smallest, c.particles.position_radius[i].w);
+  }
+  EXPECT_LE(c.sum_force_unit, lightest * 0x1p-40);
+  EXPECT_GT(c.sum_force_unit, lightest * 0x1p-41);
+  EXPECT_LE(c.sum_torque_unit, c.sum_force_unit * smallest);
+  EXPECT_GT(c.sum_torque_unit, c.sum_force_unit * smallest / 2);
+  fs::create_directories(edited);
+  fs::copy_file(checkpoint, edited / "checkpoint.h5");
+  test::set_f64_attribute((edited / "checkpoint.h5").string(), "sum_force_unit", 0x1p-30);
+  const Result own =
+      run(bed + " --quiet --restart " + checkpoint.string() + " --output-dir " + legs.string());
+  ASSERT_EQ(own.exit_code, 0) << own.output;
+  const Result other = run(bed + " --quiet --restart " + (edited / "checkpoint.h5").string() +
+                           " --output-dir " + edited.string());
+  ASSERT_EQ(other.exit_code, 0) << other.output;
+  EXPECT_NE(test::raw_bytes((legs / "particles_000004.h5").string(), "position"),
+            test::raw_bytes((edited / "particles_000004.h5").string(), "position"));
 }
 
 /// A chain of jobs that all run the same command line with --resume: the first starts the
