@@ -119,13 +119,6 @@ ExactTermLanes<W> exact_terms(const Vec3T<Lanes<S, W>>& v, double per_unit) {
   return t;
 }
 
-/// Lane l's terms: the terms themselves for one lane.
-inline ExactTerm3 lane_of(const ExactTerm3& t, int) { return t; }
-template <int W>
-ExactTerm3 lane_of(const ExactTermLanes<W>& t, int l) {
-  return t.lane(l);
-}
-
 /// The spilled multiples of 2^50 units of a sum, and whether its terms were representable:
 /// written only by a term that spills.
 struct ExactSpill3 {

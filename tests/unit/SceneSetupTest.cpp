@@ -1,7 +1,7 @@
 // From scene to engine setup: the contact pair table (effective moduli, mixing rules, [[pair]]
 // entries, restitution damping ratio) and the time-step limits (Rayleigh, Hooke and Hertz
-// contact durations, the stable limit of an explicit dt), each against closed forms written
-// out here.
+// contact durations, the stable limit of an explicit dt) and the units of the integer load sums,
+// each against closed forms written out here.
 #include "engine/SceneSetup.hpp"
 
 #include <gtest/gtest.h>
@@ -394,6 +394,8 @@ TEST(TimeStep, DecidingParticlesGiveTheLimitsOfAllAndOfConcatenatedShares) {
     EXPECT_EQ(impact_speed(s, deciding), impact_speed(s, all));
     EXPECT_EQ(make_engine_setup(s, deciding).dt, make_engine_setup(s, all).dt);
     EXPECT_EQ(make_engine_setup(s, deciding).skin, make_engine_setup(s, all).skin);
+    EXPECT_EQ(exact_units(s, deciding).force, exact_units(s, all).force);
+    EXPECT_EQ(exact_units(s, deciding).torque, exact_units(s, all).torque);
     double r_max = 0, r_max_deciding = 0;
     for (const Real4& q : all.position_radius) r_max = std::max(r_max, q.w);
     for (const Real4& q : deciding.position_radius) r_max_deciding = std::max(r_max_deciding, q.w);
@@ -423,6 +425,26 @@ TEST(TimeStep, DecidingParticlesGiveTheLimitsOfAllAndOfConcatenatedShares) {
       EXPECT_EQ(setup_deciding_particles(s, gathered).id, deciding.id) << ranks << " shares";
     }
   }
+}
+
+// The integer sums' units: 2^-40 of the lightest grain's weight under standard gravity, and that
+// times the smallest radius, each rounded down to a power of two. A grain of 2 mm and 2500 kg/m³
+// weighs 8.21 · 10^-4 N (2^-40 of it 7.47 · 10^-16 N, between 2^-51 and 2^-50); a fixed one
+// (inverse mass 0) weighs what its material and radius make it.
+TEST(SumUnits, FromTheLightestGrainAndTheSmallestRadius) {
+  const Scene s = two_material_scene();
+  ParticleStore p;
+  add_particle(p, s, 0, 2e-3);
+  add_particle(p, s, 1, 3e-3);
+  EXPECT_EQ(exact_units(s, p).force, 0x1p-51);
+  EXPECT_EQ(exact_units(s, p).torque, 0x1p-60);  // 2^-51 · 2 mm = 8.9 · 10^-19 N m, above 2^-60
+  EXPECT_EQ(exact_units(s, p).per_force, 0x1p51);
+  // a fixed steel grain of 0.5 mm (4.0 · 10^-5 N; 2^-40 of it 3.6 · 10^-17 N, between 2^-55 and
+  // 2^-54): the lightest
+  add_particle(p, s, 1, 0.5e-3);
+  p.velocity_inv_mass.back().w = 0;
+  EXPECT_EQ(exact_units(s, p).force, 0x1p-55);
+  EXPECT_EQ(exact_units(s, p).torque, 0x1p-66);  // 2^-55 · 0.5 mm = 1.4 · 10^-20 N m
 }
 
 TEST(TimeStep, AutoDtIsFractionOfCriticalStep) {
