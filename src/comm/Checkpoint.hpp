@@ -40,7 +40,7 @@
 /// (u8: 1 when the run's dt was "adaptive"; optional when read: 0), bonds_made (u64; the bonds
 /// made at the run's start, or held by the bed it started from; in a bed, its intact bonds;
 /// written with the bond datasets), sum_force_unit and sum_torque_unit (f64, powers of two;
-/// optional when read: 0).
+/// optional when read, both or neither: 0).
 #include <mpi.h>
 
 #include <cstdint>

@@ -384,6 +384,8 @@ void read_attributes(const Reader& r, Checkpoint& c) {
   if (!(std::isfinite(c.skin) && c.skin >= 0)) r.reject("attribute 'skin' is not finite and >= 0");
   read_sum_unit(r, "sum_force_unit", c.sum_force_unit);
   read_sum_unit(r, "sum_torque_unit", c.sum_torque_unit);
+  if ((c.sum_force_unit == 0) != (c.sum_torque_unit == 0))
+    r.reject("attributes 'sum_force_unit' and 'sum_torque_unit' are not both there");
 }
 
 }  // namespace

@@ -432,7 +432,7 @@ TEST_F(DamagedCheckpoint, CheckpointWithoutMeshRecordsOrBuildStepReadsAsNoneAndT
   expect_identical(read_checkpoint(path()), expected);
 }
 
-TEST_F(DamagedCheckpoint, SumUnitsOtherThanPositivePowersOfTwoAreRejected) {
+TEST_F(DamagedCheckpoint, SumUnitsOtherThanTwoPositivePowersOfTwoAreRejected) {
   test::set_f64_attribute(path(), "sum_force_unit", 3e-14);
   expect_rejected("attribute 'sum_force_unit' is not a positive power of two");
   test::set_f64_attribute(path(), "sum_force_unit", 0x1p-45);
@@ -440,6 +440,8 @@ TEST_F(DamagedCheckpoint, SumUnitsOtherThanPositivePowersOfTwoAreRejected) {
   expect_rejected("attribute 'sum_torque_unit' is not a positive power of two");
   test::set_f64_attribute(path(), "sum_torque_unit", std::numeric_limits<double>::infinity());
   expect_rejected("attribute 'sum_torque_unit' is not a positive power of two");
+  test::remove_attribute(path(), "sum_torque_unit");
+  expect_rejected("attributes 'sum_force_unit' and 'sum_torque_unit' are not both there");
 }
 
 TEST_F(DamagedCheckpoint, SubstepsOutsideTheirRangeAreRejected) {
