@@ -128,6 +128,19 @@ TEST(ExactSum, ATermSpillsFromTwoToThe50UnitsAndKeepsItsValue) {
   EXPECT_TRUE(same_bits(a.value<double>(u), b.value<double>(u)));
 }
 
+TEST(ExactSum, TheValueIsTheExactIntegerRoundedOnce) {
+  // One-word terms bring the word to 2^55 + 3 units, which a double holds only to 8 units; a
+  // spilled term of −28 · 2^50 units then leaves 2^52 + 3, which a double holds exactly. The
+  // word rounded on its own would give 2^52.
+  const double u = kUnits.force, per_unit = kUnits.per_force;
+  ExactSum3 sum;
+  for (int k = 0; k < 32; ++k)
+    sum.add(exact_terms(Vec3{(exact_word_limit - 1) * u, 0, 0}, per_unit));
+  for (int k = 0; k < 35; ++k) sum.add(exact_terms(Vec3{u, 0, 0}, per_unit));
+  sum.add(exact_terms(Vec3{-28 * exact_word_limit * u, 0, 0}, per_unit));
+  EXPECT_EQ(sum.value<double>(u).x, (0x1p52 + 3) * u);
+}
+
 TEST(ExactSum, ATermBeyondTheLimitOrNotFiniteMakesTheSumNaN) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
