@@ -18,7 +18,7 @@ ExactUnits exact_units_for_grains(double lightest_weight, double smallest_radius
 }
 
 ExactTerm3 exact_terms_in_units(double x, double y, double z) {
-  ExactTerm3 t{{0, 0, 0}, {0, 0, 0}, true, true};
+  ExactTerm3 t{{}, {0, 0, 0}, true, true};
   const double units[3] = {x, y, z};
   for (int k = 0; k < 3; ++k) {
     const double u = units[k];
@@ -30,7 +30,7 @@ ExactTerm3 exact_terms_in_units(double x, double y, double z) {
     // 0), and below 2^49 in magnitude
     const double spill = std::rint(u * 0x1p-50);
     t.spill[k] = static_cast<std::uint64_t>(static_cast<std::int64_t>(spill));
-    t.word[k] = static_cast<std::uint64_t>(std::llrint(u - spill * 0x1p50));
+    t.words.word[k] = static_cast<std::uint64_t>(std::llrint(u - spill * 0x1p50));
   }
   return t;
 }

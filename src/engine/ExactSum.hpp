@@ -37,9 +37,9 @@ struct ExactWords3 {
 };
 
 /// One term of each component of a vector, in two's complement in unsigned words, whose sums
-/// wrap without overflow: word[k] + spill[k] · 2^50 units.
+/// wrap without overflow: words.word[k] + spill[k] · 2^50 units.
 struct ExactTerm3 {
-  std::uint64_t word[3];
+  ExactWords3 words;
   std::uint64_t spill[3];
   bool spilled;        ///< some spill is not zero, or the term is not representable
   bool representable;  ///< every component below exact_spill_limit units
@@ -54,8 +54,8 @@ ExactTerm3 exact_terms(const Vec3T<S>& v, double per_unit) {
   const double x = v.x * per_unit, y = v.y * per_unit, z = v.z * per_unit;
   const auto within = [](double c) { return std::fabs(c) < exact_word_limit; };  // NaN: false
   if (!(within(x) && within(y) && within(z))) return exact_terms_in_units(x, y, z);
-  return {{static_cast<std::uint64_t>(std::llrint(x)), static_cast<std::uint64_t>(std::llrint(y)),
-           static_cast<std::uint64_t>(std::llrint(z))},
+  return {{{static_cast<std::uint64_t>(std::llrint(x)), static_cast<std::uint64_t>(std::llrint(y)),
+            static_cast<std::uint64_t>(std::llrint(z))}},
           {0, 0, 0},
           false,
           true};
@@ -71,8 +71,7 @@ struct ExactTermLanes {
 
   ExactTerm3 lane(int l) const {
     if (spills) return exact_terms_in_units(units[0][l], units[1][l], units[2][l]);
-    const ExactWords3 w = words(l);
-    return {{w.word[0], w.word[1], w.word[2]}, {0, 0, 0}, false, true};
+    return {words(l), {0, 0, 0}, false, true};
   }
   /// Lane l's terms, one word each, where no lane spills.
   ExactWords3 words(int l) const {
@@ -127,10 +126,10 @@ struct ExactSpill3 {
 };
 
 namespace exact_detail {
-inline void add(ExactWords3& w, const ExactTerm3& t) {
+inline void add(ExactWords3& w, const ExactWords3& t) {
   for (int k = 0; k < 3; ++k) w.word[k] += t.word[k];
 }
-inline void subtract(ExactWords3& w, const ExactTerm3& t) {
+inline void subtract(ExactWords3& w, const ExactWords3& t) {
   for (int k = 0; k < 3; ++k) w.word[k] -= t.word[k];
 }
 inline void add(ExactSpill3& s, const ExactTerm3& t) {
@@ -157,11 +156,11 @@ struct ExactSum3 {
   ExactSpill3 spill;
 
   void add(const ExactTerm3& t) {
-    exact_detail::add(words, t);
+    exact_detail::add(words, t.words);
     if (t.spilled) exact_detail::add(spill, t);
   }
   void subtract(const ExactTerm3& t) {
-    exact_detail::subtract(words, t);
+    exact_detail::subtract(words, t.words);
     if (t.spilled) exact_detail::subtract(spill, t);
   }
   template <class S>
@@ -187,25 +186,23 @@ struct ExactSumArrays {
 
   explicit operator bool() const { return words != nullptr; }
   void add(std::uint32_t i, const ExactTerm3& t) const {
-    exact_detail::add(words[i], t);
+    exact_detail::add(words[i], t.words);
     if (t.spilled) {
       exact_detail::add(spills[i], t);
       spilled->store(true, std::memory_order_relaxed);
     }
   }
   void subtract(std::uint32_t i, const ExactTerm3& t) const {
-    exact_detail::subtract(words[i], t);
+    exact_detail::subtract(words[i], t.words);
     if (t.spilled) {
       exact_detail::subtract(spills[i], t);
       spilled->store(true, std::memory_order_relaxed);
     }
   }
   /// The same for a term that does not spill.
-  void add(std::uint32_t i, const ExactWords3& t) const {
-    for (int k = 0; k < 3; ++k) words[i].word[k] += t.word[k];
-  }
+  void add(std::uint32_t i, const ExactWords3& t) const { exact_detail::add(words[i], t); }
   void subtract(std::uint32_t i, const ExactWords3& t) const {
-    for (int k = 0; k < 3; ++k) words[i].word[k] -= t.word[k];
+    exact_detail::subtract(words[i], t);
   }
   /// Particle i's words set to zero (its spill is zero at the start of a sweep).
   void clear(std::uint32_t i) const { words[i] = ExactWords3{}; }

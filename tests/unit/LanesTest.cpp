@@ -181,7 +181,7 @@ TYPED_TEST(LanesLaw, ReadingTheStoredStateToo) { expect_lanes_match_scalar<TypeP
 /// The integer a term's component k stands for, word + spill · 2^50 units.
 __extension__ typedef __int128 Units;
 Units units_of(const ExactTerm3& t, int k) {
-  return static_cast<Units>(static_cast<std::int64_t>(t.word[k])) +
+  return static_cast<Units>(static_cast<std::int64_t>(t.words.word[k])) +
          static_cast<Units>(static_cast<std::int64_t>(t.spill[k])) * (Units(1) << 50);
 }
 
