@@ -86,13 +86,18 @@ for v in $(env | grep -Eo '^(OMPI|PMIX|OPAL)_[A-Za-z0-9_]*'); do unset "$v"; don
 source "$source_dir/scripts/mpi-env.sh"
 export OMP_NUM_THREADS=1
 cd "$work"
-# The stepping speed here ("done: N steps in T s" of a 1 s run, past the pour's first
-# collisions) sets the run's length.
-done_line=$("$mpirun" -np 2 "$binary" scene.toml "${settings[@]}" --quiet --output-dir probe \
-  --set simulation.end_time=1.0 | grep '^done:')
-end_time=$(echo "$done_line" |
-  awk '{ t = int(150 * $2 / $5 * 5e-5); print t < 10 ? 10 : t }')
-echo "probe: $done_line; the run goes to t = $end_time s, about 150 s of stepping"
+# The stepping speed here sets the run's length: the steps of 4 s of simulated time, past the
+# pour, over the difference between the stepping times ("done: N steps in T s") of a run to
+# t = 5 s and one to t = 1 s, so that start-up, the pour and the first output do not count.
+probe() {
+  "$mpirun" -np 2 "$binary" scene.toml "${settings[@]}" --quiet --output-dir "probe$1" \
+    --set simulation.end_time="$1" | sed -n 's/^done: \([0-9]*\) steps in \([0-9.]*\) s.*/\1 \2/p'
+}
+short=$(probe 1.0)
+long=$(probe 5.0)
+end_time=$(echo "$short $long" |
+  awk '{ rate = ($3 - $1) / ($4 - $2); t = int(150 * rate * 5e-5); print t < 10 ? 10 : t }')
+echo "probe: steps, seconds to t = 1 s: $short; to t = 5 s: $long; the run goes to t = $end_time s"
 
 failures=0
 fail() {
