@@ -165,24 +165,25 @@ struct PairLanesForces {
         if (c.grouped[l]) once.pair_torque.add(j, term(t.partner_torque, l));
       }
       const Real lane_ratio = lane_of(ratio, l);
-      Real* worst = once.sweep.overlap_ratio;
+      Real* worst = once.pair_ratio;
       if (lane_ratio > worst[i]) worst[i] = lane_ratio;
       if (c.grouped[l] && lane_ratio > worst[j]) worst[j] = lane_ratio;
     }
   }
 
-  /// Particle i's walls and meshes, then its force, torque and worst ratio stored.
+  /// Particle i's walls and meshes, then its force, torque and worst ratio stored; its sums
+  /// cleared for the next sweep.
   void finish(std::uint32_t i) const {
     const ForceSweep<Law, P>& s = once.sweep;
     const SweptParticle me = swept_particle<Law>(i, s.particles);
-    ForceSum<Law> bodies{s.history, s.dt, {}, {}, s.overlap_ratio[i], s.wall_push};
+    ForceSum<Law> bodies{s.history, s.dt, {}, {}, take(once.pair_ratio, i), s.wall_push};
     visit_body_contacts(i, me, s.scene, bodies);
     Vec3T<S> torque{};  // summed only for a law with torques
     const ExactUnits& units = once.units;
     if constexpr (Law::needs_spin)
-      torque = once.pair_torque[i].template value<S>(units.torque) + bodies.torque;
-    s.store(i, me.v.w, once.pair_force[i].template value<S>(units.force) + bodies.force, torque,
-            bodies.worst_overlap_ratio);
+      torque = take(once.pair_torque, i).template value<S>(units.torque) + bodies.torque;
+    s.store(i, me.v.w, take(once.pair_force, i).template value<S>(units.force) + bodies.force,
+            torque, bodies.worst_overlap_ratio);
   }
 };
 

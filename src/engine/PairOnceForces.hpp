@@ -2,12 +2,14 @@
 /// The host backend's force sweep, which evaluates each pair contact once. The particles of a
 /// sweep (all owned ones, or a subset: the interior or boundary rows of a decomposed run) are
 /// split into one contiguous range per thread, and each particle is tagged with its range's
-/// group (the sweep's generation and the range's first particle). A pair whose two ends are in
-/// the same group is evaluated at its lower index: that end adds the pair's load to its own sum
-/// and subtracts it from the partner's accumulator, whose turn is still to come (a subset lists
-/// its particles in ascending order); any other pair (across ranges or sweeps, or with a ghost)
-/// is evaluated at both ends, each writing only its own. The entries each particle evaluates are
-/// selected once per list and grouping (SelectEvaluated), so that the sweep walks only those.
+/// group (the selection's number and the range's first particle, written when the sweep's
+/// entries are selected: once per list and grouping). A pair whose two ends are in the same
+/// group is evaluated at its lower index: that end adds the pair's load to its own sum and
+/// subtracts it from the partner's accumulator, whose turn is still to come (a subset lists its
+/// particles in ascending order) and which the partner clears when it takes it; any other pair
+/// (across ranges or sweeps, or with a ghost) is evaluated at both ends, each writing only its
+/// own. The entries each particle evaluates are selected once per list and grouping
+/// (SelectEvaluated), so that the sweep walks only those.
 /// Loads are summed as integers in the run's units (ExactSum.hpp), so each particle's force and
 /// torque are the same bits on any number of threads or ranks: the two ends of a pair evaluate to
 /// exact mirrors (n, v_rel and the history change sign, every other input is symmetric), a term and
@@ -119,27 +121,33 @@ struct SelectEvaluated {
   }
 };
 
-/// Tags each particle of a range with the range's group and clears what its partners will add.
+/// Tags each particle of a range with the range's group: the selection's number and the range's
+/// first particle.
 struct GroupRange {
   const std::uint32_t* subset;
-  std::uint64_t generation;
+  std::uint64_t selection;
   std::uint64_t* group;
-  ExactSumArrays pair_force;
-  ExactSumArrays pair_torque;  ///< empty for a law without torques
-  Real* overlap_ratio;
 
   void operator()(std::uint32_t begin, std::uint32_t end) const {
     if (begin == end) return;
-    const std::uint64_t tag = generation << 32 | swept_index(subset, begin);
-    for (std::uint32_t k = begin; k < end; ++k) {
-      const std::uint32_t i = swept_index(subset, k);
-      group[i] = tag;
-      pair_force.clear(i);
-      if (pair_torque) pair_torque.clear(i);
-      overlap_ratio[i] = 0;
-    }
+    const std::uint64_t tag = selection << 32 | swept_index(subset, begin);
+    for (std::uint32_t k = begin; k < end; ++k) group[swept_index(subset, k)] = tag;
   }
 };
+
+/// What particle i's lower partners left in `sums`, which is cleared for the next sweep.
+inline ExactSum3 take(const ExactSumArrays& sums, std::uint32_t i) {
+  const ExactSum3 sum = sums[i];
+  sums.clear(i);
+  return sum;
+}
+
+/// The worst overlap ratio particle i's lower partners left, cleared for the next sweep.
+inline Real take(Real* worst, std::uint32_t i) {
+  const Real ratio = worst[i];
+  worst[i] = 0;
+  return ratio;
+}
 
 template <class Law, class P>
 struct PairOnceForces {
@@ -150,6 +158,7 @@ struct PairOnceForces {
   ExactUnits units{};            ///< of the integer sums
   ExactSumArrays pair_force{};   ///< per particle: what its group's lower partners left
   ExactSumArrays pair_torque{};  ///< idem, torques; empty for a law without torques
+  Real* pair_ratio = nullptr;    ///< idem, the worst overlap ratio
 
   /// The particles at positions [begin, end) of the sweep, in order.
   GPUDEM_HOST_FLATTEN void operator()(std::uint32_t begin, std::uint32_t end) const {
@@ -157,15 +166,16 @@ struct PairOnceForces {
   }
 
   /// The particle at position k: its pairs (each in its group once), then its walls and meshes.
-  /// sweep.overlap_ratio holds, until its turn, the worst ratio of its lower partners in its
-  /// group.
+  /// It starts from what its lower partners in its group left, and clears that for the next
+  /// sweep.
   GPUDEM_HOST_FLATTEN void particle(std::uint32_t position) const {
     const std::uint32_t i = swept_index(sweep.subset, position);
     const ForceSweep<Law, P>& s = sweep;
     const SweptParticle me = swept_particle<Law>(i, s.particles);
     ExactSum3 torque_so_far{};
-    if constexpr (Law::needs_spin) torque_so_far = pair_torque[i];
-    PairOnceSum<Law> sum{s.history, s.dt, units, pair_force[i], torque_so_far, s.overlap_ratio[i]};
+    if constexpr (Law::needs_spin) torque_so_far = take(pair_torque, i);
+    PairOnceSum<Law> sum{s.history,           s.dt,          units,
+                         take(pair_force, i), torque_so_far, take(pair_ratio, i)};
     const std::uint32_t group_end = evaluated.group_end[position];
     for (std::uint32_t h = evaluated.begin[position]; h < evaluated.end[position]; ++h) {
       const std::uint32_t k = evaluated.entry[h];
@@ -178,7 +188,7 @@ struct PairOnceForces {
       if constexpr (Law::needs_spin)
         pair_torque.add(
             j, exact_terms(sum.partner_torque(s.particles.position(j).w), units.per_torque));
-      if (sum.ratio > s.overlap_ratio[j]) s.overlap_ratio[j] = sum.ratio;
+      if (sum.ratio > pair_ratio[j]) pair_ratio[j] = sum.ratio;
     }
     ForceSum<Law> bodies{s.history, s.dt, {}, {}, sum.worst_overlap_ratio, s.wall_push};
     visit_body_contacts(i, me, s.scene, bodies);

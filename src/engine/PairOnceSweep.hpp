@@ -2,6 +2,7 @@
 /// The state of the host's pair-once force sweeps between steps (PairOnceSweep): each particle's
 /// group, the partners' integer sums, and the history that the last sweeps advanced at one end
 /// of a pair only, mirrored to the other end before anything reads it. Host code only.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -62,14 +63,12 @@ class PairOnceSweep {
       group_.resize(list.owned);
       pair_force_.resize(list.owned);
       if constexpr (Law::needs_spin) pair_torque_.resize(list.owned);
+      pair_ratio_.resize(list.owned);
     }
-    ++generation_;
     kernel.units = units_;
     kernel.pair_force = pair_force_.arrays();
     if constexpr (Law::needs_spin) kernel.pair_torque = pair_torque_.arrays();
-    host_ranges(count, grouping_.ranges,
-                GroupRange{kernel.sweep.subset, generation_, group_.data(), kernel.pair_force,
-                           kernel.pair_torque, kernel.sweep.overlap_ratio});
+    kernel.pair_ratio = pair_ratio_.data();
     kernel.evaluated = evaluated_rows(kernel.sweep.subset, count, list);
     if (!sweep_in_lanes(kernel, count)) host_ranges(count, grouping_.ranges, kernel);
     if constexpr (Law::history_size > 0) pending_ = kernel.sweep.history.pair;
@@ -80,7 +79,7 @@ class PairOnceSweep {
 
   std::size_t bytes() const {
     return group_.capacity() * sizeof(std::uint64_t) + pair_force_.bytes() + pair_torque_.bytes() +
-           rows_bytes();
+           pair_ratio_.capacity() * sizeof(Real) + rows_bytes();
   }
 
   /// Fills in the other ends of the pairs the sweeps since the last call evaluated once, in the
@@ -120,19 +119,25 @@ class PairOnceSweep {
   }
 
   /// The entries each particle of this sweep evaluates (EvaluatedRows), kept per sweep and
-  /// selected again after a new list or a regrouping: between list builds the grouping stays,
-  /// and so do the groups each sweep's particles are tagged with (the same ranges, a new
-  /// generation).
+  /// selected again after a new list or a regrouping, when the sweep's particles are tagged
+  /// with their groups (GroupRange). Between list builds the grouping and the tags stay. The
+  /// subsets of the sweeps kept are disjoint: a sweep over all particles and one over a subset
+  /// are not kept together, since each would retag the other's particles.
   EvaluatedRows evaluated_rows(const std::uint32_t* subset, std::size_t count,
                                const ListRows& list) {
     const SweepKey key{list.builds, subset, count, grouping_.ranges};
+    const auto overlaps = [subset](const SweepRows& r) {
+      return (r.key.subset == nullptr) != (subset == nullptr);
+    };
     if (!sweeps_.empty() && sweeps_.front().key.list_builds != list.builds) sweeps_.clear();
+    if (std::any_of(sweeps_.begin(), sweeps_.end(), overlaps)) sweeps_.clear();
     SweepRows* rows = nullptr;
     for (SweepRows& r : sweeps_)
       if (r.key.subset == subset) rows = &r;
     if (rows && rows->key == key) return rows->view();
     if (!rows) rows = &sweeps_.emplace_back();
     rows->key = key;
+    host_ranges(count, grouping_.ranges, GroupRange{subset, ++selections_, group_.data()});
     rows->begin.resize(count);
     rows->group_end.resize(count);
     rows->end.resize(count);
@@ -176,13 +181,16 @@ class PairOnceSweep {
     EvaluatedRows view() { return {begin.data(), group_end.data(), end.data(), entry.data()}; }
   };
   Grouping grouping_;
-  /// Of the last sweep. A tag of an older sweep does not match: every owned particle is
-  /// tagged anew each step, so a tag is at most a few sweeps old (the count wraps after 2^32).
-  std::uint32_t generation_ = 0;
+  /// Selections of evaluated rows so far. A tag of an older selection does not match: every
+  /// owned particle is tagged anew after each list build (the count wraps after 2^32).
+  std::uint32_t selections_ = 0;
   std::vector<std::uint64_t> group_;
   ExactUnits units_;
+  /// What each particle's lower partners in its group leave for its turn; zero between sweeps
+  /// (each particle clears its own when it takes them).
   ExactSumStore pair_force_;
   ExactSumStore pair_torque_;
+  std::vector<Real> pair_ratio_;
   std::vector<SweepRows> sweeps_;  ///< per subset swept since the last list build
   State* pending_ = nullptr;       ///< the history the last sweeps wrote, other ends not filled in
   int lanes_;                      ///< contacts PairLanesInVectors evaluates at once; 1: none
