@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # scripts/slurm/ under Debian's Slurm (slurm-wlm), started for real on this machine: a
 # controller and one node with this machine's cores, no GPUs, in WORK_DIR. submit_chain.sh
-# submits four one-minute jobs of gpudem.sbatch (2 ranks, host backend) for a run that needs
+# submits five one-minute jobs of gpudem.sbatch (2 ranks, host backend) for a run that needs
 # about 150 s: the first job hits its time limit and is cancelled by Slurm (Slurm checks
-# the limits every 30 s, so at 60 to 95 s),
-# the next ones resume from the checkpoint, the last ones find the run complete. The run's
+# the limits every 30 s, so at 60 to 95 s), the next ones resume from the checkpoint, the last
+# ones find the run complete (four jobs step at least 4 x 57 s, so the run may take 100 to
+# 220 s: the speed measured below may be off by a third either way). The run's
 # final checkpoint and time series must then equal, bit for bit, those of the same scene run
 # straight through with mpirun. Slurm is stopped on exit, whatever happened.
 # Exit 77 (skipped, with the reason) where Slurm is missing or does not start.
@@ -86,18 +87,18 @@ for v in $(env | grep -Eo '^(OMPI|PMIX|OPAL)_[A-Za-z0-9_]*'); do unset "$v"; don
 source "$source_dir/scripts/mpi-env.sh"
 export OMP_NUM_THREADS=1
 cd "$work"
-# The stepping speed here sets the run's length: the steps of 4 s of simulated time, past the
+# The stepping speed here sets the run's length: the steps of 8 s of simulated time, past the
 # pour, over the difference between the stepping times ("done: N steps in T s") of a run to
-# t = 5 s and one to t = 1 s, so that start-up, the pour and the first output do not count.
+# t = 9 s and one to t = 1 s, so that start-up, the pour and the first output do not count.
 probe() {
   "$mpirun" -np 2 "$binary" scene.toml "${settings[@]}" --quiet --output-dir "probe$1" \
     --set simulation.end_time="$1" | sed -n 's/^done: \([0-9]*\) steps in \([0-9.]*\) s.*/\1 \2/p'
 }
 short=$(probe 1.0)
-long=$(probe 5.0)
+long=$(probe 9.0)
 end_time=$(echo "$short $long" |
   awk '{ rate = ($3 - $1) / ($4 - $2); t = int(150 * rate * 5e-5); print t < 10 ? 10 : t }')
-echo "probe: steps, seconds to t = 1 s: $short; to t = 5 s: $long; the run goes to t = $end_time s"
+echo "probe: steps, seconds to t = 1 s: $short; to t = 9 s: $long; the run goes to t = $end_time s"
 
 failures=0
 fail() {
@@ -106,10 +107,10 @@ fail() {
 }
 ids=$(OUT=out/chain GPUDEM=$binary BACKEND=host \
   SBATCH_ARGS="--job-name=chain --gres=none --ntasks-per-node=2 --cpus-per-task=1 --time=1" \
-  bash "$source_dir/scripts/slurm/submit_chain.sh" 4 scene.toml "${settings[@]}" \
+  bash "$source_dir/scripts/slurm/submit_chain.sh" 5 scene.toml "${settings[@]}" \
   --set simulation.end_time="$end_time")
 read -r -a jobs <<< "$(echo $ids)"
-((${#jobs[@]} == 4)) || fail "submit_chain.sh printed '$ids'"
+((${#jobs[@]} == 5)) || fail "submit_chain.sh printed '$ids'"
 for ((wait = 0; wait < 60; ++wait)); do
   [[ $(squeue -h -j "${jobs[0]}" -o %T 2> /dev/null) == RUNNING ]] && break
   sleep 1
@@ -132,8 +133,8 @@ grep -q "DUE TO TIME LIMIT" "${outputs[0]}" ||
   fail "job ${jobs[0]} was not cut by its time limit: $(tail -n 5 "${outputs[0]}")"
 grep -q "restart from out/chain/checkpoint.h5" "${outputs[1]}" ||
   fail "job ${jobs[1]} did not resume: $(tail -n 5 "${outputs[1]}")"
-grep -q "run complete: out/chain/checkpoint.h5" "${outputs[3]}" ||
-  fail "job ${jobs[3]} did not find the run complete: $(tail -n 5 "${outputs[3]}")"
+grep -q "run complete: out/chain/checkpoint.h5" "${outputs[4]}" ||
+  fail "job ${jobs[4]} did not find the run complete: $(tail -n 5 "${outputs[4]}")"
 for dataset in position_radius velocity_inv_mass angular_velocity force id; do
   h5diff out/chain/checkpoint.h5 out/straight/checkpoint.h5 "/$dataset" "/$dataset" > /dev/null ||
     fail "final $dataset differs from the straight run's"
