@@ -421,13 +421,13 @@ struct PairEntry {
   Real dist2;       ///< |d|²
 };
 
-/// Whether particle i (`me`) and its partner on list entry k touch: positive overlap, or, for a
+/// Whether particle i (`me`) and its partner j on list entry k touch: positive overlap, or, for a
 /// cohesion that holds contacts past touch (JKR), a formed contact within its pull-off gap; a
 /// bonded pair never does.
 template <class Law, class P>
-GPUDEM_HD PairEntry pair_entry(const SweptParticle& me, std::uint32_t k, const ParticleView<P>& p,
-                               const ContactScene<Law>& s) {
-  PairEntry e{s.neighbor_index[k], false, {}, {}, 0};
+GPUDEM_HD PairEntry pair_entry(const SweptParticle& me, std::uint32_t k, std::uint32_t j,
+                               const ParticleView<P>& p, const ContactScene<Law>& s) {
+  PairEntry e{j, false, {}, {}, 0};
   if (s.bonded(k)) return e;
   const Real4 xi = me.x;
   e.xj = p.position(e.j);
@@ -441,6 +441,14 @@ GPUDEM_HD PairEntry pair_entry(const SweptParticle& me, std::uint32_t k, const P
                                 xi.w * e.xj.w / reach, s.pair_history[k]);
   e.touching = !(e.dist2 >= limit * limit || e.dist2 == 0);  // NaN: touching, so it spreads
   return e;
+}
+
+/// The same, the partner read from the list (a sweep that keeps its partners beside the entries
+/// passes them: one dependent load less).
+template <class Law, class P>
+GPUDEM_HD PairEntry pair_entry(const SweptParticle& me, std::uint32_t k, const ParticleView<P>& p,
+                               const ContactScene<Law>& s) {
+  return pair_entry(me, k, s.neighbor_index[k], p, s);
 }
 
 /// Calls visit(sample) when particle i (`me`) and its partner on list entry k touch

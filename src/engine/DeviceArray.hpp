@@ -8,13 +8,14 @@
 
 #include "engine/CudaMemory.hpp"
 #include "engine/ExecutionSpace.hpp"
+#include "engine/HostAllocator.hpp"
 
 namespace gpudem {
 
 template <class T, class Space>
 class DeviceArray;
 
-/// Host buffer: a std::vector.
+/// Host buffer: a std::vector on HostAllocator (huge pages from 2 MiB on).
 template <class T>
 class DeviceArray<T, HostSpace> {
  public:
@@ -25,9 +26,8 @@ class DeviceArray<T, HostSpace> {
   std::size_t size() const { return data_.size(); }
   /// Resizes keeping the first min(old, new) elements.
   void resize(std::size_t n) { data_.resize(n); }
-  // Copy, then move: GCC 12 -Wnonnull misfires on copy-assigning into a provably empty vector.
-  void upload(const std::vector<T>& host) { data_ = std::vector<T>(host); }
-  void download(std::vector<T>& host) const { host = std::vector<T>(data_); }
+  void upload(const std::vector<T>& host) { data_.assign(host.begin(), host.end()); }
+  void download(std::vector<T>& host) const { host.assign(data_.begin(), data_.end()); }
   /// The first n values (n <= size()).
   void download(std::vector<T>& host, std::size_t n) const {
     host.assign(data_.begin(), data_.begin() + n);
@@ -36,7 +36,7 @@ class DeviceArray<T, HostSpace> {
   std::size_t bytes() const { return data_.capacity() * sizeof(T); }
 
  private:
-  std::vector<T> data_;
+  HostVector<T> data_;
 };
 
 /// CUDA device buffer; keeps its contents on resize. The first allocation is exact; a buffer that

@@ -25,6 +25,7 @@
 #include "core/Lanes.hpp"
 #include "core/Vec3.hpp"
 #include "engine/ExactUnits.hpp"
+#include "engine/HostAllocator.hpp"
 
 namespace gpudem {
 
@@ -233,8 +234,8 @@ class ExactSumStore {
   }
 
  private:
-  std::vector<ExactWords3> words_;
-  std::vector<ExactSpill3> spills_;
+  HostVector<ExactWords3> words_;
+  HostVector<ExactSpill3> spills_;
   std::atomic<bool> spilled_{false};
 };
 

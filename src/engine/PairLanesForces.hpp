@@ -98,7 +98,7 @@ struct PairLanesForces {
     for (std::uint32_t h = rows.begin[position]; h < rows.end[position]; ++h) {
       const std::uint32_t k = rows.entry[h];
       const bool grouped = h < group_end;
-      const PairEntry e = pair_entry(me, k, s.particles, s.scene);
+      const PairEntry e = pair_entry(me, k, rows.partner[h], s.particles, s.scene);
       if (!e.touching) {
         if constexpr (Law::history_size > 0) s.history.pair[k] = typename Law::State{};
         continue;

@@ -87,6 +87,7 @@ struct EvaluatedRows {
   std::uint32_t* group_end;  ///< per position
   std::uint32_t* end;        ///< per position
   std::uint32_t* entry;      ///< list entries; position k's from begin[k], its row's length at most
+  std::uint32_t* partner;    ///< the partner on each of them
 };
 
 /// Whether owned particle i and its partner j are in one group (GroupRange): then only the lower
@@ -112,7 +113,10 @@ struct SelectEvaluated {
         for (std::uint32_t e = list.offsets[i]; e < list.offsets[i + 1]; ++e) {
           const std::uint32_t j = list.index[e];
           const bool grouped = in_one_group(i, j, list.owned, group);
-          if (grouped == (pass == 0) && !(grouped && j < i)) rows.entry[h++] = e;
+          if (grouped == (pass == 0) && !(grouped && j < i)) {
+            rows.entry[h] = e;
+            rows.partner[h++] = j;
+          }
         }
         if (pass == 0) rows.group_end[k] = h;
       }

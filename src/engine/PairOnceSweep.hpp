@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/Lanes.hpp"
+#include "engine/HostAllocator.hpp"
 #include "engine/PairOnceForces.hpp"
 #if GPUDEM_HOST_LANES
 #include "engine/PairLanesForces.hpp"
@@ -148,6 +149,7 @@ class PairOnceSweep {
       total += list.offsets[i + 1] - list.offsets[i];
     }
     rows->entry.resize(total);
+    rows->partner.resize(total);
     host_ranges(count, grouping_.ranges,
                 SelectEvaluated{subset, list, group_.data(), rows->view()});
     return rows->view();
@@ -156,7 +158,8 @@ class PairOnceSweep {
   std::size_t rows_bytes() const {
     std::size_t words = 0;
     for (const SweepRows& r : sweeps_)
-      words += r.begin.capacity() + r.group_end.capacity() + r.end.capacity() + r.entry.capacity();
+      words += r.begin.capacity() + r.group_end.capacity() + r.end.capacity() + r.entry.capacity() +
+               r.partner.capacity();
     return words * sizeof(std::uint32_t);
   }
 
@@ -177,20 +180,22 @@ class PairOnceSweep {
   };
   struct SweepRows {
     SweepKey key;
-    std::vector<std::uint32_t> begin, group_end, end, entry;
-    EvaluatedRows view() { return {begin.data(), group_end.data(), end.data(), entry.data()}; }
+    HostVector<std::uint32_t> begin, group_end, end, entry, partner;
+    EvaluatedRows view() {
+      return {begin.data(), group_end.data(), end.data(), entry.data(), partner.data()};
+    }
   };
   Grouping grouping_;
   /// Selections of evaluated rows so far. A tag of an older selection does not match: every
   /// owned particle is tagged anew after each list build (the count wraps after 2^32).
   std::uint32_t selections_ = 0;
-  std::vector<std::uint64_t> group_;
+  HostVector<std::uint64_t> group_;
   ExactUnits units_;
   /// What each particle's lower partners in its group leave for its turn; zero between sweeps
   /// (each particle clears its own when it takes them).
   ExactSumStore pair_force_;
   ExactSumStore pair_torque_;
-  std::vector<Real> pair_ratio_;
+  HostVector<Real> pair_ratio_;
   std::vector<SweepRows> sweeps_;  ///< per subset swept since the last list build
   State* pending_ = nullptr;       ///< the history the last sweeps wrote, other ends not filled in
   int lanes_;                      ///< contacts PairLanesInVectors evaluates at once; 1: none

@@ -1,0 +1,70 @@
+#pragma once
+/// The allocator of the host's particle, list and history buffers. A buffer of a huge page
+/// (2 MiB) or more starts on a huge-page boundary and asks the kernel for transparent huge pages
+/// (madvise MADV_HUGEPAGE, which kernels set to `madvise` honour): the force sweep's scattered
+/// reads of partners and records then miss the TLB far less often. A smaller buffer is an
+/// ordinary allocation. The advice is a hint; where the kernel does not take it, the pages stay
+/// small and nothing else changes. Host code only.
+#include <cstddef>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace gpudem {
+
+/// The size of a huge page on x86-64 and AArch64 Linux [bytes]: a buffer from this size on
+/// asks for huge pages.
+inline constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
+
+/// `bytes` aligned to `alignment`, on huge pages from kHugePageBytes on.
+inline void* allocate_host_bytes(std::size_t bytes, std::size_t alignment) {
+  if (bytes < kHugePageBytes) return ::operator new(bytes, std::align_val_t(alignment));
+  void* p = nullptr;
+  if (posix_memalign(&p, kHugePageBytes, bytes) != 0) throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  madvise(p, bytes, MADV_HUGEPAGE);  // a hint: refused, the pages stay small
+#endif
+  return p;
+}
+
+/// Frees what allocate_host_bytes(bytes, alignment) returned.
+inline void release_host_bytes(void* p, std::size_t bytes, std::size_t alignment) noexcept {
+  if (bytes < kHugePageBytes)
+    ::operator delete(p, std::align_val_t(alignment));
+  else
+    std::free(p);
+}
+
+/// The standard allocator's interface over allocate_host_bytes.
+template <class T>
+struct HostAllocator {
+  using value_type = T;
+  HostAllocator() = default;
+  template <class U>
+  HostAllocator(const HostAllocator<U>&) noexcept {}  // NOLINT: rebinding converts implicitly
+  T* allocate(std::size_t n) {
+    return static_cast<T*>(allocate_host_bytes(n * sizeof(T), alignof(T)));
+  }
+  void deallocate(T* p, std::size_t n) noexcept {
+    release_host_bytes(p, n * sizeof(T), alignof(T));
+  }
+};
+
+template <class T, class U>
+bool operator==(const HostAllocator<T>&, const HostAllocator<U>&) {
+  return true;
+}
+template <class T, class U>
+bool operator!=(const HostAllocator<T>&, const HostAllocator<U>&) {
+  return false;
+}
+
+/// A host buffer that grows with the particles (HostAllocator).
+template <class T>
+using HostVector = std::vector<T, HostAllocator<T>>;
+
+}  // namespace gpudem
