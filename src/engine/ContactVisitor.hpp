@@ -443,20 +443,13 @@ GPUDEM_HD PairEntry pair_entry(const SweptParticle& me, std::uint32_t k, std::ui
   return e;
 }
 
-/// The same, the partner read from the list (a sweep that keeps its partners beside the entries
-/// passes them: one dependent load less).
-template <class Law, class P>
-GPUDEM_HD PairEntry pair_entry(const SweptParticle& me, std::uint32_t k, const ParticleView<P>& p,
-                               const ContactScene<Law>& s) {
-  return pair_entry(me, k, s.neighbor_index[k], p, s);
-}
-
-/// Calls visit(sample) when particle i (`me`) and its partner on list entry k touch
+/// Calls visit(sample) when particle i (`me`) and its partner j on list entry k touch
 /// (pair_entry), and visit.separated(k) otherwise.
 template <class Law, class P, class Visitor>
-GPUDEM_HD void visit_pair_entry(const SweptParticle& me, std::uint32_t k, const ParticleView<P>& p,
-                                const ContactScene<Law>& s, Visitor& visit) {
-  const PairEntry e = pair_entry(me, k, p, s);
+GPUDEM_HD void visit_pair_entry(const SweptParticle& me, std::uint32_t k, std::uint32_t j,
+                                const ParticleView<P>& p, const ContactScene<Law>& s,
+                                Visitor& visit) {
+  const PairEntry e = pair_entry(me, k, j, p, s);
   if (!e.touching) {
     visit.separated(k);
     return;
@@ -488,7 +481,7 @@ GPUDEM_HD void for_each_contact(std::uint32_t i, const ParticleView<P>& p,
                                 const ContactScene<Law>& s, Visitor& visit) {
   const SweptParticle me = swept_particle<Law>(i, p);
   for (std::uint32_t k = s.neighbor_offsets[i]; k < s.neighbor_offsets[i + 1]; ++k)
-    visit_pair_entry(me, k, p, s, visit);
+    visit_pair_entry(me, k, s.neighbor_index[k], p, s, visit);
   visit_body_contacts(i, me, s, visit);
 }
 

@@ -26,8 +26,9 @@ class DeviceArray<T, HostSpace> {
   std::size_t size() const { return data_.size(); }
   /// Resizes keeping the first min(old, new) elements.
   void resize(std::size_t n) { data_.resize(n); }
-  void upload(const std::vector<T>& host) { data_.assign(host.begin(), host.end()); }
-  void download(std::vector<T>& host) const { host.assign(data_.begin(), data_.end()); }
+  // Copy, then move: GCC 12 -Wnonnull misfires on copy-assigning into a provably empty vector.
+  void upload(const std::vector<T>& host) { data_ = HostVector<T>(host.begin(), host.end()); }
+  void download(std::vector<T>& host) const { host = std::vector<T>(data_.begin(), data_.end()); }
   /// The first n values (n <= size()).
   void download(std::vector<T>& host, std::size_t n) const {
     host.assign(data_.begin(), data_.begin() + n);

@@ -116,7 +116,7 @@ struct ContactTerms {
       const std::uint32_t j = scene.neighbor_index[k];
       if (j < me) continue;  // the lower index counts it
       t.pair_share = j < owned ? Real(1) : Real(0.5);
-      visit_pair_entry(swept, k, particles, scene, t);
+      visit_pair_entry(swept, k, j, particles, scene, t);
     }
     visit_body_contacts(me, swept, scene, t);
     if (contacts) contacts[i] = t.contacts;

@@ -19,7 +19,6 @@
 #include <cstdint>
 #include <limits>
 #include <type_traits>
-#include <vector>
 
 #include "core/Config.hpp"
 #include "core/Lanes.hpp"

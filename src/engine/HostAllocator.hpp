@@ -16,11 +16,13 @@
 
 namespace gpudem {
 
-/// The size of a huge page on x86-64 and AArch64 Linux [bytes]: a buffer from this size on
-/// asks for huge pages.
+/// The size of a huge page on Linux with 4 KiB base pages (x86-64; AArch64 with 4 KiB pages)
+/// [bytes]: a buffer from this size on asks for huge pages. On AArch64 kernels with 64 KiB base
+/// pages a huge page is 512 MiB, and the advice then gains nothing.
 inline constexpr std::size_t kHugePageBytes = std::size_t(2) << 20;
 
-/// `bytes` aligned to `alignment`, on huge pages from kHugePageBytes on.
+/// `bytes` aligned to `alignment`, on huge pages from kHugePageBytes on (aligned to a huge page,
+/// which covers any alignment up to it).
 inline void* allocate_host_bytes(std::size_t bytes, std::size_t alignment) {
   if (bytes < kHugePageBytes) return ::operator new(bytes, std::align_val_t(alignment));
   void* p = nullptr;
@@ -54,10 +56,12 @@ struct HostAllocator {
   }
 };
 
+/// Any two HostAllocators free each other's buffers: they hold no state.
 template <class T, class U>
 bool operator==(const HostAllocator<T>&, const HostAllocator<U>&) {
   return true;
 }
+/// Never: see operator==.
 template <class T, class U>
 bool operator!=(const HostAllocator<T>&, const HostAllocator<U>&) {
   return false;

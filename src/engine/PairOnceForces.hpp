@@ -183,10 +183,10 @@ struct PairOnceForces {
     const std::uint32_t group_end = evaluated.group_end[position];
     for (std::uint32_t h = evaluated.begin[position]; h < evaluated.end[position]; ++h) {
       const std::uint32_t k = evaluated.entry[h];
-      const std::uint32_t j = s.scene.neighbor_index[k];
+      const std::uint32_t j = evaluated.partner[h];
       const bool grouped = h < group_end;
       sum.touched = false;
-      visit_pair_entry(me, k, s.particles, s.scene, sum);
+      visit_pair_entry(me, k, j, s.particles, s.scene, sum);
       if (!sum.touched || !grouped) continue;
       pair_force.subtract(j, sum.force_term);
       if constexpr (Law::needs_spin)

@@ -163,13 +163,13 @@ std::map<std::string, std::size_t> needed_bytes(const StepEngine& engine, std::s
   const std::size_t index = sizeof(std::uint32_t);
   const std::size_t cells = kMaxCellsPerParticle * n + kMaxSizeClasses;
   // On the host, each particle's pair-once group, two integer sums and worst ratio left by its
-  // partners, and the entries it evaluates: three bounds and one word per entry of its row (one
-  // sweep of all particles).
+  // partners, and the entries it evaluates: three bounds and two words per entry of its row, the
+  // entry and its partner (one sweep of all particles).
   const std::size_t pair_once =
       backend == Backend::Host
           ? n * (sizeof(std::uint64_t) + 2 * (sizeof(ExactWords3) + sizeof(ExactSpill3)) +
                  sizeof(Real)) +
-                (3 * n + entries) * index
+                (3 * n + 2 * entries) * index
           : 0;
   return {{"position, radius", n * 4 * state},
           {"velocity, inverse mass", n * 4 * state},

@@ -215,9 +215,11 @@ TEST(PairOnce, EachParticleEvaluatesItsGroupsPairsAtTheLowerIndexAndTheOthersAtB
   }
   const std::vector<std::uint64_t> group{7, 7, 7, 9, 9, 9};
   const std::vector<std::uint32_t> subset{2, 1, 0, 5, 4, 3};
-  std::vector<std::uint32_t> begin(owned), group_end(owned), end(owned), entry(index.size());
+  std::vector<std::uint32_t> begin(owned), group_end(owned), end(owned), entry(index.size()),
+      partner(index.size());
   for (std::uint32_t k = 0; k < owned; ++k) begin[k] = offsets[subset[k]];
-  const EvaluatedRows rows{begin.data(), group_end.data(), end.data(), entry.data()};
+  const EvaluatedRows rows{begin.data(), group_end.data(), end.data(), entry.data(),
+                           partner.data()};
   const SelectEvaluated select{
       subset.data(), {owned, offsets.data(), index.data(), 1}, group.data(), rows};
   select(0, 3);
@@ -232,6 +234,7 @@ TEST(PairOnce, EachParticleEvaluatesItsGroupsPairsAtTheLowerIndexAndTheOthersAtB
       ASSERT_GE(entry[h], offsets[i]) << "particle " << i << ": an entry of another row";
       ASSERT_LT(entry[h], offsets[i + 1]) << "particle " << i << ": an entry of another row";
       const std::uint32_t j = index[entry[h]];
+      EXPECT_EQ(partner[h], j) << "particle " << i << ": the partner beside entry " << entry[h];
       const bool same_group = j < owned && group[j] == group[i];
       EXPECT_EQ(h < group_end[k], same_group) << "particle " << i << ", partner " << j;
       ++times_evaluated[i * total + j];
