@@ -1,8 +1,9 @@
 #pragma once
 /// The allocator of the host's particle, list and history buffers. A buffer of a huge page
 /// (2 MiB) or more starts on a huge-page boundary and asks the kernel for transparent huge pages
-/// (madvise MADV_HUGEPAGE, which kernels set to `madvise` honour): the force sweep's scattered
-/// reads of partners and records then miss the TLB far less often. A smaller buffer is an
+/// (madvise MADV_HUGEPAGE, which a kernel in `always` or `madvise` mode honours when it can): the
+/// force sweep's scattered reads of partners and records then miss the TLB less often
+/// (docs/performance.md, "Huge pages, and partners beside the entries"). A smaller buffer is an
 /// ordinary allocation. The advice is a hint; where the kernel does not take it, the pages stay
 /// small and nothing else changes. Host code only.
 #include <cstddef>
