@@ -2,135 +2,286 @@
 /// The host's pair-once force sweep with the law evaluated on several contacts at a time: eight
 /// on CPUs with AVX-512, four on CPUs with AVX2 (PairLanesForces); the same pairs, loads and bits
 /// as PairOnceForces. Host code only.
+#include <array>
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 
+#include "core/LaneMemory.hpp"
 #include "core/Lanes.hpp"
 #include "engine/PairOnceForces.hpp"
 
 namespace gpudem {
 
-/// Up to W touching pair entries, gathered lane by lane for one evaluation of the law. Lanes at
-/// and past `count` hold an earlier batch's inputs (or zeros) and are evaluated but not read.
-template <class Law, int W>
-struct PairContactLanes {
-  using S = typename Law::Scalar;
-  using R = LaneScalar<Real, W>;
-  using L = LaneScalar<S, W>;
+/// The touching pair entries a sweep in W lanes has found and not yet evaluated, held column by
+/// column, so that the entries of one test of W enter packed at once and W waiting ones load
+/// straight into the lanes: entries [first, count) wait. Past `count` the columns hold earlier
+/// entries' values (or zeros): valid indices, evaluated but not read.
+template <int W>
+struct TouchingEntries {
+  static constexpr int capacity = 8 * W;
+  /// Index columns: the contact's particle i, its partner j, its list entry, and 1 where both
+  /// ends are in one group (the partner's sums are written here too).
+  enum Index : int { i, j, entry, grouped, indices };
+  /// Real columns: d = x_j − x_i, |d|², and i's and j's states.
+  enum Column : int { d = 0, dist2 = 3, xi = 4, vi = 8, wi = 12, xj = 15, reals = 19 };
+  int first = 0;
   int count = 0;
-  // Which contact each lane holds.
-  std::uint32_t i[W];
-  std::uint32_t j[W];
-  std::uint32_t entry[W];
-  bool grouped[W];  ///< both ends in one group: the partner's sums are written here too
-  // The contact's inputs.
-  Vec3T<R> d;
-  R dist2;
-  R min_radius;  ///< the smaller radius of the pair
-  Vec4T<R> xi, vi, xj, vj;
-  Vec3T<R> wi, wj;
-  ContactPairParamsT<L> params;
-  bool one_pair_type = false;  ///< a scene of one material: params are set once, for every lane
-  L history[Law::history_size > 0 ? Law::history_size : 1];
+  std::uint32_t index[indices][capacity] = {};
+  Real real[reals][capacity] = {};
 
-  template <class P>
-  void add(std::uint32_t me_index, const SweptParticle& me, const PairEntry& e, std::uint32_t k,
-           bool both_in_group, const ParticleView<P>& p, const ContactScene<Law>& s) {
-    const int l = count++;
-    i[l] = me_index;
-    j[l] = e.j;
-    entry[l] = k;
-    grouped[l] = both_in_group;
-    set_lane(min_radius, l, me.x.w < e.xj.w ? me.x.w : e.xj.w);
-    set_lane<Real, W>(d, l, e.d);
-    set_lane(dist2, l, e.dist2);
-    set_lane<Real, W>(xi, l, me.x);
-    set_lane<Real, W>(vi, l, me.v);
-    set_lane<Real, W>(xj, l, e.xj);
-    set_lane<Real, W>(vj, l, p.velocity(e.j));
-    if constexpr (Law::needs_spin) {
-      set_lane<Real, W>(wi, l, me.w);
-      set_lane<Real, W>(wj, l, p.spin(e.j));
-    }
-    if (!one_pair_type)
-      for_each_param(params, s.pair_params[me.material * s.material_count + p.material[e.j]],
-                     [l](L& to, S from) { set_lane(to, l, from); });
-    for (int v = 0; v < Law::history_size; ++v) set_lane(history[v], l, s.pair_history[k].value[v]);
+  int waiting() const { return count - first; }
+  /// The waiting entries' index or real column.
+  const std::uint32_t* at(Index column) const { return index[column] + first; }
+  Lanes<Real, W> load(int column) const { return load_lanes<W>(real[column] + first); }
+  /// The first W waiting entries gone, once evaluated.
+  void drop_first() { first += W; }
+  /// Room for W more entries: fewer than W wait, and they move to the front where the columns
+  /// have no room past them.
+  void make_room() {
+    if (count + W <= capacity) return;
+    for (auto& column : index) std::memcpy(column, column + first, sizeof(column[0]) * W);
+    for (auto& column : real) std::memcpy(column, column + first, sizeof(column[0]) * W);
+    count -= first;
+    first = 0;
   }
+  void clear() { first = count = 0; }
 };
 
 /// The host backend's force sweep over one thread's range of particles, as PairOnceForces
-/// (the same pairs, loads and bits) but with the touching entries of 64 particles at a time
-/// gathered into lanes of W contacts (core/Lanes.hpp) and the law evaluated on the W at once;
-/// then each particle's walls and meshes, and its loads stored. Built only where one vector
+/// (the same pairs, loads and bits) but in lanes of W (core/Lanes.hpp): each particle's entries
+/// are tested W at a time, without a branch on the outcome, the touching ones packed into a
+/// queue (TouchingEntries) and the law evaluated on W of them at once; then, 64 particles at a
+/// time, each particle's walls and meshes, and its loads stored. Built only where one vector
 /// instruction holds the W lanes: eight for AVX-512 (sweep_in_avx512_lanes), four for AVX2
 /// (sweep_in_avx2_lanes). Split into narrower vectors it is slower than PairOnceForces.
 template <class Law, class P, int W>
 struct PairLanesForces {
   using S = typename Law::Scalar;
-  static constexpr std::uint32_t chunk = 64;  ///< particles whose pairs share the lanes
+  using R = LaneScalar<Real, W>;
+  using L = LaneScalar<S, W>;
+  using Index = Lanes<std::uint32_t, W>;
+  using Offset = Lanes<std::int64_t, W>;
+  using Queue = TouchingEntries<W>;
+  static constexpr std::uint32_t chunk = 64;  ///< particles whose pairs share the queue
   PairOnceForces<Law, P> once;                ///< the sweep, its groups and its integer sums
 
   /// The particles at positions [begin, end) of the sweep.
   void sweep_range(std::uint32_t begin, std::uint32_t end) const {
     const ForceSweep<Law, P>& s = once.sweep;
-    PairContactLanes<Law, W> lanes{};
-    if (s.scene.material_count == 1) {
-      lanes.one_pair_type = true;
-      for_each_param(lanes.params, s.scene.pair_params[0], [](auto& to, S from) { to = from; });
-    }
+    ContactPairParamsT<L> one_pair{};  // a scene of one material: its pair's constants
+    if (s.scene.material_count == 1)
+      for_each_param(one_pair, s.scene.pair_params[0], [](auto& to, S from) { to = from; });
+    Queue queue;
     for (std::uint32_t first = begin; first < end; first += chunk) {
       const std::uint32_t last = end - first < chunk ? end : first + chunk;
-      for (std::uint32_t k = first; k < last; ++k) gather_pairs(k, lanes);
-      evaluate(lanes);
+      for (std::uint32_t k = first; k < last; ++k) test_pairs(k, queue, one_pair);
+      if (queue.waiting() > 0) evaluate(queue, one_pair);
+      queue.clear();
       for (std::uint32_t k = first; k < last; ++k) finish(swept_index(s.subset, k));
     }
   }
 
-  /// The touching pair entries of the particle at position k (each pair in its group once) into
-  /// the lanes, evaluated whenever they are full; a separated entry forgets its history.
-  void gather_pairs(std::uint32_t position, PairContactLanes<Law, W>& lanes) const {
+  /// The pair entries of the particle at position k (each pair in its group once), W at a time;
+  /// the law is evaluated whenever W touching ones wait.
+  void test_pairs(std::uint32_t position, Queue& queue,
+                  const ContactPairParamsT<L>& one_pair) const {
     const ForceSweep<Law, P>& s = once.sweep;
-    const std::uint32_t i = swept_index(s.subset, position);
-    const SweptParticle me = swept_particle<Law>(i, s.particles);
     const EvaluatedRows& rows = once.evaluated;
-    const std::uint32_t group_end = rows.group_end[position];
-    for (std::uint32_t h = rows.begin[position]; h < rows.end[position]; ++h) {
-      const std::uint32_t k = rows.entry[h];
-      const bool grouped = h < group_end;
-      const PairEntry e = pair_entry(me, k, rows.partner[h], s.particles, s.scene);
-      if (!e.touching) {
-        if constexpr (Law::history_size > 0) s.history.pair[k] = typename Law::State{};
-        continue;
+    const std::uint32_t i = swept_index(s.subset, position);
+    const std::uint32_t end = rows.end[position];
+    if (rows.begin[position] == end) return;
+    const Me me = lanes_of_particle(i);
+    for (std::uint32_t h = rows.begin[position]; h < end; h += W) {
+      test_entries(me, h, end - h, rows.group_end[position], queue);
+      if (queue.waiting() >= W) {
+        evaluate(queue, one_pair);
+        queue.drop_first();
       }
-      lanes.add(i, me, e, k, grouped, s.particles, s.scene);
-      if (lanes.count == W) evaluate(lanes);
+      queue.make_room();
     }
   }
 
-  /// The law on the lanes' contacts; each contact's loads go to its own end and, for a pair in
-  /// one group, to the partner (the loads mirrored, its torque with its own arm).
-  void evaluate(PairContactLanes<Law, W>& c) const {
-    using L = LaneScalar<S, W>;
-    if (c.count == 0) return;
-    ContactPointT<typename PairContactLanes<Law, W>::R> point;
-    typename PairContactLanes<Law, W>::R arm;
-    describe_pair<Law>(point, arm, c.d, c.dist2, c.xi, c.vi, c.wi, c.xj, c.vj, c.wj);
-    const ContactForce<L> f =
-        Law::evaluate(c.params, point_cast<L>(point), c.history, L(static_cast<S>(once.sweep.dt)));
+  /// Particle i's state in every lane.
+  struct Me {
+    std::uint32_t i;
+    Vec4T<R> x, v;
+    Vec3T<R> w;
+  };
+  Me lanes_of_particle(std::uint32_t i) const {
+    const SweptParticle me = swept_particle<Law>(i, once.sweep.particles);
+    const auto all = [](Real value) { return R(value); };
+    return {i,
+            {all(me.x.x), all(me.x.y), all(me.x.z), all(me.x.w)},
+            {all(me.v.x), all(me.v.y), all(me.v.z), all(me.v.w)},
+            {all(me.w.x), all(me.w.y), all(me.w.z)}};
+  }
+
+  /// Tests the evaluated entries [h, h + n) of particle `me` (at most W of them) at once: the
+  /// touching ones join the queue, packed; a separated one forgets its history. A lane past n
+  /// repeats the first entry, so that every read is of a real particle.
+  void test_entries(const Me& me, std::uint32_t h, std::uint32_t n, std::uint32_t group_end,
+                    Queue& q) const {
+    const ForceSweep<Law, P>& s = once.sweep;
+    const EvaluatedRows& rows = once.evaluated;
+    const Index lane = lane_numbers<W>();
+    const auto valid = lane < n;
+    const Index j = select(valid, load_lanes<W>(rows.partner + h), Index(rows.partner[h]));
+    const Index k = select(valid, load_lanes<W>(rows.entry + h), Index(rows.entry[h]));
+    const Vec4T<R> xj = positions(j);
+    const Vec3T<R> d = minimum_image(xyz(xj) - xyz(me.x));
+    const R dist2 = norm2(d);
+    const R reach = me.x.w + xj.w;
+    // NaN: touching, so that it spreads, as pair_entry
+    LaneBits touching = first_lanes<W>(n) & ~bits_of(dist2 >= reach * reach || dist2 == Real(0));
+    if (s.scene.bond_records)
+      for (int l = 0; l < W; ++l) touching &= ~(LaneBits(s.scene.bonded(k[l])) << l);
+    forget_history(k, first_lanes<W>(n) & ~touching);
+    const int at = q.count;
+    store_packed(q.index[Queue::j] + at, j, touching);
+    store_packed(q.index[Queue::entry] + at, k, touching);
+    store_packed(q.index[Queue::grouped] + at, select(h + lane < group_end, Index(1u), Index(0u)),
+                 touching);
+    store_lanes(q.index[Queue::i] + at, Index(me.i));
+    store_packed(q.real[Queue::dist2] + at, dist2, touching);
+    store_column(q, Queue::d, at, d, touching);
+    store_column(q, Queue::xj, at, xj, touching);
+    store_column(q, Queue::xi, at, me.x, ~0u);
+    store_column(q, Queue::vi, at, me.v, ~0u);
+    if constexpr (Law::needs_spin) store_column(q, Queue::wi, at, me.w, ~0u);
+    q.count += __builtin_popcount(touching);
+  }
+
+  /// A vector's components to the queue's columns from `column` on, packed.
+  template <class V>
+  static void store_column(Queue& q, int column, int at, const V& v, LaneBits take) {
+    store_packed(q.real[column] + at, v.x, take);
+    store_packed(q.real[column + 1] + at, v.y, take);
+    store_packed(q.real[column + 2] + at, v.z, take);
+    if constexpr (std::is_same_v<V, Vec4T<R>>) store_packed(q.real[column + 3] + at, v.w, take);
+  }
+
+  /// The separated entries' histories cleared, without a branch on which they are: a lane not
+  /// separated clears a record of its own instead.
+  void forget_history(const Index& k, LaneBits separated) const {
+    if constexpr (Law::history_size > 0) {
+      using State = typename Law::State;
+      State sink;
+      for (int l = 0; l < W; ++l) {
+        State* record = separated >> l & 1u ? &once.sweep.history.pair[k[l]] : &sink;
+        *record = State{};
+      }
+    }
+  }
+
+  /// d reduced to its nearest periodic image on each periodic axis, as PeriodicBox does.
+  Vec3T<R> minimum_image(Vec3T<R> d) const {
+    const PeriodicBox& box = once.sweep.scene.box;
+    for (int a = 0; a < 3; ++a)
+      if (box.periodic[a]) {
+        const Real length = axis(box.length, a);
+        R& c = axis(d, a);
+        for (int l = 0; l < W; ++l) c.v[l] -= length * floor(c.v[l] / length + Real(0.5));
+      }
+    return d;
+  }
+
+  /// Components [0, N) of records of N doubles at `base`, of the lanes' records.
+  template <int N>
+  static std::array<R, N> gather_records(const Real* base, const Index& at) {
+    const Offset first = Offset(at) * std::int64_t(N);
+    std::array<R, N> v;
+    for (int c = 0; c < N; ++c) v[c] = gather(base, first + std::int64_t(c));
+    return v;
+  }
+
+  /// The lanes' particles' positions (and radii), velocities (and inverse masses) and spins:
+  /// gathered from a state held in double, else read lane by lane.
+  Vec4T<R> positions(const Index& at) const {
+    const ParticleView<P>& p = once.sweep.particles;
+    if constexpr (std::is_same_v<P, Real>)
+      return vec4(gather_records<4>(&p.position_radius[0].x, at));
+    Vec4T<R> v;
+    for (int l = 0; l < W; ++l) set_lane<Real, W>(v, l, p.position(at[l]));
+    return v;
+  }
+  Vec4T<R> velocities(const Index& at) const {
+    const ParticleView<P>& p = once.sweep.particles;
+    if constexpr (std::is_same_v<P, Real>)
+      return vec4(gather_records<4>(&p.velocity_inv_mass[0].x, at));
+    Vec4T<R> v;
+    for (int l = 0; l < W; ++l) set_lane<Real, W>(v, l, p.velocity(at[l]));
+    return v;
+  }
+  Vec3T<R> spins(const Index& at) const {
+    const ParticleView<P>& p = once.sweep.particles;
+    if constexpr (std::is_same_v<P, Real>) {
+      const std::array<R, 3> w = gather_records<3>(&p.angular_velocity[0].x, at);
+      return {w[0], w[1], w[2]};
+    }
+    Vec3T<R> v;
+    for (int l = 0; l < W; ++l) set_lane<Real, W>(v, l, p.spin(at[l]));
+    return v;
+  }
+  static Vec4T<R> vec4(const std::array<R, 4>& c) { return {c[0], c[1], c[2], c[3]}; }
+
+  /// The queue's columns [column, column + 3) or [column, column + 4) of its first W entries.
+  static Vec3T<R> load3(const Queue& q, int column) {
+    return {q.load(column), q.load(column + 1), q.load(column + 2)};
+  }
+  static Vec4T<R> load4(const Queue& q, int column) {
+    return {q.load(column), q.load(column + 1), q.load(column + 2), q.load(column + 3)};
+  }
+
+  /// The law on the queue's first W entries (its first `count`, where fewer wait); each
+  /// contact's loads go to its own end and, for a pair in one group, to the partner (the loads
+  /// mirrored, its torque with its own arm).
+  void evaluate(const Queue& q, const ContactPairParamsT<L>& one_pair) const {
+    const Index j = load_lanes<W>(q.at(Queue::j));
+    const Vec4T<R> xi = load4(q, Queue::xi), vi = load4(q, Queue::vi), xj = load4(q, Queue::xj);
+    Vec3T<R> wi{}, wj{};
+    if constexpr (Law::needs_spin) wi = load3(q, Queue::wi), wj = spins(j);
+    ContactPointT<R> point;
+    R arm;
+    describe_pair<Law>(point, arm, load3(q, Queue::d), q.load(Queue::dist2), xi, vi, wi, xj,
+                       velocities(j), wj);
+    L history[Law::history_size > 0 ? Law::history_size : 1];
+    if constexpr (Law::history_size > 0) {
+      const Offset first = Offset(load_lanes<W>(q.at(Queue::entry))) *
+                           std::int64_t(sizeof(typename Law::State) / sizeof(S));
+      for (int v = 0; v < Law::history_size; ++v)
+        history[v] = gather(&once.sweep.history.pair[0].value[0], first + std::int64_t(v));
+    }
+    const ContactForce<L> f = Law::evaluate(pair_params(q, one_pair), point_cast<L>(point), history,
+                                            L(static_cast<S>(once.sweep.dt)));
     const ExactUnits& units = once.units;
     LoadTerms terms{exact_terms(f.force, units.per_force), {}, {}};
     if constexpr (Law::needs_spin) {
       terms.torque = exact_terms(lever_torque<Law>(arm, point.normal, f), units.per_torque);
-      terms.partner_torque =
-          exact_terms(partner_torque<Law>(c.xj.w - Real(0.5) * point.overlap, point.normal, f),
-                      units.per_torque);
+      terms.partner_torque = exact_terms(
+          partner_torque<Law>(xj.w - Real(0.5) * point.overlap, point.normal, f), units.per_torque);
     }
+    const R ratio = point.overlap / select(xi.w < xj.w, xi.w, xj.w);
+    const int count = q.waiting() < W ? q.waiting() : W;
     if (terms.force.spills || terms.torque.spills || terms.partner_torque.spills)
-      store_loads<true>(c, terms, point.overlap / c.min_radius);
+      store_loads<true>(q, count, terms, ratio, history);
     else
-      store_loads<false>(c, terms, point.overlap / c.min_radius);
-    c.count = 0;
+      store_loads<false>(q, count, terms, ratio, history);
+  }
+
+  /// The lanes' pair constants: the one pair's in a scene of one material.
+  ContactPairParamsT<L> pair_params(const Queue& q, const ContactPairParamsT<L>& one_pair) const {
+    const ContactScene<Law>& s = once.sweep.scene;
+    if (s.material_count == 1) return one_pair;
+    const MaterialId* material = once.sweep.particles.material;
+    ContactPairParamsT<L> params;
+    for (int l = 0; l < W; ++l)
+      for_each_param(params,
+                     s.pair_params[material[q.at(Queue::i)[l]] * s.material_count +
+                                   material[q.at(Queue::j)[l]]],
+                     [l](L& to, S from) { set_lane(to, l, from); });
+    return params;
   }
 
   /// The integer terms of the lanes' loads.
@@ -138,36 +289,37 @@ struct PairLanesForces {
     ExactTermLanes<W> force, torque, partner_torque;
   };
 
-  /// Each lane's history written back and its loads added to its ends' sums (in one word each
-  /// unless some lane `Spills`), with its overlap ratio.
-  template <bool Spills, class Ratio>
-  void store_loads(const PairContactLanes<Law, W>& c, const LoadTerms& t,
-                   const Ratio& ratio) const {
+  /// Each of the first `count` lanes' history written back and its loads added to its ends'
+  /// sums (in one word each unless some lane `Spills`), with its overlap ratio.
+  template <bool Spills>
+  void store_loads(const Queue& q, int count, const LoadTerms& t, const R& ratio,
+                   const L* history) const {
     const auto term = [](const ExactTermLanes<W>& terms, int l) {
       if constexpr (Spills)
         return terms.lane(l);
       else
         return terms.words(l);
     };
-    for (int l = 0; l < c.count; ++l) {
+    for (int l = 0; l < count; ++l) {
       if constexpr (Law::history_size > 0) {
         typename Law::State state;
-        for (int v = 0; v < Law::history_size; ++v) state.value[v] = lane_of(c.history[v], l);
+        for (int v = 0; v < Law::history_size; ++v) state.value[v] = lane_of(history[v], l);
         // −0 stored as +0: the same bits whether this end or the partner's mirror writes it
-        once.sweep.history.pair[c.entry[l]] = Law::without_negative_zeros(state);
+        once.sweep.history.pair[q.at(Queue::entry)[l]] = Law::without_negative_zeros(state);
       }
-      const std::uint32_t i = c.i[l], j = c.j[l];
+      const std::uint32_t i = q.at(Queue::i)[l], j = q.at(Queue::j)[l];
+      const bool grouped = q.at(Queue::grouped)[l] != 0;
       const auto force_term = term(t.force, l);
       once.pair_force.add(i, force_term);
-      if (c.grouped[l]) once.pair_force.subtract(j, force_term);
+      if (grouped) once.pair_force.subtract(j, force_term);
       if constexpr (Law::needs_spin) {
         once.pair_torque.add(i, term(t.torque, l));
-        if (c.grouped[l]) once.pair_torque.add(j, term(t.partner_torque, l));
+        if (grouped) once.pair_torque.add(j, term(t.partner_torque, l));
       }
       const Real lane_ratio = lane_of(ratio, l);
       Real* worst = once.pair_ratio;
-      if (lane_ratio > worst[i]) worst[i] = lane_ratio;
-      if (c.grouped[l] && lane_ratio > worst[j]) worst[j] = lane_ratio;
+      worst[i] = lane_ratio > worst[i] ? lane_ratio : worst[i];
+      if (grouped) worst[j] = lane_ratio > worst[j] ? lane_ratio : worst[j];
     }
   }
 

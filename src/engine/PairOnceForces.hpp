@@ -81,7 +81,9 @@ struct ListRows {
 /// The list entries each particle of a sweep evaluates: its row of the full list without the
 /// partners of its group at a lower index (they evaluate the pair), those of its group first.
 /// Position k of the sweep evaluates entry[h] for h in [begin[k], end[k]), of its group below
-/// group_end[k]. Valid for one list and one grouping of one sweep.
+/// group_end[k]. Valid for one list and one grouping of one sweep. `entry` and `partner` hold
+/// kRowsPadding values past the last row, so that a test of up to that many entries at once
+/// (PairLanesForces) can read them.
 struct EvaluatedRows {
   std::uint32_t* begin;      ///< per position
   std::uint32_t* group_end;  ///< per position
@@ -89,6 +91,9 @@ struct EvaluatedRows {
   std::uint32_t* entry;      ///< list entries; position k's from begin[k], its row's length at most
   std::uint32_t* partner;    ///< the partner on each of them
 };
+
+/// Values past the last evaluated row (EvaluatedRows).
+inline constexpr std::uint32_t kRowsPadding = 8;
 
 /// Whether owned particle i and its partner j are in one group (GroupRange): then only the lower
 /// index evaluates the pair.

@@ -148,8 +148,9 @@ class PairOnceSweep {
       rows->begin[k] = total;
       total += list.offsets[i + 1] - list.offsets[i];
     }
-    rows->entry.resize(total);
-    rows->partner.resize(total);
+    // past the last row, the entries a test of eight lanes reads and does not use
+    rows->entry.resize(total + kRowsPadding);
+    rows->partner.resize(total + kRowsPadding);
     host_ranges(count, grouping_.ranges,
                 SelectEvaluated{subset, list, group_.data(), rows->view()});
     return rows->view();
