@@ -2,9 +2,9 @@
 /// Lanes (core/Lanes.hpp) read from and written to memory: loads and stores of W consecutive
 /// values, gathers by index, stores of only the lanes a bit mask selects, packed to the front,
 /// and the bit mask of a lane mask. In code compiled for AVX-512 (eight doubles) or AVX2 (four
-/// doubles) a gather of doubles is one instruction, and so are a mask's bits and, with AVX-512,
-/// a packed store; elsewhere they go lane by lane, without branches. Host code only (GCC and
-/// Clang).
+/// doubles) a gather of doubles is one instruction, and so are a mask's bits and a packed store
+/// (with AVX2, a permute by a table); elsewhere they go lane by lane, without branches. Host code
+/// only (GCC and Clang).
 #include <cstdint>
 #include <cstring>
 #if defined(__AVX2__)
@@ -82,6 +82,29 @@ Lanes<S, W> gather(const S* base, const Lanes<std::int64_t, W>& at) {
   return v;
 }
 
+namespace lane_detail {
+/// For each bit mask of four lanes, the 32-bit elements that pack its lanes to the front, for an
+/// AVX2 permute: of four 8-byte lanes (two elements each) and of four 4-byte lanes.
+struct PackedOrders {
+  alignas(32) int of_doubles[16][8];
+  alignas(16) int of_words[16][4];
+};
+constexpr PackedOrders packed_orders() {
+  PackedOrders t{};
+  for (unsigned m = 0; m < 16; ++m) {
+    int n = 0;
+    for (int l = 0; l < 4; ++l)
+      if (m >> l & 1u) {
+        t.of_doubles[m][2 * n] = 2 * l;
+        t.of_doubles[m][2 * n + 1] = 2 * l + 1;
+        t.of_words[m][n++] = l;
+      }
+  }
+  return t;
+}
+inline constexpr PackedOrders kPackedOrders = packed_orders();
+}  // namespace lane_detail
+
 /// The lanes of v whose bit is set in `take`, in order, to p[0, popcount(take)); p[0, W) may be
 /// written.
 template <class S, int W>
@@ -96,6 +119,22 @@ void store_packed(S* p, const Lanes<S, W>& v, LaneBits take) {
     _mm256_storeu_si256(
         reinterpret_cast<__m256i*>(p),
         _mm256_maskz_compress_epi32(static_cast<__mmask8>(take), reinterpret_cast<__m256i>(v.v)));
+    return;
+  }
+#endif
+#if defined(__AVX2__)
+  if constexpr (sizeof(S) == 8 && W == 4) {
+    const __m256i order = _mm256_load_si256(
+        reinterpret_cast<const __m256i*>(lane_detail::kPackedOrders.of_doubles[take & 15u]));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(p),
+                        _mm256_permutevar8x32_epi32(reinterpret_cast<__m256i>(v.v), order));
+    return;
+  }
+  if constexpr (sizeof(S) == 4 && W == 4) {
+    const __m128i order = _mm_load_si128(
+        reinterpret_cast<const __m128i*>(lane_detail::kPackedOrders.of_words[take & 15u]));
+    _mm_storeu_ps(reinterpret_cast<float*>(p),
+                  _mm_permutevar_ps(reinterpret_cast<__m128>(v.v), order));
     return;
   }
 #endif
