@@ -65,7 +65,10 @@ struct PairLanesForces {
   using Offset = Lanes<std::int64_t, W>;
   using Queue = TouchingEntries<W>;
   static constexpr std::uint32_t chunk = 64;  ///< particles whose pairs share the queue
-  PairOnceForces<Law, P> once;                ///< the sweep, its groups and its integer sums
+  /// Entries past a particle's first whose partners' positions it prefetches (eight of them).
+  static constexpr std::uint32_t kPrefetchAhead = 16;
+  static_assert(kPrefetchAhead + 8 <= kRowsPadding, "the rows' padding holds what is read");
+  PairOnceForces<Law, P> once;  ///< the sweep, its groups and its integer sums
 
   /// The particles at positions [begin, end) of the sweep.
   void sweep_range(std::uint32_t begin, std::uint32_t end) const {
@@ -93,6 +96,10 @@ struct PairLanesForces {
     const std::uint32_t end = rows.end[position];
     if (rows.begin[position] == end) return;
     const Me me = lanes_of_particle(i);
+    if constexpr (std::is_same_v<P, Real>) {  // the partners' positions a few particles ahead
+      const std::uint32_t* ahead = rows.partner + rows.begin[position] + kPrefetchAhead;
+      for (int l = 0; l < 8; ++l) __builtin_prefetch(&s.particles.position_radius[ahead[l]]);
+    }
     for (std::uint32_t h = rows.begin[position]; h < end; h += W) {
       test_entries(me, h, end - h, rows.group_end[position], queue);
       if (queue.waiting() >= W) {
@@ -162,17 +169,11 @@ struct PairLanesForces {
     if constexpr (std::is_same_v<V, Vec4T<R>>) store_packed(q.real[column + 3] + at, v.w, take);
   }
 
-  /// The separated entries' histories cleared, without a branch on which they are: a lane not
-  /// separated clears a record of its own instead.
+  /// The separated entries' histories cleared.
   void forget_history(const Index& k, LaneBits separated) const {
-    if constexpr (Law::history_size > 0) {
-      using State = typename Law::State;
-      State sink;
-      for (int l = 0; l < W; ++l) {
-        State* record = separated >> l & 1u ? &once.sweep.history.pair[k[l]] : &sink;
-        *record = State{};
-      }
-    }
+    if constexpr (Law::history_size > 0)
+      for (; separated != 0; separated &= separated - 1)
+        once.sweep.history.pair[k[__builtin_ctz(separated)]] = typename Law::State{};
   }
 
   /// d reduced to its nearest periodic image on each periodic axis, as PeriodicBox does.

@@ -82,8 +82,8 @@ struct ListRows {
 /// partners of its group at a lower index (they evaluate the pair), those of its group first.
 /// Position k of the sweep evaluates entry[h] for h in [begin[k], end[k]), of its group below
 /// group_end[k]. Valid for one list and one grouping of one sweep. `entry` and `partner` hold
-/// kRowsPadding values past the last row, so that a test of up to that many entries at once
-/// (PairLanesForces) can read them.
+/// kRowsPadding values past the last row, so that a sweep that reads entries in blocks or ahead
+/// (PairLanesForces) reads only what is there.
 struct EvaluatedRows {
   std::uint32_t* begin;      ///< per position
   std::uint32_t* group_end;  ///< per position
@@ -93,7 +93,7 @@ struct EvaluatedRows {
 };
 
 /// Values past the last evaluated row (EvaluatedRows).
-inline constexpr std::uint32_t kRowsPadding = 8;
+inline constexpr std::uint32_t kRowsPadding = 24;
 
 /// Whether owned particle i and its partner j are in one group (GroupRange): then only the lower
 /// index evaluates the pair.

@@ -148,7 +148,7 @@ class PairOnceSweep {
       rows->begin[k] = total;
       total += list.offsets[i + 1] - list.offsets[i];
     }
-    // past the last row, the entries a test of eight lanes reads and does not use
+    // past the last row, what a sweep that reads in blocks or ahead reads and does not use
     rows->entry.resize(total + kRowsPadding);
     rows->partner.resize(total + kRowsPadding);
     host_ranges(count, grouping_.ranges,
