@@ -24,17 +24,19 @@ struct TouchingEntries {
   /// Index columns: the contact's particle i, its partner j, its list entry, and 1 where both
   /// ends are in one group (the partner's sums are written here too).
   enum Index : int { i, j, entry, grouped, indices };
-  /// Real columns: d = x_j − x_i, |d|², and i's and j's states.
-  enum Column : int { d = 0, dist2 = 3, xi = 4, vi = 8, wi = 12, xj = 15, reals = 19 };
   int first = 0;
   int count = 0;
   std::uint32_t index[indices][capacity] = {};
-  Real real[reals][capacity] = {};
+  Real xj[4][capacity] = {};  ///< the partner's position and radius, as the test read them
 
   int waiting() const { return count - first; }
-  /// The waiting entries' index or real column.
+  /// The waiting entries' index column.
   const std::uint32_t* at(Index column) const { return index[column] + first; }
-  Lanes<Real, W> load(int column) const { return load_lanes<W>(real[column] + first); }
+  /// The first W waiting entries' partner positions and radii.
+  Vec4T<Lanes<Real, W>> partner_positions() const {
+    const auto c = [this](int k) { return load_lanes<W>(xj[k] + first); };
+    return {c(0), c(1), c(2), c(3)};
+  }
   /// The first W waiting entries gone, once evaluated.
   void drop_first() { first += W; }
   /// Room for W more entries: fewer than W wait, and they move to the front where the columns
@@ -42,7 +44,7 @@ struct TouchingEntries {
   void make_room() {
     if (count + W <= capacity) return;
     for (auto& column : index) std::memcpy(column, column + first, sizeof(column[0]) * W);
-    for (auto& column : real) std::memcpy(column, column + first, sizeof(column[0]) * W);
+    for (auto& column : xj) std::memcpy(column, column + first, sizeof(column[0]) * W);
     count -= first;
     first = 0;
   }
@@ -110,19 +112,14 @@ struct PairLanesForces {
     }
   }
 
-  /// Particle i's state in every lane.
+  /// Particle i, its position and radius in every lane.
   struct Me {
     std::uint32_t i;
-    Vec4T<R> x, v;
-    Vec3T<R> w;
+    Vec4T<R> x;
   };
   Me lanes_of_particle(std::uint32_t i) const {
-    const SweptParticle me = swept_particle<Law>(i, once.sweep.particles);
-    const auto all = [](Real value) { return R(value); };
-    return {i,
-            {all(me.x.x), all(me.x.y), all(me.x.z), all(me.x.w)},
-            {all(me.v.x), all(me.v.y), all(me.v.z), all(me.v.w)},
-            {all(me.w.x), all(me.w.y), all(me.w.z)}};
+    const Real4 x = once.sweep.particles.position(i);
+    return {i, {R(x.x), R(x.y), R(x.z), R(x.w)}};
   }
 
   /// Tests the evaluated entries [h, h + n) of particle `me` (at most W of them) at once: the
@@ -151,22 +148,11 @@ struct PairLanesForces {
     store_packed(q.index[Queue::grouped] + at, select(h + lane < group_end, Index(1u), Index(0u)),
                  touching);
     store_lanes(q.index[Queue::i] + at, Index(me.i));
-    store_packed(q.real[Queue::dist2] + at, dist2, touching);
-    store_column(q, Queue::d, at, d, touching);
-    store_column(q, Queue::xj, at, xj, touching);
-    store_column(q, Queue::xi, at, me.x, ~0u);
-    store_column(q, Queue::vi, at, me.v, ~0u);
-    if constexpr (Law::needs_spin) store_column(q, Queue::wi, at, me.w, ~0u);
+    store_packed(q.xj[0] + at, xj.x, touching);
+    store_packed(q.xj[1] + at, xj.y, touching);
+    store_packed(q.xj[2] + at, xj.z, touching);
+    store_packed(q.xj[3] + at, xj.w, touching);
     q.count += __builtin_popcount(touching);
-  }
-
-  /// A vector's components to the queue's columns from `column` on, packed.
-  template <class V>
-  static void store_column(Queue& q, int column, int at, const V& v, LaneBits take) {
-    store_packed(q.real[column] + at, v.x, take);
-    store_packed(q.real[column + 1] + at, v.y, take);
-    store_packed(q.real[column + 2] + at, v.z, take);
-    if constexpr (std::is_same_v<V, Vec4T<R>>) store_packed(q.real[column + 3] + at, v.w, take);
   }
 
   /// The separated entries' histories cleared.
@@ -227,26 +213,19 @@ struct PairLanesForces {
   }
   static Vec4T<R> vec4(const std::array<R, 4>& c) { return {c[0], c[1], c[2], c[3]}; }
 
-  /// The queue's columns [column, column + 3) or [column, column + 4) of its first W entries.
-  static Vec3T<R> load3(const Queue& q, int column) {
-    return {q.load(column), q.load(column + 1), q.load(column + 2)};
-  }
-  static Vec4T<R> load4(const Queue& q, int column) {
-    return {q.load(column), q.load(column + 1), q.load(column + 2), q.load(column + 3)};
-  }
-
   /// The law on the queue's first W entries (its first `count`, where fewer wait); each
   /// contact's loads go to its own end and, for a pair in one group, to the partner (the loads
   /// mirrored, its torque with its own arm).
   void evaluate(const Queue& q, const ContactPairParamsT<L>& one_pair) const {
     const Index j = load_lanes<W>(q.at(Queue::j));
-    const Vec4T<R> xi = load4(q, Queue::xi), vi = load4(q, Queue::vi), xj = load4(q, Queue::xj);
+    const Index i = load_lanes<W>(q.at(Queue::i));
+    const Vec4T<R> xi = positions(i), vi = velocities(i), xj = q.partner_positions();
     Vec3T<R> wi{}, wj{};
-    if constexpr (Law::needs_spin) wi = load3(q, Queue::wi), wj = spins(j);
+    if constexpr (Law::needs_spin) wi = spins(i), wj = spins(j);
     ContactPointT<R> point;
     R arm;
-    describe_pair<Law>(point, arm, load3(q, Queue::d), q.load(Queue::dist2), xi, vi, wi, xj,
-                       velocities(j), wj);
+    const Vec3T<R> d = minimum_image(xyz(xj) - xyz(xi));
+    describe_pair<Law>(point, arm, d, norm2(d), xi, vi, wi, xj, velocities(j), wj);
     L history[Law::history_size > 0 ? Law::history_size : 1];
     if constexpr (Law::history_size > 0) {
       const Offset first = Offset(load_lanes<W>(q.at(Queue::entry))) *
