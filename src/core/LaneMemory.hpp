@@ -102,7 +102,8 @@ constexpr PackedOrders packed_orders() {
   }
   return t;
 }
-inline constexpr PackedOrders kPackedOrders = packed_orders();
+// internal linkage: no unit built for wider vectors defines a symbol the others could share
+static constexpr PackedOrders kPackedOrders = packed_orders();
 }  // namespace lane_detail
 
 /// The lanes of v whose bit is set in `take`, in order, to p[0, popcount(take)); p[0, W) may be
