@@ -82,6 +82,23 @@ Lanes<S, W> gather(const S* base, const Lanes<std::int64_t, W>& at) {
   return v;
 }
 
+/// v's lanes whose bit is set in `which` to base[at[l]] (at: element offsets from base, distinct
+/// among those lanes).
+template <class S, int W>
+void scatter(S* base, const Lanes<std::int64_t, W>& at, const Lanes<S, W>& v, LaneBits which) {
+#if defined(__AVX512F__)
+  if constexpr (std::is_same_v<S, double> && W == 8) {
+    _mm512_mask_i64scatter_pd(base, static_cast<__mmask8>(which), reinterpret_cast<__m512i>(at.v),
+                              reinterpret_cast<__m512d>(v.v), 8);
+    return;
+  }
+#endif
+  for (; which != 0; which &= which - 1) {
+    const int l = __builtin_ctz(which);
+    base[at.v[l]] = v.v[l];
+  }
+}
+
 namespace lane_detail {
 /// For each bit mask of four lanes, the 32-bit elements that pack its lanes to the front, for an
 /// AVX2 permute: of four 8-byte lanes (two elements each) and of four 4-byte lanes.

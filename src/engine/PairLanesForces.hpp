@@ -70,6 +70,8 @@ struct PairLanesForces {
   /// Entries past a particle's first whose partners' positions it prefetches (eight of them).
   static constexpr std::uint32_t kPrefetchAhead = 16;
   static_assert(kPrefetchAhead + 8 <= kRowsPadding, "the rows' padding holds what is read");
+  /// Scalars of one history record.
+  static constexpr std::int64_t kRecordSize = sizeof(typename Law::State) / sizeof(S);
   PairOnceForces<Law, P> once;  ///< the sweep, its groups and its integer sums
 
   /// The particles at positions [begin, end) of the sweep.
@@ -157,9 +159,11 @@ struct PairLanesForces {
 
   /// The separated entries' histories cleared.
   void forget_history(const Index& k, LaneBits separated) const {
-    if constexpr (Law::history_size > 0)
-      for (; separated != 0; separated &= separated - 1)
-        once.sweep.history.pair[k[__builtin_ctz(separated)]] = typename Law::State{};
+    if constexpr (Law::history_size > 0) {
+      const Offset first = Offset(k) * kRecordSize;
+      for (std::int64_t v = 0; v < kRecordSize; ++v)
+        scatter(&once.sweep.history.pair[0].value[0], first + v, L(S(0)), separated);
+    }
   }
 
   /// d reduced to its nearest periodic image on each periodic axis, as PeriodicBox does.
@@ -228,8 +232,7 @@ struct PairLanesForces {
     describe_pair<Law>(point, arm, d, norm2(d), xi, vi, wi, xj, velocities(j), wj);
     L history[Law::history_size > 0 ? Law::history_size : 1];
     if constexpr (Law::history_size > 0) {
-      const Offset first = Offset(load_lanes<W>(q.at(Queue::entry))) *
-                           std::int64_t(sizeof(typename Law::State) / sizeof(S));
+      const Offset first = Offset(load_lanes<W>(q.at(Queue::entry))) * kRecordSize;
       for (int v = 0; v < Law::history_size; ++v)
         history[v] = gather(&once.sweep.history.pair[0].value[0], first + std::int64_t(v));
     }
