@@ -43,9 +43,10 @@ struct TouchingEntries {
   /// have no room past them.
   void make_room() {
     if (count + W <= capacity) return;
-    for (auto& column : index) std::memcpy(column, column + first, sizeof(column[0]) * W);
-    for (auto& column : xj) std::memcpy(column, column + first, sizeof(column[0]) * W);
-    count -= first;
+    const int moved = waiting();
+    for (auto& column : index) std::memmove(column, column + first, sizeof(column[0]) * moved);
+    for (auto& column : xj) std::memmove(column, column + first, sizeof(column[0]) * moved);
+    count = moved;
     first = 0;
   }
   void clear() { first = count = 0; }
