@@ -101,9 +101,9 @@ struct PairLanesForces {
     const std::uint32_t end = rows.end[position];
     if (rows.begin[position] == end) return;
     const Me me = lanes_of_particle(i);
-    if constexpr (std::is_same_v<P, Real>) {  // the partners' positions a few particles ahead
+    if (const ParticleView<Real>* p = state_in_double()) {  // partners a few particles ahead
       const std::uint32_t* ahead = rows.partner + rows.begin[position] + kPrefetchAhead;
-      for (int l = 0; l < 8; ++l) __builtin_prefetch(&s.particles.position_radius[ahead[l]]);
+      for (int l = 0; l < 8; ++l) __builtin_prefetch(&p->position_radius[ahead[l]]);
     }
     for (std::uint32_t h = rows.begin[position]; h < end; h += W) {
       test_entries(me, h, end - h, rows.group_end[position], queue);
@@ -188,32 +188,38 @@ struct PairLanesForces {
     return v;
   }
 
+  /// The particle arrays where the state is held in double (every policy but "float"), else
+  /// null.
+  const ParticleView<Real>* state_in_double() const {
+    if constexpr (std::is_same_v<P, Real>)
+      return &once.sweep.particles;
+    else
+      return once.sweep.particles.is_float ? nullptr : &once.sweep.particles.in_double;
+  }
+
   /// The lanes' particles' positions (and radii), velocities (and inverse masses) and spins:
   /// gathered from a state held in double, else read lane by lane.
   Vec4T<R> positions(const Index& at) const {
-    const ParticleView<P>& p = once.sweep.particles;
-    if constexpr (std::is_same_v<P, Real>)
-      return vec4(gather_records<4>(&p.position_radius[0].x, at));
+    if (const ParticleView<Real>* p = state_in_double())
+      return vec4(gather_records<4>(&p->position_radius[0].x, at));
     Vec4T<R> v;
-    for (int l = 0; l < W; ++l) set_lane<Real, W>(v, l, p.position(at[l]));
+    for (int l = 0; l < W; ++l) set_lane<Real, W>(v, l, once.sweep.particles.position(at[l]));
     return v;
   }
   Vec4T<R> velocities(const Index& at) const {
-    const ParticleView<P>& p = once.sweep.particles;
-    if constexpr (std::is_same_v<P, Real>)
-      return vec4(gather_records<4>(&p.velocity_inv_mass[0].x, at));
+    if (const ParticleView<Real>* p = state_in_double())
+      return vec4(gather_records<4>(&p->velocity_inv_mass[0].x, at));
     Vec4T<R> v;
-    for (int l = 0; l < W; ++l) set_lane<Real, W>(v, l, p.velocity(at[l]));
+    for (int l = 0; l < W; ++l) set_lane<Real, W>(v, l, once.sweep.particles.velocity(at[l]));
     return v;
   }
   Vec3T<R> spins(const Index& at) const {
-    const ParticleView<P>& p = once.sweep.particles;
-    if constexpr (std::is_same_v<P, Real>) {
-      const std::array<R, 3> w = gather_records<3>(&p.angular_velocity[0].x, at);
+    if (const ParticleView<Real>* p = state_in_double()) {
+      const std::array<R, 3> w = gather_records<3>(&p->angular_velocity[0].x, at);
       return {w[0], w[1], w[2]};
     }
     Vec3T<R> v;
-    for (int l = 0; l < W; ++l) set_lane<Real, W>(v, l, p.spin(at[l]));
+    for (int l = 0; l < W; ++l) set_lane<Real, W>(v, l, once.sweep.particles.spin(at[l]));
     return v;
   }
   static Vec4T<R> vec4(const std::array<R, 4>& c) { return {c[0], c[1], c[2], c[3]}; }
