@@ -7,6 +7,7 @@
 /// only (GCC and Clang).
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 #if defined(__AVX2__)
 #include <immintrin.h>
 #endif
@@ -18,7 +19,7 @@ namespace gpudem {
 /// Lane l's bit of a lane bit mask: bit l.
 using LaneBits = unsigned;
 
-/// The bits of lanes [0, n) (n ≤ W).
+/// The bits of lanes [0, n), of all W where n ≥ W.
 template <int W>
 LaneBits first_lanes(unsigned n) {
   static_assert(W < 32, "a lane bit mask holds at most 31 lanes");
@@ -133,6 +134,8 @@ void store_packed(S* p, const Lanes<S, W>& v, LaneBits take) {
         p, _mm512_maskz_compress_pd(static_cast<__mmask8>(take), reinterpret_cast<__m512d>(v.v)));
     return;
   }
+#endif
+#if defined(__AVX512F__) && defined(__AVX512VL__)
   if constexpr (sizeof(S) == 4 && W == 8) {
     _mm256_storeu_si256(
         reinterpret_cast<__m256i*>(p),
